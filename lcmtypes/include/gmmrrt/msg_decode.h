@@ -1,0 +1,62 @@
+/*
+ * msg_decode.h - decode-and-validate for every gmmrrt LCM message.
+ *
+ * LCM's generated decoders check only the wire format. These wrappers add what a
+ * planner must not trust: counts within the declared capacity (MAX_* constants in
+ * lcmtypes/), finite numbers in every meaningful field, positive sizes, known enum
+ * values. All gmmrrt messages use fixed-capacity arrays, so decoding never
+ * allocates and nothing on the wire sizes an allocation.
+ *
+ * Every function: decodes `len` bytes at `buf` into `*out` (caller-owned), returns
+ * GMMRRT_MSG_OK or the reason for rejection, and on rejection writes a one-line
+ * message naming the type and field into err[errcap] (may be NULL).
+ */
+#ifndef GMMRRT_MSG_DECODE_H
+#define GMMRRT_MSG_DECODE_H
+
+#include <stddef.h>
+
+#include "gmmrrt/gmmrrt_demo_info_t.h"
+#include "gmmrrt/gmmrrt_nav_goal_t.h"
+#include "gmmrrt/gmmrrt_obstacles_t.h"
+#include "gmmrrt/gmmrrt_people_t.h"
+#include "gmmrrt/gmmrrt_planner_status_t.h"
+#include "gmmrrt/gmmrrt_pose2d_t.h"
+#include "gmmrrt/gmmrrt_waypoints_t.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Why a message was rejected. Maps one-to-one onto planner_status_t.REJECT_*
+ * (decode, count over bound, not finite, bad value) as the daemon counts them. */
+typedef enum {
+    GMMRRT_MSG_OK = 0,
+    GMMRRT_MSG_DECODE_FAILED = 1,    /* wrong fingerprint, truncated, malformed */
+    GMMRRT_MSG_COUNT_OVER_BOUND = 2, /* a count is negative or above its MAX_* */
+    GMMRRT_MSG_NOT_FINITE = 3,       /* NaN or Inf in a meaningful field */
+    GMMRRT_MSG_BAD_VALUE = 4         /* out of range: radius <= 0, unknown task, ... */
+} gmmrrt_msg_result_t;
+
+const char *gmmrrt_msg_result_str(gmmrrt_msg_result_t r);
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_pose2d(const void *buf, size_t len, gmmrrt_pose2d_t *out,
+                                             char *err, size_t errcap);
+gmmrrt_msg_result_t gmmrrt_msg_decode_people(const void *buf, size_t len, gmmrrt_people_t *out,
+                                             char *err, size_t errcap);
+gmmrrt_msg_result_t gmmrrt_msg_decode_nav_goal(const void *buf, size_t len, gmmrrt_nav_goal_t *out,
+                                               char *err, size_t errcap);
+gmmrrt_msg_result_t gmmrrt_msg_decode_obstacles(const void *buf, size_t len, gmmrrt_obstacles_t *out,
+                                                char *err, size_t errcap);
+gmmrrt_msg_result_t gmmrrt_msg_decode_waypoints(const void *buf, size_t len, gmmrrt_waypoints_t *out,
+                                                char *err, size_t errcap);
+gmmrrt_msg_result_t gmmrrt_msg_decode_planner_status(const void *buf, size_t len,
+                                                     gmmrrt_planner_status_t *out, char *err,
+                                                     size_t errcap);
+gmmrrt_msg_result_t gmmrrt_msg_decode_demo_info(const void *buf, size_t len, gmmrrt_demo_info_t *out,
+                                                char *err, size_t errcap);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* GMMRRT_MSG_DECODE_H */

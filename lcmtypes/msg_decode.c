@@ -1,0 +1,191 @@
+/*
+ * msg_decode.c - decode-and-validate for the gmmrrt LCM messages (see msg_decode.h).
+ * Validation rules per field are listed in docs/messages.md.
+ */
+#include "gmmrrt/msg_decode.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+
+static gmmrrt_msg_result_t reject(gmmrrt_msg_result_t r, char *err, size_t errcap, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+static gmmrrt_msg_result_t reject(gmmrrt_msg_result_t r, char *err, size_t errcap, const char *fmt, ...)
+{
+    if (err != NULL && errcap > 0) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(err, errcap, fmt, ap);
+        va_end(ap);
+    }
+    return r;
+}
+
+const char *gmmrrt_msg_result_str(gmmrrt_msg_result_t r)
+{
+    switch (r) {
+    case GMMRRT_MSG_OK: return "ok";
+    case GMMRRT_MSG_DECODE_FAILED: return "decode failed";
+    case GMMRRT_MSG_COUNT_OVER_BOUND: return "count over bound";
+    case GMMRRT_MSG_NOT_FINITE: return "not finite";
+    case GMMRRT_MSG_BAD_VALUE: return "bad value";
+    }
+    return "unknown";
+}
+
+/* The generated decoders take an int length; anything larger cannot be a gmmrrt message. */
+static int decodable_len(size_t len) { return len <= (size_t)INT32_MAX; }
+
+#define DECODE_OR_REJECT(type, buf, len, out, err, errcap)                                              \
+    do {                                                                                                \
+        if ((buf) == NULL || (out) == NULL || !decodable_len(len) ||                                    \
+            gmmrrt_##type##_decode((buf), 0, (int)(len), (out)) < 0)                                    \
+            return reject(GMMRRT_MSG_DECODE_FAILED, (err), (errcap),                                    \
+                          #type ": cannot decode %zu bytes (wrong type or truncated)", (size_t)(len));  \
+    } while (0)
+
+#define REQUIRE_FINITE(type, field, value, err, errcap)                                                 \
+    do {                                                                                                \
+        if (!isfinite(value))                                                                           \
+            return reject(GMMRRT_MSG_NOT_FINITE, (err), (errcap), #type ".%s is not finite", (field));   \
+    } while (0)
+
+static gmmrrt_msg_result_t check_count(const char *type, const char *field, int32_t n, int32_t max,
+                                       char *err, size_t errcap)
+{
+    if (n < 0 || n > max)
+        return reject(GMMRRT_MSG_COUNT_OVER_BOUND, err, errcap, "%s.%s = %d is outside 0..%d", type,
+                      field, (int)n, (int)max);
+    return GMMRRT_MSG_OK;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_pose2d(const void *buf, size_t len, gmmrrt_pose2d_t *out,
+                                             char *err, size_t errcap)
+{
+    DECODE_OR_REJECT(pose2d_t, buf, len, out, err, errcap);
+    REQUIRE_FINITE(pose2d_t, "x", out->x, err, errcap);
+    REQUIRE_FINITE(pose2d_t, "y", out->y, err, errcap);
+    REQUIRE_FINITE(pose2d_t, "yaw", out->yaw, err, errcap);
+    if (out->velocity_valid) {
+        REQUIRE_FINITE(pose2d_t, "vx", out->vx, err, errcap);
+        REQUIRE_FINITE(pose2d_t, "vy", out->vy, err, errcap);
+        REQUIRE_FINITE(pose2d_t, "yaw_rate", out->yaw_rate, err, errcap);
+    }
+    return GMMRRT_MSG_OK;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_people(const void *buf, size_t len, gmmrrt_people_t *out,
+                                             char *err, size_t errcap)
+{
+    DECODE_OR_REJECT(people_t, buf, len, out, err, errcap);
+    gmmrrt_msg_result_t r =
+        check_count("people_t", "num_people", out->num_people, GMMRRT_PEOPLE_T_MAX_PEOPLE, err, errcap);
+    if (r != GMMRRT_MSG_OK)
+        return r;
+    for (int32_t i = 0; i < out->num_people; ++i) {
+        const gmmrrt_person_t *p = &out->people[i];
+        char field[32];
+        if (!(isfinite(p->x) && isfinite(p->y) && isfinite(p->yaw) && isfinite(p->vx) && isfinite(p->vy))) {
+            snprintf(field, sizeof field, "people[%d]", (int)i);
+            return reject(GMMRRT_MSG_NOT_FINITE, err, errcap, "people_t.%s has a non-finite pose or velocity",
+                          field);
+        }
+        if (p->id < 0)
+            return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "people_t.people[%d].id = %d is negative", (int)i,
+                          (int)p->id);
+    }
+    return GMMRRT_MSG_OK;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_nav_goal(const void *buf, size_t len, gmmrrt_nav_goal_t *out,
+                                               char *err, size_t errcap)
+{
+    DECODE_OR_REJECT(nav_goal_t, buf, len, out, err, errcap);
+    REQUIRE_FINITE(nav_goal_t, "x", out->x, err, errcap);
+    REQUIRE_FINITE(nav_goal_t, "y", out->y, err, errcap);
+    REQUIRE_FINITE(nav_goal_t, "yaw", out->yaw, err, errcap);
+    REQUIRE_FINITE(nav_goal_t, "tolerance_m", out->tolerance_m, err, errcap);
+    if (!(out->tolerance_m > 0.0))
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "nav_goal_t.tolerance_m = %g must be > 0",
+                      out->tolerance_m);
+    if (out->task != GMMRRT_NAV_GOAL_T_TASK_NONE && out->task != GMMRRT_NAV_GOAL_T_TASK_AVOID &&
+        out->task != GMMRRT_NAV_GOAL_T_TASK_APPROACH)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "nav_goal_t.task = %d is not a TASK_* value",
+                      (int)out->task);
+    if (out->task == GMMRRT_NAV_GOAL_T_TASK_APPROACH && out->target_person_id < 0)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
+                      "nav_goal_t.target_person_id = %d: TASK_APPROACH needs a person id >= 0",
+                      (int)out->target_person_id);
+    return GMMRRT_MSG_OK;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_obstacles(const void *buf, size_t len, gmmrrt_obstacles_t *out,
+                                                char *err, size_t errcap)
+{
+    DECODE_OR_REJECT(obstacles_t, buf, len, out, err, errcap);
+    gmmrrt_msg_result_t r = check_count("obstacles_t", "num_circles", out->num_circles,
+                                        GMMRRT_OBSTACLES_T_MAX_CIRCLES, err, errcap);
+    if (r == GMMRRT_MSG_OK)
+        r = check_count("obstacles_t", "num_boxes", out->num_boxes, GMMRRT_OBSTACLES_T_MAX_BOXES, err, errcap);
+    if (r != GMMRRT_MSG_OK)
+        return r;
+    for (int32_t i = 0; i < out->num_circles; ++i) {
+        if (!(isfinite(out->circle_x[i]) && isfinite(out->circle_y[i]) && isfinite(out->circle_radius[i])))
+            return reject(GMMRRT_MSG_NOT_FINITE, err, errcap, "obstacles_t circle %d is not finite", (int)i);
+        if (!(out->circle_radius[i] > 0.0))
+            return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "obstacles_t.circle_radius[%d] = %g must be > 0",
+                          (int)i, out->circle_radius[i]);
+    }
+    for (int32_t i = 0; i < out->num_boxes; ++i) {
+        if (!(isfinite(out->box_x[i]) && isfinite(out->box_y[i]) && isfinite(out->box_width[i]) &&
+              isfinite(out->box_height[i]) && isfinite(out->box_yaw[i])))
+            return reject(GMMRRT_MSG_NOT_FINITE, err, errcap, "obstacles_t box %d is not finite", (int)i);
+        if (!(out->box_width[i] > 0.0 && out->box_height[i] > 0.0))
+            return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
+                          "obstacles_t box %d: width %g and height %g must be > 0", (int)i, out->box_width[i],
+                          out->box_height[i]);
+    }
+    return GMMRRT_MSG_OK;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_waypoints(const void *buf, size_t len, gmmrrt_waypoints_t *out,
+                                                char *err, size_t errcap)
+{
+    DECODE_OR_REJECT(waypoints_t, buf, len, out, err, errcap);
+    gmmrrt_msg_result_t r = check_count("waypoints_t", "num_waypoints", out->num_waypoints,
+                                        GMMRRT_WAYPOINTS_T_MAX_WAYPOINTS, err, errcap);
+    if (r != GMMRRT_MSG_OK)
+        return r;
+    for (int32_t i = 0; i < out->num_waypoints; ++i)
+        if (!(isfinite(out->x[i]) && isfinite(out->y[i]) && isfinite(out->yaw[i])))
+            return reject(GMMRRT_MSG_NOT_FINITE, err, errcap, "waypoints_t waypoint %d is not finite", (int)i);
+    return GMMRRT_MSG_OK;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_planner_status(const void *buf, size_t len,
+                                                     gmmrrt_planner_status_t *out, char *err, size_t errcap)
+{
+    DECODE_OR_REJECT(planner_status_t, buf, len, out, err, errcap);
+    if (out->state < GMMRRT_PLANNER_STATUS_T_STATE_IDLE || out->state > GMMRRT_PLANNER_STATUS_T_STATE_ERROR)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "planner_status_t.state = %d is not a STATE_* value",
+                      (int)out->state);
+    return GMMRRT_MSG_OK;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_demo_info(const void *buf, size_t len, gmmrrt_demo_info_t *out,
+                                                char *err, size_t errcap)
+{
+    DECODE_OR_REJECT(demo_info_t, buf, len, out, err, errcap);
+    if (out->task < GMMRRT_NAV_GOAL_T_TASK_NONE || out->task > GMMRRT_NAV_GOAL_T_TASK_APPROACH)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "demo_info_t.task = %d is not a TASK_* value",
+                      (int)out->task);
+    if (out->homotopy < GMMRRT_DEMO_INFO_T_HOMOTOPY_UNKNOWN || out->homotopy > GMMRRT_DEMO_INFO_T_HOMOTOPY_FRONTAL)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "demo_info_t.homotopy = %d is not a HOMOTOPY_* value",
+                      (int)out->homotopy);
+    if (out->episode < 0)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "demo_info_t.episode = %d is negative",
+                      (int)out->episode);
+    return GMMRRT_MSG_OK;
+}

@@ -1,0 +1,105 @@
+/*
+ * model.h - a Gaussian mixture model (paper eq. 1) and its binary file format.
+ *
+ *   p(f) = sum_i w_i N(f; mu_i, Sigma_i),   Sigma_i = L_i L_i^T
+ *
+ * Dimensions flagged in angle_mask are angles in radians, wrapped: their density is the
+ * wrapped normal (the sum over the images f + 2 pi n, n in {-1, 0, 1}), their means lie
+ * in [-pi, pi]. Density and sampling live in gmm.h; the byte layout is specified in
+ * docs/model-format.md. The learner writes models with gmmrrt_model_encode() and the
+ * planner reads them with gmmrrt_model_decode(): one implementation of the format.
+ *
+ * Memory: gmmrrt_model_t is a plain fixed-size struct (no pointers); callers own it.
+ * Loading follows the cFE table pattern: decode into a scratch model, and only when
+ * the call returns GMMRRT_OK copy it over the one in use.
+ */
+#ifndef GMMRRT_MODEL_H
+#define GMMRRT_MODEL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "gmmrrt/limits.h"
+#include "gmmrrt/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define GMMRRT_MODEL_MAGIC "GMMRRTMD"   /* 8 bytes, no terminator in the file */
+#define GMMRRT_MODEL_FORMAT_VERSION 1
+#define GMMRRT_MODEL_HEADER_BYTES 32
+#define GMMRRT_MODEL_DEFAULT_DELTA 0.001 /* the paper's delta (Sect. 5.1) */
+
+/* What the mixture's dimensions mean. */
+typedef enum {
+    GMMRRT_MODEL_KIND_FEATURES = 1, /* D = 2: (d [m], theta [rad, angle]) in the person's frame; GMM-RRT* */
+    GMMRRT_MODEL_KIND_XY = 2,       /* D = 3: (s [progress 0..1], x' [m], y' [m]) in the person's frame;
+                                       components sorted by mean s; the GMM-RRT baseline */
+    GMMRRT_MODEL_KIND_GENERIC = 3   /* any D: user features (gmmrrt-learn --features-csv) */
+} gmmrrt_model_kind_t;
+
+/* Values equal nav_goal_t.TASK_* and demo_info_t.HOMOTOPY_* on the wire. */
+typedef enum { GMMRRT_TASK_NONE = 0, GMMRRT_TASK_AVOID = 1, GMMRRT_TASK_APPROACH = 2 } gmmrrt_task_t;
+typedef enum {
+    GMMRRT_HOMOTOPY_ALL = 0,
+    GMMRRT_HOMOTOPY_LEFT = 1,
+    GMMRRT_HOMOTOPY_RIGHT = 2,
+    GMMRRT_HOMOTOPY_FRONTAL = 3
+} gmmrrt_homotopy_t;
+
+typedef struct {
+    /* Stored in the file. */
+    int32_t kind;        /* gmmrrt_model_kind_t */
+    int32_t task;        /* gmmrrt_task_t */
+    int32_t homotopy;    /* gmmrrt_homotopy_t */
+    int32_t dim;         /* D, 1..GMMRRT_MAX_DIM */
+    int32_t k;           /* K, 1..GMMRRT_MAX_K */
+    uint32_t angle_mask; /* bit j set: dimension j is a wrapped angle */
+    double delta;        /* default delta of the task cost delta / max(p, delta); > 0 */
+    double weight[GMMRRT_MAX_K];                /* w_i in (0, 1], sum 1 */
+    double mean[GMMRRT_MAX_K][GMMRRT_MAX_DIM];  /* mu_i */
+    double chol[GMMRRT_MAX_K][GMMRRT_MAX_TRI];  /* L_i packed row-major lower triangle:
+                                                   L00, L10, L11, L20, L21, L22, ... */
+
+    /* Derived by gmmrrt_model_prepare() (decode calls it); never stored. */
+    double inv_chol[GMMRRT_MAX_K][GMMRRT_MAX_TRI]; /* L_i^-1, packed like chol */
+    double log_coef[GMMRRT_MAX_K];  /* log w_i - D/2 log(2 pi) - sum_j log L_i,jj */
+    double cum_weight[GMMRRT_MAX_K];/* running sum of w_i, last = 1, for sampling */
+} gmmrrt_model_t;
+
+/* Bytes of the encoded model: header + K (1 + D + D(D+1)/2) doubles + CRC-32.
+ * 0 when dim or k is outside the limits. */
+size_t gmmrrt_model_encoded_size(int32_t dim, int32_t k);
+
+/* Largest valid file this build accepts (GMMRRT_MAX_DIM, GMMRRT_MAX_K). */
+size_t gmmrrt_model_max_encoded_size(void);
+
+/* Validates `model` (as gmmrrt_model_prepare would, on a copy) and writes its encoding
+ * to buf[cap]; *out_len gets the byte count. GMMRRT_ERR_BUFFER_TOO_SMALL when cap is
+ * short (nothing written beyond cap); a model-specific status when the model is invalid,
+ * with a message in err[errcap] (err may be NULL). */
+gmmrrt_status_t gmmrrt_model_encode(const gmmrrt_model_t *model, uint8_t *buf, size_t cap,
+                                    size_t *out_len, char *err, size_t errcap);
+
+/* Parses and validates len bytes at buf into *out: magic, version, byte order, sizes
+ * against len, CRC-32, K and D within limits.h, kind/task/homotopy/angle flags known,
+ * finite numbers, positive-definite factors, weights summing to 1 (|sum - 1| <= 1e-9),
+ * then derives the prepared fields. Never reads outside buf[0..len). On failure returns
+ * the specific GMMRRT_ERR_MODEL_* status, writes the reason into err[errcap], and leaves
+ * *out unspecified: decode into a scratch model. */
+gmmrrt_status_t gmmrrt_model_decode(const uint8_t *buf, size_t len, gmmrrt_model_t *out, char *err,
+                                    size_t errcap);
+
+/* Validates the stored fields of `model` and fills the derived ones. Used by decode and
+ * by writers that build a model in memory (the learner, tests). */
+gmmrrt_status_t gmmrrt_model_prepare(gmmrrt_model_t *model, char *err, size_t errcap);
+
+/* CRC-32 (IEEE 802.3 / zlib polynomial, reflected, init and final xor 0xFFFFFFFF), so
+ * Python's zlib.crc32 checks files too. */
+uint32_t gmmrrt_crc32(const uint8_t *data, size_t len);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* GMMRRT_MODEL_H */

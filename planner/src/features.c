@@ -1,0 +1,46 @@
+/*
+ * features.c - distance and bearing of the robot in the person's frame (paper Sect. 3;
+ * conventions of ../shared/data/real/README.md). See features.h.
+ */
+#include "gmmrrt/features.h"
+
+#include <math.h>
+
+double gmmrrt_wrap_angle(double angle_rad)
+{
+    if (angle_rad > -M_PI && angle_rad <= M_PI)
+        return angle_rad;
+    double a = fmod(angle_rad + M_PI, 2.0 * M_PI); /* (-2pi, 2pi) */
+    if (a <= 0.0)
+        a += 2.0 * M_PI; /* (0, 2pi] */
+    return a - M_PI;     /* (-pi, pi] */
+}
+
+void gmmrrt_world_to_person(const gmmrrt_pose_t *person, double x, double y, double *xp, double *yp)
+{
+    const double dx = x - person->x, dy = y - person->y;
+    const double c = cos(person->yaw), s = sin(person->yaw);
+    *xp = dx * c + dy * s;
+    *yp = -dx * s + dy * c;
+}
+
+void gmmrrt_person_to_world(const gmmrrt_pose_t *person, double xp, double yp, double *x, double *y)
+{
+    const double c = cos(person->yaw), s = sin(person->yaw);
+    *x = person->x + xp * c - yp * s;
+    *y = person->y + xp * s + yp * c;
+}
+
+void gmmrrt_features_from_xy(const gmmrrt_pose_t *person, double x, double y, double *d_m, double *theta_rad)
+{
+    double xp, yp;
+    gmmrrt_world_to_person(person, x, y, &xp, &yp);
+    *d_m = hypot(xp, yp);
+    /* atan2 gives [-pi, pi]; -pi (exactly behind, y' = -0) is folded onto +pi. */
+    *theta_rad = (*d_m > 0.0) ? gmmrrt_wrap_angle(atan2(yp, xp)) : 0.0;
+}
+
+void gmmrrt_features_to_xy(const gmmrrt_pose_t *person, double d_m, double theta_rad, double *x, double *y)
+{
+    gmmrrt_person_to_world(person, d_m * cos(theta_rad), d_m * sin(theta_rad), x, y);
+}
