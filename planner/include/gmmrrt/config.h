@@ -1,0 +1,61 @@
+/*
+ * config.h - the planner's configuration: everything fixed at init (memory sizing) and the
+ * tuning of the search. Defaults (gmmrrt_planner_config_default) are documented in
+ * docs/planner.md; every field is validated by gmmrrt_planner_config_validate.
+ */
+#ifndef GMMRRT_CONFIG_H
+#define GMMRRT_CONFIG_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "gmmrrt/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Values equal waypoints_t.PLANNER_* on the wire. */
+typedef enum {
+    GMMRRT_PLANNER_GMM_RRT_STAR = 1, /* the paper's planner: mixture sampling + task cost */
+    GMMRRT_PLANNER_RRT_STAR = 2,     /* plain RRT*: uniform sampling, length cost only */
+    GMMRRT_PLANNER_GMM_RRT = 3       /* baseline (Claassens 2010): RRT sampling the xy mixture */
+} gmmrrt_planner_kind_t;
+
+typedef struct {
+    int32_t planner;           /* gmmrrt_planner_kind_t */
+    uint64_t seed;             /* RNG seed; same seed, same problem -> same tree */
+
+    /* Memory (fixes gmmrrt_planner_mem_size) */
+    int32_t max_nodes;         /* tree node pool, 2..GMMRRT_MAX_NODES_CEILING */
+    int32_t grid_max_cells;    /* clearance grid capacity, cells */
+    int32_t history_capacity;  /* entries of the cost-vs-iteration history */
+
+    /* Geometry */
+    double robot_radius_m;     /* >= 0 */
+    double person_radius_m;    /* >= 0, people are discs of this radius */
+    double grid_resolution_m;  /* > 0, clearance grid cell size */
+    double edge_resolution_m;  /* > 0, spacing of collision checks and cost quadrature on edges */
+
+    /* Search */
+    double step_m;             /* > 0, steering: longest new edge */
+    double goal_bias;          /* [0, 1), probability of sampling the goal */
+    double gmm_bias;           /* [0, 1], probability of a mixture sample (paper: 0.95) */
+    double rewire_gamma;       /* > 0, near radius r = min(step, gamma (log n / n)^(1/2)) */
+    double w_length;           /* >= 0, weight of length in the edge cost */
+    double w_task;             /* >= 0, weight of the task cost c(f) (paper Sect. 4) */
+    double delta;              /* > 0 overrides the model's delta; 0 uses the model's */
+    double person_influence_m; /* > 0, avoid model applies to people within this distance of the segment start-goal */
+    double waypoint_spacing_m; /* > 0, spacing of the output path */
+} gmmrrt_planner_config_t;
+
+/* Fills *cfg with the documented defaults (gmm-rrt-star, bias 0.95, delta from the model). */
+void gmmrrt_planner_config_default(gmmrrt_planner_config_t *cfg);
+
+/* GMMRRT_OK or GMMRRT_ERR_INVALID_ARGUMENT with the offending field named in err[errcap]. */
+gmmrrt_status_t gmmrrt_planner_config_validate(const gmmrrt_planner_config_t *cfg, char *err, size_t errcap);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* GMMRRT_CONFIG_H */

@@ -1,0 +1,48 @@
+/*
+ * gmm.h - density, log-density, sampling and the task cost of a mixture (paper eq. 1, Sect. 4).
+ *
+ * Seam-safe angles: a dimension j with bit j of model->angle_mask set is a wrapped normal:
+ *   N_w(f) = sum_{n in {-1,0,1}} N(f + 2 pi n e_j)  (each angle dimension independently,
+ * 3^A terms for A angle dimensions), evaluated on the wrapped difference f_j - mu_j in
+ * (-pi, pi]. With sigma_theta <= pi/2 the truncation error is below 1e-7 relative.
+ * Samples are drawn from the unwrapped normal and wrapped into (-pi, pi].
+ *
+ * All functions are pure apart from the rng, take a prepared model (model.h), allocate
+ * nothing and do no I/O. The feature vector f has model->dim entries.
+ */
+#ifndef GMMRRT_GMM_H
+#define GMMRRT_GMM_H
+
+#include <stdint.h>
+
+#include "gmmrrt/model.h"
+#include "gmmrrt/rng.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* log p(f); -INFINITY only where every component underflows. */
+double gmmrrt_gmm_log_density(const gmmrrt_model_t *model, const double *f);
+
+/* p(f) = exp(log p(f)). */
+double gmmrrt_gmm_density(const gmmrrt_model_t *model, const double *f);
+
+/* log of component i's weighted density, log w_i + log N_w(f; mu_i, Sigma_i). */
+double gmmrrt_gmm_component_log_density(const gmmrrt_model_t *model, int32_t i, const double *f);
+
+/* The paper's task cost (Sect. 4): c(f) = delta / max(p(f), delta), in (0, 1].
+ * 1 where the model finds f unlikely, small where it is typical. delta > 0. */
+double gmmrrt_gmm_task_cost(const gmmrrt_model_t *model, const double *f, double delta);
+
+/* Draws a component by weight, then f = mu + L z (z standard normal); angles wrapped.
+ * Returns the component index. */
+int32_t gmmrrt_gmm_sample(const gmmrrt_model_t *model, gmmrrt_rng_t *rng, double *f_out);
+
+/* Draws from component i only (the GMM-RRT baseline walks components in order). */
+void gmmrrt_gmm_sample_component(const gmmrrt_model_t *model, int32_t i, gmmrrt_rng_t *rng, double *f_out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* GMMRRT_GMM_H */

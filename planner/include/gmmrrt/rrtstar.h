@@ -1,0 +1,114 @@
+/*
+ * rrtstar.h - the anytime planner: RRT* (Karaman & Frazzoli 2011) with the paper's mixture
+ * sampling bias and task cost (Sect. 4), plain RRT*, and the GMM-RRT baseline.
+ *
+ * Memory, like lcm-lite's lcmlite_init: gmmrrt_planner_mem_size(&cfg) says how many bytes;
+ * gmmrrt_planner_init() places everything (planner state, node pool, spatial index,
+ * collision world, history) inside that one caller-owned block. After init nothing is
+ * allocated: set_problem, run and best_path only use the block.
+ *
+ * Cost of an edge (paper Sect. 4): integral over the edge of (w_length + w_task c(f(x))) ds,
+ * c(f) = delta / max(p(f), delta), f the features of x relative to the person the task is
+ * about; with several people in avoid, c is the largest over the people within
+ * person_influence_m. Quadrature: docs/planner.md.
+ */
+#ifndef GMMRRT_RRTSTAR_H
+#define GMMRRT_RRTSTAR_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "gmmrrt/collision.h"
+#include "gmmrrt/config.h"
+#include "gmmrrt/limits.h"
+#include "gmmrrt/model.h"
+#include "gmmrrt/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct gmmrrt_planner gmmrrt_planner_t;
+
+/* One planning problem. Models are borrowed (not copied) and must outlive the run. */
+typedef struct {
+    double start_x, start_y;      /* m, world */
+    double goal_x, goal_y;        /* m, world */
+    double goal_tolerance_m;      /* > 0: a node this close to the goal reaches it */
+    int32_t task;                 /* gmmrrt_task_t: NONE (length only), AVOID, APPROACH */
+    int32_t target_person;        /* index into obstacles.people for APPROACH, else -1 */
+    const gmmrrt_model_t *model;  /* FEATURES model for the task (GMM-RRT*), or the XY model
+                                     (GMM-RRT); NULL for plain RRT* */
+    gmmrrt_obstacle_set_t obstacles; /* bounds, obstacles, people (people are obstacles too) */
+} gmmrrt_problem_t;
+
+/* Budget of one run: stops at whichever comes first. */
+typedef struct {
+    double time_ms;              /* wall-clock budget (CLOCK_MONOTONIC); <= 0: no time limit */
+    int64_t max_iterations;      /* samples drawn, kept or not (as OMPL counts); <= 0: none */
+    double converge_rel;         /* > 0: stop when the best cost improved by less than this
+                                    fraction over converge_window iterations; 0: off */
+    int64_t converge_window;
+} gmmrrt_budget_t;
+
+typedef struct {
+    int64_t iterations;           /* samples drawn in total since set_problem */
+    int32_t nodes;                /* nodes in the tree */
+    int64_t first_solution_iteration; /* -1 until a path exists */
+    double first_solution_ms;     /* -1 until a path exists */
+    double best_cost;             /* INFINITY until a path exists */
+    double time_ms;               /* wall-clock time spent in run() calls since set_problem */
+} gmmrrt_plan_stats_t;
+
+typedef struct {
+    int32_t num_points;                     /* 0 when there is no path */
+    double x[GMMRRT_MAX_WAYPOINTS];         /* m, world; x[0], y[0] = start */
+    double y[GMMRRT_MAX_WAYPOINTS];
+    double yaw[GMMRRT_MAX_WAYPOINTS];       /* direction of travel */
+    double length_m;
+    double cost;
+} gmmrrt_path_t;
+
+size_t gmmrrt_planner_mem_size(const gmmrrt_planner_config_t *cfg);
+
+/* Validates cfg and lays the planner out in mem[size] (8-byte aligned). *out points into mem. */
+gmmrrt_status_t gmmrrt_planner_init(gmmrrt_planner_t **out, void *mem, size_t size,
+                                    const gmmrrt_planner_config_t *cfg);
+
+/* Validates the problem (finite numbers, start and goal inside bounds and free, model kind
+ * fits the planner kind), builds the collision world and resets the tree to the start.
+ * Statuses: GMMRRT_ERR_INVALID_ARGUMENT, GMMRRT_ERR_START_IN_COLLISION,
+ * GMMRRT_ERR_GOAL_IN_COLLISION, GMMRRT_ERR_START/GOAL_OUT_OF_BOUNDS, GMMRRT_ERR_MODEL_MISMATCH,
+ * GMMRRT_ERR_BUFFER_TOO_SMALL (world larger than grid_max_cells). */
+gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_problem_t *problem);
+
+/* Warm start: inserts a previous path (world x-y points, start first) into the fresh tree
+ * where its edges are still free. Call right after set_problem. */
+gmmrrt_status_t gmmrrt_planner_seed_path(gmmrrt_planner_t *p, const double *x, const double *y, int32_t n);
+
+/* Grows the tree within budget; may be called again to continue (anytime). Returns
+ * GMMRRT_OK when a path to the goal exists, GMMRRT_NO_PATH_YET when not, GMMRRT_POOL_FULL
+ * when the pool ran out (the best path so far is kept). Fills *stats when non-NULL. */
+gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *budget,
+                                   gmmrrt_plan_stats_t *stats);
+
+/* The best path so far resampled at cfg.waypoint_spacing_m (at most GMMRRT_MAX_WAYPOINTS
+ * points; the spacing grows if needed to fit), start and goal included. */
+gmmrrt_status_t gmmrrt_planner_best_path(const gmmrrt_planner_t *p, gmmrrt_path_t *out);
+
+/* Cost history: up to cap (iteration, best cost) pairs recorded when the best cost
+ * improved; returns the number written. */
+int32_t gmmrrt_planner_cost_history(const gmmrrt_planner_t *p, int64_t *iterations, double *costs, int32_t cap);
+
+/* Tree inspection for tests and plots: node i's position, parent (-1 for the root) and cost. */
+int32_t gmmrrt_planner_node_count(const gmmrrt_planner_t *p);
+gmmrrt_status_t gmmrrt_planner_node(const gmmrrt_planner_t *p, int32_t i, double *x, double *y,
+                                    int32_t *parent, double *cost);
+
+/* The collision world of the current problem (for checks outside the loop). */
+const gmmrrt_world_t *gmmrrt_planner_world(const gmmrrt_planner_t *p);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* GMMRRT_RRTSTAR_H */
