@@ -268,6 +268,26 @@ static void test_task_cost_is_delta_over_max_p_delta(void **state)
     assert_true(gmmrrt_gmm_task_cost(&m, nan_f, m.delta) == 1.0);
 }
 
+static void test_nan_features_give_nan_log_density_in_every_path(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_features_model(&m);
+    prepare_or_fail(&m);
+    const double nan_d[2] = {NAN, 0.5}, nan_theta[2] = {1.0, NAN};
+    assert_true(isnan(gmmrrt_gmm_log_density(&m, nan_d)));
+    assert_true(isnan(gmmrrt_gmm_log_density(&m, nan_theta)));
+    assert_true(isnan(gmmrrt_gmm_component_log_density(&m, 1, nan_theta)));
+    fixture_generic_d4_model(&m);
+    prepare_or_fail(&m);
+    for (int j = 0; j < 4; ++j) {
+        double f[4] = {0.0, 1.0, 3.0, 2.0};
+        f[j] = NAN;
+        assert_true(isnan(gmmrrt_gmm_log_density(&m, f)));
+        assert_true(gmmrrt_gmm_task_cost(&m, f, m.delta) == 1.0);
+    }
+}
+
 /* ------------------------------------------------------------------ shared vectors */
 
 static void check_vector_file(const char *name)
@@ -486,6 +506,7 @@ int main(void)
         cmocka_unit_test(test_density_integrates_to_one),
         cmocka_unit_test(test_far_points_keep_a_finite_log_density),
         cmocka_unit_test(test_task_cost_is_delta_over_max_p_delta),
+        cmocka_unit_test(test_nan_features_give_nan_log_density_in_every_path),
         cmocka_unit_test(test_shared_vectors_features_seam),
         cmocka_unit_test(test_shared_vectors_xy),
         cmocka_unit_test(test_shared_vectors_generic_d4),
