@@ -343,6 +343,12 @@ static int edge_free_cached(struct gmmrrt_planner *p, int32_t k, double x, doubl
     return p->near_free[k];
 }
 
+static void near_exact(struct gmmrrt_planner *p, int32_t k, double x, double y)
+{
+    const gmmrrt_node_t *n = &p->nodes[p->near_idx[k]];
+    p->near_edge[k] = gmmrrt_edge_cost(p, n->x, n->y, x, y);
+}
+
 static int32_t near_set(struct gmmrrt_planner *p, double x, double y, int32_t nearest)
 {
     double r = p->cfg.step_m;
@@ -393,11 +399,14 @@ static void iterate(struct gmmrrt_planner *p, double elapsed_ms)
         return;
     }
 
-    /* Choose parent: cheapest candidate by cost-to-come + edge cost whose edge is free. */
+    /* Choose parent: cheapest candidate by cost-to-come + edge cost whose edge is free.
+     * Candidates are ranked by a lower bound until their exact cost is needed (lazy, so
+     * the quadrature runs only for candidates that can still win). */
     const int32_t count = near_set(p, x, y, nearest);
     for (int32_t k = 0; k < count; ++k) {
         const gmmrrt_node_t *c = &p->nodes[p->near_idx[k]];
-        p->near_edge[k] = gmmrrt_edge_cost(p, c->x, c->y, x, y);
+        p->near_len[k] = hypot(c->x - x, c->y - y);
+        p->near_edge[k] = NAN;
         p->near_free[k] = -1;
     }
     int32_t parent_k = -1;
@@ -407,7 +416,9 @@ static void iterate(struct gmmrrt_planner *p, double elapsed_ms)
         for (int32_t k = 0; k < count; ++k) {
             if (p->near_free[k] == 0)
                 continue;
-            const double c = p->nodes[p->near_idx[k]].cost + p->near_edge[k];
+            const double edge = isnan(p->near_edge[k]) ? gmmrrt_edge_cost_lower_bound(p, p->near_len[k])
+                                                       : p->near_edge[k];
+            const double c = p->nodes[p->near_idx[k]].cost + edge;
             if (c < pick_cost) {
                 pick_cost = c;
                 pick = k;
@@ -415,6 +426,10 @@ static void iterate(struct gmmrrt_planner *p, double elapsed_ms)
         }
         if (pick < 0)
             return; /* no free edge to the new point */
+        if (isnan(p->near_edge[pick])) {
+            near_exact(p, pick, x, y);
+            continue; /* re-rank with the exact cost */
+        }
         if (edge_free_cached(p, pick, x, y)) {
             parent_k = pick;
             break;
@@ -428,7 +443,12 @@ static void iterate(struct gmmrrt_planner *p, double elapsed_ms)
         const int32_t m = p->near_idx[k];
         if (m == parent)
             continue;
-        const double c = p->nodes[added].cost + p->near_edge[k];
+        const double base = p->nodes[added].cost;
+        if (!(base + gmmrrt_edge_cost_lower_bound(p, p->near_len[k]) < p->nodes[m].cost))
+            continue;
+        if (isnan(p->near_edge[k]))
+            near_exact(p, k, x, y);
+        const double c = base + p->near_edge[k];
         if (c < p->nodes[m].cost && edge_free_cached(p, k, x, y))
             reparent(p, m, added, c);
     }
