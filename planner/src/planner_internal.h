@@ -67,6 +67,8 @@ struct gmmrrt_planner {
     int64_t first_solution_iteration;
     double first_solution_ms;
     double time_ms;
+    double run_t0_ms;              /* monotonic ms at the start of the current run(), -1 outside */
+    double run_base_ms;            /* time_ms when that run started */
     double conv_ref_cost;
     int64_t conv_ref_iter;
 };

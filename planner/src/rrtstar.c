@@ -126,6 +126,8 @@ static void reset_tree(struct gmmrrt_planner *p)
     p->first_solution_iteration = -1;
     p->first_solution_ms = -1.0;
     p->time_ms = 0.0;
+    p->run_t0_ms = -1.0;
+    p->run_base_ms = 0.0;
     p->conv_ref_cost = INFINITY;
     p->conv_ref_iter = 0;
     gmmrrt_rng_seed(&p->rng, p->cfg.seed);
@@ -307,7 +309,7 @@ static void consider_goal(struct gmmrrt_planner *p, int32_t i)
 }
 
 /* Re-evaluates the best solution; records history when it improved. */
-static void update_best(struct gmmrrt_planner *p, double elapsed_ms)
+static void update_best(struct gmmrrt_planner *p)
 {
     int32_t best = -1;
     double best_cost = INFINITY;
@@ -322,7 +324,7 @@ static void update_best(struct gmmrrt_planner *p, double elapsed_ms)
         return;
     if (p->first_solution_iteration < 0) {
         p->first_solution_iteration = p->iterations;
-        p->first_solution_ms = elapsed_ms;
+        p->first_solution_ms = p->run_base_ms + (p->run_t0_ms >= 0.0 ? now_ms() - p->run_t0_ms : 0.0);
     }
     p->best_goal = best;
     p->best_cost = best_cost;
@@ -369,7 +371,7 @@ static int32_t near_set(struct gmmrrt_planner *p, double x, double y, int32_t ne
     return count;
 }
 
-static void iterate(struct gmmrrt_planner *p, double elapsed_ms)
+static void iterate(struct gmmrrt_planner *p)
 {
     double sx, sy;
     ++p->iterations;
@@ -395,7 +397,7 @@ static void iterate(struct gmmrrt_planner *p, double elapsed_ms)
         const double c = nn->cost + gmmrrt_edge_cost(p, nn->x, nn->y, x, y);
         const int32_t i = add_node(p, x, y, nearest, c);
         consider_goal(p, i);
-        update_best(p, elapsed_ms);
+        update_best(p);
         return;
     }
 
@@ -453,7 +455,7 @@ static void iterate(struct gmmrrt_planner *p, double elapsed_ms)
             reparent(p, m, added, c);
     }
     consider_goal(p, added);
-    update_best(p, elapsed_ms);
+    update_best(p);
 }
 
 gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *budget, gmmrrt_plan_stats_t *stats)
@@ -469,17 +471,17 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
 
     const double t0 = now_ms();
     const double base_ms = p->time_ms;
+    p->run_t0_ms = t0;
+    p->run_base_ms = base_ms;
     const int64_t it0 = p->iterations;
     gmmrrt_status_t st = GMMRRT_OK;
     int timed_out = 0;
-    double elapsed = 0.0;
     for (;;) {
         const int64_t done = p->iterations - it0;
         if (budget->max_iterations > 0 && done >= budget->max_iterations)
             break;
         if (timed && (done & 7) == 0) {
-            elapsed = now_ms() - t0;
-            if (elapsed >= budget->time_ms) {
+            if (now_ms() - t0 >= budget->time_ms) {
                 timed_out = 1;
                 break;
             }
@@ -496,9 +498,11 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
             st = GMMRRT_POOL_FULL;
             break;
         }
-        iterate(p, base_ms + ((done & 7) == 0 ? elapsed : now_ms() - t0));
+        iterate(p);
     }
     p->time_ms = base_ms + (now_ms() - t0);
+    p->run_t0_ms = -1.0; /* outside run() (seed_path): time counts as before the run */
+    p->run_base_ms = p->time_ms;
     if (st == GMMRRT_OK) {
         if (isfinite(p->best_cost))
             st = GMMRRT_OK;
@@ -538,7 +542,7 @@ gmmrrt_status_t gmmrrt_planner_seed_path(gmmrrt_planner_t *p, const double *x, c
         prev = add_node(p, x[i], y[i], prev, c);
         consider_goal(p, prev);
     }
-    update_best(p, 0.0);
+    update_best(p);
     return GMMRRT_OK;
 }
 
