@@ -174,6 +174,97 @@ static void test_two_side_model_takes_the_free_side_when_one_is_blocked(void **s
     }
 }
 
+/* A person beyond person_influence_m of the start-goal segment does not shape the plan:
+ * same seed, same path with or without them; one near the path does. */
+static void test_only_people_near_the_path_count(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    left_model(&m);
+    gmmrrt_path_t paths[3];
+    for (int extra = 0; extra < 3; ++extra) {
+        gmmrrt_planner_config_t cfg;
+        gmmrrt_planner_config_default(&cfg);
+        cfg.max_nodes = 6000;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
+        pr.goal_tolerance_m = 0.1;
+        pr.task = GMMRRT_TASK_AVOID;
+        pr.model = &m;
+        pr.obstacles.num_people = extra ? 2 : 1;
+        pr.obstacles.people[0] = person;
+        /* extra 1: 4.5 m off the segment (influence 3 m), in a corner no sample reaches first;
+         * extra 2: 2.5 m off it, within influence */
+        pr.obstacles.people[1] = extra == 1 ? (gmmrrt_pose_t){6.5, 4.5, 0.0} : (gmmrrt_pose_t){2.5, 2.5, 0.0};
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        gmmrrt_budget_t b = {0.0, 3000, 0.0, 0};
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+        assert_int_equal(gmmrrt_planner_best_path(t.p, &paths[extra]), GMMRRT_OK);
+        test_planner_free(&t);
+    }
+    assert_true(paths[1].cost == paths[0].cost);
+    assert_int_equal(paths[1].num_points, paths[0].num_points);
+    assert_memory_equal(paths[1].x, paths[0].x, sizeof(double) * (size_t)paths[0].num_points);
+    assert_true(paths[2].cost != paths[0].cost);
+}
+
+/* GMM-RRT (the baseline) with an xy model of a pass on the person's left. */
+static void test_gmm_rrt_follows_its_xy_model(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    memset(&m, 0, sizeof m);
+    m.kind = GMMRRT_MODEL_KIND_XY;
+    m.task = GMMRRT_TASK_AVOID;
+    m.homotopy = GMMRRT_HOMOTOPY_LEFT;
+    m.dim = 3;
+    m.k = 7;
+    m.delta = GMMRRT_MODEL_DEFAULT_DELTA;
+    for (int32_t i = 0; i < m.k; ++i) {
+        const double s = (i + 0.5) / m.k;
+        const int32_t slot = m.k - 1 - i; /* stored out of order: the planner sorts by s */
+        m.weight[slot] = 1.0 / m.k;
+        m.mean[slot][0] = s;
+        m.mean[slot][1] = 3.5 - 7.0 * s;           /* x': from the person's front to behind */
+        m.mean[slot][2] = 1.3 * sin(M_PI * s);     /* y' > 0: their left */
+        m.chol[slot][0] = 0.05;
+        m.chol[slot][2] = 0.25;
+        m.chol[slot][5] = 0.25;
+    }
+    double sum = 0.0;
+    for (int32_t i = 1; i < m.k; ++i)
+        sum += m.weight[i];
+    m.weight[0] = 1.0 - sum;
+    assert_int_equal(gmmrrt_model_prepare(&m, NULL, 0), GMMRRT_OK);
+    for (uint64_t seed = 1; seed <= 3; ++seed) {
+        gmmrrt_planner_config_t cfg;
+        gmmrrt_planner_config_default(&cfg);
+        cfg.planner = GMMRRT_PLANNER_GMM_RRT;
+        cfg.seed = seed;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
+        pr.goal_tolerance_m = 0.1;
+        pr.task = GMMRRT_TASK_AVOID;
+        pr.model = &m;
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = person;
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        gmmrrt_budget_t b = {0.0, 20000, 0.0, 0};
+        gmmrrt_plan_stats_t st;
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, &st), GMMRRT_OK);
+        gmmrrt_path_t path;
+        assert_int_equal(gmmrrt_planner_best_path(t.p, &path), GMMRRT_OK);
+        double cross, dmin;
+        path_side(&path, &cross, &dmin);
+        printf("gmm-rrt, left xy model, seed %d: crosses at y = %.2f after %lld iterations, %d nodes\n",
+               (int)seed, cross, (long long)st.first_solution_iteration, st.nodes);
+        assert_true(cross < -0.65);
+        test_planner_free(&t);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -182,6 +273,8 @@ int main(void)
         cmocka_unit_test(test_task_cost_alone_picks_the_model_side),
         cmocka_unit_test(test_mirrored_model_passes_on_the_right),
         cmocka_unit_test(test_two_side_model_takes_the_free_side_when_one_is_blocked),
+        cmocka_unit_test(test_only_people_near_the_path_count),
+        cmocka_unit_test(test_gmm_rrt_follows_its_xy_model),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
