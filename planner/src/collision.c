@@ -191,7 +191,8 @@ static double clearance_lower_bound(const struct gmmrrt_world *w, double x, doub
                 i = w->nx - 1;
             const double cx = b->xmin + (i + 0.5) * res, cy = b->ymin + (j + 0.5) * res;
             const double s = (double)w->clearance[(size_t)j * (size_t)w->nx + (size_t)i];
-            const double lb = s - hypot(x - cx, y - cy);
+            const double dx = x - cx, dy = y - cy; /* plain sqrt: hypot is ~10x slower, no overflow here */
+            const double lb = s - sqrt(dx * dx + dy * dy);
             if (lb > best)
                 best = lb;
         }
