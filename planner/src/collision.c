@@ -16,7 +16,6 @@
 #include "gmmrrt/collision.h"
 
 #include <math.h>
-#include <stdalign.h>
 #include <string.h>
 
 #include "fcl_adapter.h"
@@ -278,7 +277,7 @@ double gmmrrt_world_exact_clearance(const gmmrrt_world_t *world, double x, doubl
     return best;
 }
 
-/* Internal (collision_internal.h): lets the planner set the segment step. */
+/* Internal (declared in planner_internal.h): the planner sets the segment step. */
 void gmmrrt_world_set_edge_resolution(gmmrrt_world_t *world, double edge_resolution_m);
 void gmmrrt_world_set_edge_resolution(gmmrrt_world_t *world, double edge_resolution_m)
 {
