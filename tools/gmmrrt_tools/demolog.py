@@ -64,14 +64,14 @@ def scan_structure(path: str, data: bytes) -> List[Tuple[int, str, bytes]]:
     off, n, event_no = 0, len(data), 0
     while off < n:
         event_no += 1
-        if n - off < HEADER.size:
-            raise DemoLogError(f"{_where(path, event_no, off)}: log truncated inside an event header "
-                               f"({n - off} bytes left)")
-        sync, _num, _ts, ch_len, data_len = HEADER.unpack_from(data, off)
-        if sync != SYNC_WORD:
+        if n - off >= 4 and struct.unpack_from(">I", data, off)[0] != SYNC_WORD:
             what = ("not an LCM log (no sync word at the start)" if event_no == 1
                     else "corrupted log (no LCM sync word where an event starts)")
             raise DemoLogError(f"{_where(path, event_no, off)}: {what}")
+        if n - off < HEADER.size:
+            raise DemoLogError(f"{_where(path, event_no, off)}: log truncated inside an event header "
+                               f"({n - off} bytes left)")
+        _sync, _num, _ts, ch_len, data_len = HEADER.unpack_from(data, off)
         ch_len = struct.unpack(">i", struct.pack(">I", ch_len))[0]
         data_len = struct.unpack(">i", struct.pack(">I", data_len))[0]
         if ch_len <= 0 or ch_len > MAX_CHANNEL_LEN:
