@@ -35,17 +35,19 @@ from gmmrrt_tools.demolog import DEFAULT_START_UTIME, MAX_PERSON_AGE_S, write_de
 from gmmrrt_tools.episodes import Episode
 
 # ---------------------------------------------------------------- distributions (from the real data)
-# Passing distance of avoid (distance to the person at the closest point): UPO avoid index d_min,
-# 398 episodes: mean 1.16 m, std 0.38 m, 5/50/95 % = 0.75/1.02/2.01 m -> a normal truncated to
-# [0.70, 2.10] m (a careful driver never grazes the person).
-PASS_MEAN_M, PASS_STD_M, PASS_MIN_M, PASS_MAX_M = 1.16, 0.38, 0.70, 2.10
+# Passing distance of avoid (distance to the person at the closest point): drawn from the
+# empirical distribution of the UPO avoid index's d_min (398 episodes; mean 1.16 m, std 0.38 m,
+# right-skewed), by inverse CDF through its deciles (0, 10, ..., 100 %), computed with
+#   numpy.percentile(d_min of upo_avoid_index.csv, range(0, 101, 10))
+UPO_DMIN_DECILES_M = (0.63, 0.82, 0.88, 0.92, 0.97, 1.02, 1.10, 1.23, 1.42, 1.78, 2.46)
 # Start and goal distance of avoid: UPO d_start 2.55 +- 0.58 m, d_end 2.29 +- 0.65 m.
 AVOID_START_MEAN_M, AVOID_START_STD_M = 2.55, 0.58
 AVOID_END_MEAN_M, AVOID_END_STD_M = 2.29, 0.65
-# Final distance of approach: UCY approach d_end, 30 episodes: mean 1.06 m, std 0.47 m,
-# 5/50/95 % = 0.43/0.95/1.77 m -> truncated to [0.55, 1.90] m (UCY has pedestrians who stop
-# shoulder to shoulder; a robot stops no closer than 0.55 m).
-APPROACH_END_MEAN_M, APPROACH_END_STD_M, APPROACH_END_MIN_M, APPROACH_END_MAX_M = 1.06, 0.47, 0.55, 1.90
+# Final distance of approach: UCY approach d_end (30 episodes; mean 1.06 m, std 0.47 m), deciles
+# as above from ucy_index.csv (task approach); a robot stops no closer than 0.50 m (UCY has
+# pedestrians who stop shoulder to shoulder at 0.41 m).
+UCY_DEND_DECILES_M = (0.41, 0.49, 0.62, 0.71, 0.82, 0.95, 1.19, 1.43, 1.60, 1.67, 1.91)
+APPROACH_END_MIN_M = 0.50
 # Start distance of approach: UCY d_start 4.68 +- 1.06 m; shortened to 3.0 +- 0.5 m to keep logs small.
 APPROACH_START_MEAN_M, APPROACH_START_STD_M = 3.0, 0.5
 # Speed: UPO's teleoperated robot averages 0.27 m/s (capped at 0.40 m/s by the platform); UCY
@@ -81,6 +83,12 @@ def truncnorm(rng: np.random.Generator, mean: float, std: float, lo: float, hi: 
         if lo <= v <= hi:
             return float(v)
     return float(min(max(mean, lo), hi))
+
+
+def from_deciles(rng: np.random.Generator, deciles) -> float:
+    """A draw from the distribution whose deciles (0, 10, ..., 100 %) are given (inverse CDF,
+    linear between deciles)."""
+    return float(np.interp(rng.uniform(0.0, 10.0), np.arange(11), deciles))
 
 
 def from_person(person: Tuple[float, float, float], d: float, theta: float) -> np.ndarray:
@@ -192,9 +200,11 @@ def plan_avoid(rng, homotopy: str):
             continue  # passing straight in front of / behind the person: side ambiguous, redraw
         side = 1.0 if (theta_normal > 0) == (homotopy == "left") else -1.0
         break
-    d_pass = truncnorm(rng, PASS_MEAN_M, PASS_STD_M, PASS_MIN_M, PASS_MAX_M)
-    d_start = truncnorm(rng, AVOID_START_MEAN_M, AVOID_START_STD_M, 1.8, 3.6)
-    d_end = truncnorm(rng, AVOID_END_MEAN_M, AVOID_END_STD_M, 1.6, 3.4)
+    d_pass = from_deciles(rng, UPO_DMIN_DECILES_M)
+    # Start and goal farther than the passing point, so the closest approach is the pass itself
+    # (the homotopy is read at the closest point, as in the real data's index).
+    d_start = max(truncnorm(rng, AVOID_START_MEAN_M, AVOID_START_STD_M, 1.8, 3.6), d_pass + 0.8)
+    d_end = max(truncnorm(rng, AVOID_END_MEAN_M, AVOID_END_STD_M, 1.6, 3.4), d_pass + 0.8)
     p = np.array(person[:2])
     u = np.array([math.cos(travel), math.sin(travel)])
     n = np.array([-u[1], u[0]])
@@ -203,7 +213,10 @@ def plan_avoid(rng, homotopy: str):
     goal = p + u * math.sqrt(max(d_end ** 2 - lat_g ** 2, 1.0)) + n * lat_g
     along = rng.normal(0.0, 0.2)  # the driver passes a little before or after abeam
     via = p + side * n * d_pass + u * along
-    pts = np.array([start, via, goal])
+    # Hold the passing offset over ~1.2 m (a driver lines up beside the person, then passes):
+    # without it the tracker cuts the corner and narrows the spread of passing distances.
+    half = 0.6 * min(1.0, d_start / 2.5, d_end / 2.5)
+    pts = np.array([start, via - u * half, via + u * half, goal])
     return person, pts, travel + rng.normal(0, 0.1), travel + rng.normal(0, 0.1), d_pass
 
 
@@ -211,7 +224,7 @@ def plan_approach(rng, homotopy: str):
     """Stop in front of the person, facing them; frontal starts in their front half-plane, left /
     right start behind and go round that side (via a point abeam at a safe distance)."""
     person = person_pose(rng)
-    d_end = truncnorm(rng, APPROACH_END_MEAN_M, APPROACH_END_STD_M, APPROACH_END_MIN_M, APPROACH_END_MAX_M)
+    d_end = max(from_deciles(rng, UCY_DEND_DECILES_M), APPROACH_END_MIN_M)
     theta_end = truncnorm(rng, 0.0, math.radians(12.0), -math.radians(30), math.radians(30))
     d_start = truncnorm(rng, APPROACH_START_MEAN_M, APPROACH_START_STD_M, 2.2, 4.0)
     goal = from_person(person, d_end, theta_end)

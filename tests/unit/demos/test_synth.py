@@ -75,7 +75,7 @@ def test_demonstrations_have_the_asked_shape(seed1, name):
         assert d.min() > 0.45, f"{ep.id}: {d.min():.2f} m from the person"
         k = int(np.argmin(d))
         if task == "avoid":
-            assert 0.6 < d.min() < 2.3
+            assert 0.6 < d.min() < 2.6  # UPO d_min deciles span 0.63..2.46 m
             assert (th[k] > 0) == (homotopy == "left"), f"{ep.id}: passes on the wrong side"
         else:
             assert 0.45 < d[-1] < 2.1, f"{ep.id}: stops {d[-1]:.2f} m away"
