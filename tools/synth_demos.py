@@ -257,7 +257,11 @@ def side_ok(task: str, homotopy: str, person, tr: Trace) -> bool:
     if d.min() < 0.45:
         return False
     if task == "avoid":
-        return (th[int(np.argmin(d))] > 0) == (homotopy == "left")
+        # The side at the closest point, clear of the person's front/back axis by 20 deg so that
+        # noise cannot flip it.
+        th_min = th[int(np.argmin(d))]
+        margin = math.radians(20)
+        return (th_min > 0) == (homotopy == "left") and margin < abs(th_min) < math.pi - margin
     if homotopy == "frontal":
         return abs(th[0]) < math.pi / 2
     # Round the requested side: abeam (|theta| near 90 deg) on that side, never on the other.
