@@ -548,6 +548,19 @@ void test_real_upo_csv_reads_with_its_index(void** state) {
         assert_int_equal(e.task, GMMRRT_TASK_AVOID);
         assert_true(e.homotopy == GMMRRT_HOMOTOPY_LEFT || e.homotopy == GMMRRT_HOMOTOPY_RIGHT);
     }
+    // The UCY files and their shared index read too, each episode listed in the index.
+    std::vector<Episode> ucy;
+    for (const char* name : {"/ucy_avoid_episodes.csv", "/ucy_approach_episodes.csv"}) {
+        r = gmmrrt::learn::ReadEpisodes(dir + name, &ucy);
+        if (!r.ok)
+            fail_msg("%s", r.error.c_str());
+    }
+    r = gmmrrt::learn::ReadSplitIndex(dir + "/ucy_index.csv", &split);
+    if (!r.ok)
+        fail_msg("%s", r.error.c_str());
+    assert_true(!ucy.empty());
+    for (const Episode& e : ucy)
+        assert_true(split.count(e.id) == 1);
 }
 
 }  // namespace
