@@ -1,4 +1,4 @@
-"""Demonstration logs: LCM event logs with DEMO_INFO, ROBOT_POSE and PEOPLE (paper Sect. 4, the
+"""Demonstration logs: LCM event logs with DEMO_INFO, ROBOT_POSE and PEOPLE (paper Sect. 2 and 5.1, the
 expert's teleoperated demonstrations). Python twin of learner/src/demo_io.cpp, with the same rules
 and error texts; the layout is fixed in docs/demonstrations.md:
 

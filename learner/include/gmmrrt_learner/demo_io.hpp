@@ -1,4 +1,4 @@
-// demo_io.hpp - readers of recorded demonstrations for the learner (paper Sect. 4: the
+// demo_io.hpp - readers of recorded demonstrations for the learner (paper Sect. 2 and 5.1: the
 // models are learned from demonstrations of each task and homotopy).
 //
 // Two inputs give the same Episode list:
