@@ -126,3 +126,9 @@ def test_sighup_with_a_bad_model_keeps_the_old_one(gmmrrtd, models, tmp_path):
             daemon.kill()
             daemon.wait()
     assert "old model kept" in err_path.read_text()
+
+
+def test_file_input_without_output_url_is_refused(gmmrrtd, models):
+    res = run(gmmrrtd, "--lcm-url", "file://%s?speed=0" % os.path.join(SCENARIOS, "avoid_one_person.lcmlog"),
+              "--model-avoid", models["avoid"])
+    assert res.returncode == 2 and "--lcm-out-url" in res.stderr, res.stderr
