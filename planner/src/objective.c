@@ -51,3 +51,12 @@ double gmmrrt_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, do
     }
     return p->cfg.w_length * len + p->cfg.w_task * h * sum_c;
 }
+
+double gmmrrt_edge_cost_lower_bound(const struct gmmrrt_planner *p, double len_m)
+{
+    if (p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR)
+        return len_m;
+    if (!p->task_active || p->num_active == 0)
+        return (p->cfg.w_length + p->cfg.w_task) * len_m;
+    return p->cfg.w_length * len_m;
+}

@@ -35,7 +35,8 @@ struct gmmrrt_planner {
     int64_t *hist_iter;            /* cfg.history_capacity */
     double *hist_cost;
     int32_t near_idx[GMMRRT_NEAR_CAP + 1];
-    double near_edge[GMMRRT_NEAR_CAP + 1];
+    double near_edge[GMMRRT_NEAR_CAP + 1]; /* exact edge cost, NAN until needed */
+    double near_len[GMMRRT_NEAR_CAP + 1];  /* m */
     int8_t near_free[GMMRRT_NEAR_CAP + 1];
     int32_t goal_idx[GMMRRT_GOAL_CAP];
     double goal_edge[GMMRRT_GOAL_CAP];
@@ -66,6 +67,8 @@ struct gmmrrt_planner {
     int64_t first_solution_iteration;
     double first_solution_ms;
     double time_ms;
+    double run_t0_ms;              /* monotonic ms at the start of the current run(), -1 outside */
+    double run_base_ms;            /* time_ms when that run started */
     double conv_ref_cost;
     int64_t conv_ref_iter;
 };
@@ -75,6 +78,9 @@ struct gmmrrt_planner {
  * (plain length for rrt-star and gmm-rrt). */
 double gmmrrt_task_cost_at(const struct gmmrrt_planner *p, double x, double y);
 double gmmrrt_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1);
+/* A lower bound of gmmrrt_edge_cost for an edge of len_m (c > 0 is bounded below by 0), so
+ * the loop can skip the quadrature for candidates that cannot win. */
+double gmmrrt_edge_cost_lower_bound(const struct gmmrrt_planner *p, double len_m);
 
 /* sampler.c: draws one sample; returns 0 when the draw fell outside the bounds (the
  * iteration is spent, as OMPL counts). Prepares the GMM-RRT stage tables. */

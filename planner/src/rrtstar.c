@@ -108,6 +108,9 @@ static double point_segment_distance(double px, double py, double ax, double ay,
     return hypot(px - (ax + t * vx), py - (ay + t * vy));
 }
 
+static void consider_goal(struct gmmrrt_planner *p, int32_t i);
+static void update_best(struct gmmrrt_planner *p);
+
 static void reset_tree(struct gmmrrt_planner *p)
 {
     p->num_nodes = 1;
@@ -126,6 +129,8 @@ static void reset_tree(struct gmmrrt_planner *p)
     p->first_solution_iteration = -1;
     p->first_solution_ms = -1.0;
     p->time_ms = 0.0;
+    p->run_t0_ms = -1.0;
+    p->run_base_ms = 0.0;
     p->conv_ref_cost = INFINITY;
     p->conv_ref_iter = 0;
     gmmrrt_rng_seed(&p->rng, p->cfg.seed);
@@ -213,6 +218,8 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
     gmmrrt_sampler_prepare(p);
     reset_tree(p);
     p->has_problem = 1;
+    consider_goal(p, 0); /* a start already within the goal tolerance is a solution */
+    update_best(p);
     return GMMRRT_OK;
 }
 
@@ -307,7 +314,7 @@ static void consider_goal(struct gmmrrt_planner *p, int32_t i)
 }
 
 /* Re-evaluates the best solution; records history when it improved. */
-static void update_best(struct gmmrrt_planner *p, double elapsed_ms)
+static void update_best(struct gmmrrt_planner *p)
 {
     int32_t best = -1;
     double best_cost = INFINITY;
@@ -322,7 +329,7 @@ static void update_best(struct gmmrrt_planner *p, double elapsed_ms)
         return;
     if (p->first_solution_iteration < 0) {
         p->first_solution_iteration = p->iterations;
-        p->first_solution_ms = elapsed_ms;
+        p->first_solution_ms = p->run_base_ms + (p->run_t0_ms >= 0.0 ? now_ms() - p->run_t0_ms : 0.0);
     }
     p->best_goal = best;
     p->best_cost = best_cost;
@@ -341,6 +348,12 @@ static int edge_free_cached(struct gmmrrt_planner *p, int32_t k, double x, doubl
         p->near_free[k] = (int8_t)gmmrrt_world_segment_free(p->world, n->x, n->y, x, y);
     }
     return p->near_free[k];
+}
+
+static void near_exact(struct gmmrrt_planner *p, int32_t k, double x, double y)
+{
+    const gmmrrt_node_t *n = &p->nodes[p->near_idx[k]];
+    p->near_edge[k] = gmmrrt_edge_cost(p, n->x, n->y, x, y);
 }
 
 static int32_t near_set(struct gmmrrt_planner *p, double x, double y, int32_t nearest)
@@ -363,7 +376,7 @@ static int32_t near_set(struct gmmrrt_planner *p, double x, double y, int32_t ne
     return count;
 }
 
-static void iterate(struct gmmrrt_planner *p, double elapsed_ms)
+static void iterate(struct gmmrrt_planner *p)
 {
     double sx, sy;
     ++p->iterations;
@@ -389,15 +402,18 @@ static void iterate(struct gmmrrt_planner *p, double elapsed_ms)
         const double c = nn->cost + gmmrrt_edge_cost(p, nn->x, nn->y, x, y);
         const int32_t i = add_node(p, x, y, nearest, c);
         consider_goal(p, i);
-        update_best(p, elapsed_ms);
+        update_best(p);
         return;
     }
 
-    /* Choose parent: cheapest candidate by cost-to-come + edge cost whose edge is free. */
+    /* Choose parent: cheapest candidate by cost-to-come + edge cost whose edge is free.
+     * Candidates are ranked by a lower bound until their exact cost is needed (lazy, so
+     * the quadrature runs only for candidates that can still win). */
     const int32_t count = near_set(p, x, y, nearest);
     for (int32_t k = 0; k < count; ++k) {
         const gmmrrt_node_t *c = &p->nodes[p->near_idx[k]];
-        p->near_edge[k] = gmmrrt_edge_cost(p, c->x, c->y, x, y);
+        p->near_len[k] = hypot(c->x - x, c->y - y);
+        p->near_edge[k] = NAN;
         p->near_free[k] = -1;
     }
     int32_t parent_k = -1;
@@ -407,7 +423,9 @@ static void iterate(struct gmmrrt_planner *p, double elapsed_ms)
         for (int32_t k = 0; k < count; ++k) {
             if (p->near_free[k] == 0)
                 continue;
-            const double c = p->nodes[p->near_idx[k]].cost + p->near_edge[k];
+            const double edge = isnan(p->near_edge[k]) ? gmmrrt_edge_cost_lower_bound(p, p->near_len[k])
+                                                       : p->near_edge[k];
+            const double c = p->nodes[p->near_idx[k]].cost + edge;
             if (c < pick_cost) {
                 pick_cost = c;
                 pick = k;
@@ -415,6 +433,10 @@ static void iterate(struct gmmrrt_planner *p, double elapsed_ms)
         }
         if (pick < 0)
             return; /* no free edge to the new point */
+        if (isnan(p->near_edge[pick])) {
+            near_exact(p, pick, x, y);
+            continue; /* re-rank with the exact cost */
+        }
         if (edge_free_cached(p, pick, x, y)) {
             parent_k = pick;
             break;
@@ -428,12 +450,17 @@ static void iterate(struct gmmrrt_planner *p, double elapsed_ms)
         const int32_t m = p->near_idx[k];
         if (m == parent)
             continue;
-        const double c = p->nodes[added].cost + p->near_edge[k];
+        const double base = p->nodes[added].cost;
+        if (!(base + gmmrrt_edge_cost_lower_bound(p, p->near_len[k]) < p->nodes[m].cost))
+            continue;
+        if (isnan(p->near_edge[k]))
+            near_exact(p, k, x, y);
+        const double c = base + p->near_edge[k];
         if (c < p->nodes[m].cost && edge_free_cached(p, k, x, y))
             reparent(p, m, added, c);
     }
     consider_goal(p, added);
-    update_best(p, elapsed_ms);
+    update_best(p);
 }
 
 gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *budget, gmmrrt_plan_stats_t *stats)
@@ -449,17 +476,17 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
 
     const double t0 = now_ms();
     const double base_ms = p->time_ms;
+    p->run_t0_ms = t0;
+    p->run_base_ms = base_ms;
     const int64_t it0 = p->iterations;
     gmmrrt_status_t st = GMMRRT_OK;
     int timed_out = 0;
-    double elapsed = 0.0;
     for (;;) {
         const int64_t done = p->iterations - it0;
         if (budget->max_iterations > 0 && done >= budget->max_iterations)
             break;
         if (timed && (done & 7) == 0) {
-            elapsed = now_ms() - t0;
-            if (elapsed >= budget->time_ms) {
+            if (now_ms() - t0 >= budget->time_ms) {
                 timed_out = 1;
                 break;
             }
@@ -476,9 +503,11 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
             st = GMMRRT_POOL_FULL;
             break;
         }
-        iterate(p, base_ms + ((done & 7) == 0 ? elapsed : now_ms() - t0));
+        iterate(p);
     }
     p->time_ms = base_ms + (now_ms() - t0);
+    p->run_t0_ms = -1.0; /* outside run() (seed_path): time counts as before the run */
+    p->run_base_ms = p->time_ms;
     if (st == GMMRRT_OK) {
         if (isfinite(p->best_cost))
             st = GMMRRT_OK;
@@ -518,7 +547,7 @@ gmmrrt_status_t gmmrrt_planner_seed_path(gmmrrt_planner_t *p, const double *x, c
         prev = add_node(p, x[i], y[i], prev, c);
         consider_goal(p, prev);
     }
-    update_best(p, 0.0);
+    update_best(p);
     return GMMRRT_OK;
 }
 
