@@ -198,5 +198,13 @@ def test_import_upo_approach_models():
         spec = json.loads(path.read_text())["sets"]["tasks"]["1-front"]
         r = run("inspect", out)
         assert f"K        {spec['n_components']}" in r.stdout
+        # Every task of both sets imports; two-homotopy tasks (priors summing to 2) say so.
+        sets = json.loads(path.read_text())["sets"]
+        for set_name, tasks in sets.items():
+            for task_name, task in tasks.items():
+                r = run("import", "--json", path, "--set", set_name, "--task-name", task_name, "-o", out)
+                assert r.returncode == 0, (set_name, task_name, r.stderr)
+                assert ("one mixture per homotopy" in r.stderr) == bool(task["two_homotopies"])
+                assert f"K        {task['n_components']}" in run("inspect", out).stdout
         r = run("import", "--json", path, "--task-name", "9-nowhere", "-o", out)
         assert r.returncode != 0 and "1-front" in r.stderr  # lists the known tasks
