@@ -1,0 +1,393 @@
+// em.cpp - EM for a (wrapped) Gaussian mixture in log space (paper Sect. 3, eq. 1), seeded by
+// k-means++ with restarts; degenerate components re-seeded or dropped. Contract in em.hpp.
+//
+// Sufficient statistics are accumulated per block of points relative to the previous mean
+// (y - mu_old = delta + 2 pi n, delta the wrapped difference), which keeps the one-pass
+// covariance free of the cancellation that raw second moments would suffer far from the origin.
+#include "gmmrrt_learner/em.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <sstream>
+
+#include "component_terms.hpp"
+#include "gmmrrt/features.h"
+#include "gmmrrt_learner/kmeans.hpp"
+
+namespace gmmrrt {
+namespace learn {
+
+bool FitOptions::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& why) {
+    *error = why;
+    return false;
+  };
+  if (k < 1 || k > GMMRRT_MAX_K)
+    return fail("k = " + std::to_string(k) + " outside 1.." + std::to_string(GMMRRT_MAX_K));
+  if (restarts < 1) return fail("restarts must be >= 1");
+  if (screen_iterations < 0) return fail("screen_iterations must be >= 0");
+  if (kmeans_max_iterations < 1) return fail("kmeans_max_iterations must be >= 1");
+  if (max_iterations < 0) return fail("max_iterations must be >= 0");
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance)) return fail("tolerance must be finite and > 0");
+  if (!(reg_relative >= 0.0) || !std::isfinite(reg_relative)) return fail("reg_relative must be finite and >= 0");
+  if (!(reg_floor > 0.0) || !std::isfinite(reg_floor)) return fail("reg_floor must be finite and > 0");
+  if (max_reseeds < -1) return fail("max_reseeds must be >= 0 (or -1 for 3 K)");
+  return true;
+}
+
+std::string FitSummary::BriefReport() const {
+  std::ostringstream o;
+  o.precision(10);
+  o << "N=" << n_points << " D=" << dim << " K=" << k_final;
+  if (k_final != k_requested) o << " (of " << k_requested << " requested)";
+  o << " iterations=" << iterations << (converged ? " converged" : " NOT converged (iteration cap)")
+    << " mean_log_likelihood=" << final_mean_log_likelihood << " BIC=" << bic
+    << " reseeds=" << reseeds << " dropped=" << dropped;
+  return o.str();
+}
+
+namespace {
+
+struct Stats {
+  Eigen::VectorXd nk;               // K: sum of responsibilities
+  Eigen::MatrixXd s1;               // D x K: sum r (y - mu_old)
+  std::vector<Eigen::MatrixXd> s2;  // K of D x D: sum r (y - mu_old)(y - mu_old)^T
+
+  void Reset(int d, int k) {
+    nk.setZero(k);
+    s1.setZero(d, k);
+    s2.assign(k, Eigen::MatrixXd::Zero(d, d));
+  }
+};
+
+// Data-wide quantities the fit needs more than once.
+struct DataInfo {
+  Eigen::VectorXd mean;       // D (angle rows: circular mean)
+  Eigen::MatrixXd cov;        // D x D (angle rows: of wrapped differences to the mean)
+  Eigen::VectorXd reg;        // D: added to each covariance diagonal
+};
+
+void ComputeDataInfo(const Eigen::MatrixXd& xt, uint32_t mask, const FitOptions& o, DataInfo* info) {
+  const Eigen::Index d = xt.cols();
+  info->mean = xt.colwise().mean().transpose();
+  for (Eigen::Index j = 0; j < d; ++j) {
+    if (!((mask >> j) & 1u)) continue;
+    const double s = xt.col(j).array().sin().mean(), c = xt.col(j).array().cos().mean();
+    info->mean[j] = std::atan2(s, c);
+  }
+  Eigen::MatrixXd delta = xt.transpose().colwise() - info->mean;
+  const Eigen::Index n = xt.rows();
+  WrapAngleRows(mask, &delta);
+  const Eigen::VectorXd dmean = delta.rowwise().mean();
+  delta.colwise() -= dmean;
+  info->cov = delta * delta.transpose() / static_cast<double>(n);
+  info->reg = (o.reg_relative * info->cov.diagonal().array()).max(o.reg_floor).matrix();
+}
+
+// One E-step over xt (points as rows, N x D): mean log-likelihood per point; statistics and
+// per-point log-likelihood out.
+double EStep(const Mixture& m, const Eigen::MatrixXd& xt, Stats* st, Eigen::VectorXd* point_ll) {
+  detail::PreparedMixture p;
+  detail::Prepare(m, &p);
+  const Eigen::Index n = xt.rows();
+  const int d = m.dim;
+  st->Reset(d, m.k());
+  point_ll->resize(n);
+  Eigen::MatrixXd terms;
+  std::vector<Eigen::MatrixXd> deltas;
+  Eigen::VectorXd lse;
+  Eigen::ArrayXd rsum, r, weighted;
+  for (Eigen::Index start = 0; start < n; start += detail::kBlockPoints) {
+    const Eigen::Index b = std::min<Eigen::Index>(detail::kBlockPoints, n - start);
+    detail::LogTerms(m, p, xt.middleRows(start, b), &terms, &deltas);
+    detail::LogSumExpToResponsibilities(&terms, &lse);  // terms now hold responsibilities
+    point_ll->segment(start, b) = lse;
+    for (int i = 0; i < p.k; ++i) {
+      const Eigen::MatrixXd& delta = deltas[i];
+      const Eigen::Index first = static_cast<Eigen::Index>(i) * p.images;
+      rsum = terms.col(first).array();
+      for (int j = 1; j < p.images; ++j) {  // image 0 has a zero offset; the others add o_j terms
+        r = terms.col(first + j).array();
+        rsum += r;
+        const double sr = r.sum();
+        if (sr == 0.0) continue;
+        const Eigen::VectorXd o = p.offsets.col(j);
+        Eigen::VectorXd drj(d);
+        for (int c = 0; c < d; ++c) drj[c] = (delta.col(c).array() * r).sum();
+        st->s1.col(i) += o * sr;
+        st->s2[i] += o * drj.transpose() + drj * o.transpose() + (o * o.transpose()) * sr;
+      }
+      st->nk[i] += rsum.sum();
+      for (int c = 0; c < d; ++c) {
+        weighted = delta.col(c).array() * rsum;
+        st->s1(c, i) += weighted.sum();
+        for (int c2 = 0; c2 <= c; ++c2) {
+          const double v = (weighted * delta.col(c2).array()).sum();
+          st->s2[i](c, c2) += v;
+          if (c2 != c) st->s2[i](c2, c) += v;
+        }
+      }
+    }
+  }
+  return point_ll->mean();
+}
+
+// Candidates for re-seeding: point indices from the lowest score upward.
+std::vector<Eigen::Index> WorstPoints(const Eigen::VectorXd& score, int count) {
+  std::vector<Eigen::Index> idx(score.size());
+  std::iota(idx.begin(), idx.end(), 0);
+  count = std::min<int>(count, static_cast<int>(idx.size()));
+  std::partial_sort(idx.begin(), idx.begin() + count, idx.end(), [&score](Eigen::Index a, Eigen::Index b) {
+    return score[a] < score[b] || (score[a] == score[b] && a < b);
+  });
+  idx.resize(count);
+  return idx;
+}
+
+struct FitState {
+  const Eigen::MatrixXd* xt = nullptr;  // points as rows (N x D)
+  uint32_t mask = 0;
+  const FitOptions* options = nullptr;
+  DataInfo info;
+  Eigen::MatrixXd reseed_chol;  // Cholesky of the data covariance shrunk by K^(-2/D)
+  int max_reseeds = 0;
+  FitSummary* summary = nullptr;
+
+  void Warn(const std::string& w) const {
+    summary->warnings.push_back(w);
+    if (options->warn) options->warn(w);
+  }
+};
+
+// M-step from statistics taken around old_means. Returns true when a component was re-seeded or
+// dropped. score ranks points for re-seeding (lowest first).
+bool MStep(const FitState& s, const Stats& st, const Eigen::MatrixXd& old_means,
+           const Eigen::VectorXd& score, int iteration, Mixture* m) {
+  const int d = m->dim;
+  const int k = static_cast<int>(st.nk.size());
+  const double n = static_cast<double>(s.xt->rows());
+  Mixture next;
+  next.dim = d;
+  next.angle_mask = s.mask;
+  std::vector<double> w;
+  std::vector<Eigen::VectorXd> mu;
+  std::vector<Eigen::MatrixXd> chol;
+  std::vector<int> degenerate;
+  for (int i = 0; i < k; ++i) {
+    bool ok = st.nk[i] >= d + 1.0;
+    if (ok) {
+      const Eigen::VectorXd c = st.s1.col(i) / st.nk[i];
+      Eigen::MatrixXd cov = st.s2[i] / st.nk[i] - c * c.transpose();
+      cov = 0.5 * (cov + cov.transpose());
+      ok = (cov.diagonal().array() > s.info.reg.array()).all();
+      cov.diagonal() += s.info.reg;
+      Eigen::LLT<Eigen::MatrixXd> llt(cov);
+      ok = ok && llt.info() == Eigen::Success && llt.matrixL().toDenseMatrix().allFinite();
+      if (ok) {
+        w.push_back(st.nk[i] / n);
+        mu.push_back(old_means.col(i) + c);
+        chol.push_back(llt.matrixL().toDenseMatrix());
+      }
+    }
+    if (!ok) degenerate.push_back(i);
+  }
+  bool changed = false;
+  if (!degenerate.empty()) {
+    changed = true;
+    s.summary->reseed_iterations.push_back(iteration);
+    const std::vector<Eigen::Index> worst = WorstPoints(score, static_cast<int>(degenerate.size()));
+    size_t next_worst = 0;
+    for (int i : degenerate) {
+      std::ostringstream msg;
+      msg << "component " << i << " degenerate at iteration " << iteration << " (" << st.nk[i]
+          << " effective points)";
+      if (s.summary->reseeds < s.max_reseeds && next_worst < worst.size()) {
+        const Eigen::Index p = worst[next_worst++];
+        ++s.summary->reseeds;
+        w.push_back(1.0 / k);
+        mu.push_back(s.xt->row(p).transpose());
+        chol.push_back(s.reseed_chol);
+        msg << ": re-seeded at point " << p;
+      } else {
+        ++s.summary->dropped;
+        msg << ": dropped (re-seed budget of " << s.max_reseeds << " spent)";
+      }
+      s.Warn(msg.str());
+    }
+  }
+  const int k_next = static_cast<int>(w.size());
+  next.weights.resize(k_next);
+  next.means.resize(d, k_next);
+  next.chol = chol;
+  for (int i = 0; i < k_next; ++i) {
+    next.weights[i] = w[i];
+    next.means.col(i) = mu[i];
+  }
+  if (k_next > 0) next.weights /= next.weights.sum();
+  WrapAngleRows(s.mask, &next.means);
+  *m = std::move(next);
+  return changed;
+}
+
+// One candidate fit: the mixture and where its EM stands. pending: the last E-step's statistics
+// (stats, score) have not been used by an M-step yet.
+struct EmRun {
+  int restart = 0;
+  double kmeans_inertia = 0.0;
+  Mixture m;
+  Stats stats;
+  Eigen::VectorXd score;
+  std::vector<double> ll;
+  double previous = 0.0;
+  bool last_changed = true;
+  bool pending = false;
+  bool converged = false;
+  int iterations = 0;
+};
+
+// Runs EM steps until converged, until the E-step index reaches `until`, or max_iterations.
+// Leaves the run E-stepped: run->m is the mixture whose mean log-likelihood is run->ll.back().
+void Advance(const FitState& s, EmRun* run, int until) {
+  const FitOptions& o = *s.options;
+  while (!run->converged) {
+    if (run->pending) {
+      run->previous = run->ll.back();
+      const Eigen::MatrixXd old_means = run->m.means;
+      run->last_changed = MStep(s, run->stats, old_means, run->score, run->iterations + 1, &run->m);
+      ++run->iterations;
+      run->pending = false;
+      if (run->m.k() == 0) return;
+    }
+    const int t = static_cast<int>(run->ll.size());
+    const double ll = EStep(run->m, *s.xt, &run->stats, &run->score);
+    run->ll.push_back(ll);
+    run->pending = true;
+    if (o.progress && (o.restarts == 1 || until > o.screen_iterations)) o.progress(run->restart, t, ll);
+    if (t >= 1 && !run->last_changed && std::fabs(ll - run->previous) < o.tolerance) {
+      run->converged = true;
+      run->pending = false;
+      return;
+    }
+    if (t >= o.max_iterations || t >= until) return;
+  }
+}
+
+}  // namespace
+
+Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
+                  Mixture* mixture, FitSummary* summary) {
+  std::string why;
+  if (!options.IsValid(&why)) return Status::Error(StatusCode::kInvalidArgument, why);
+  const int d = static_cast<int>(points.rows());
+  const Eigen::Index n = points.cols();
+  if (d < 1 || d > GMMRRT_MAX_DIM)
+    return Status::Error(StatusCode::kInvalidArgument,
+                         "dimension " + std::to_string(d) + " outside 1.." + std::to_string(GMMRRT_MAX_DIM));
+  if ((d < 32 && (angle_mask >> d) != 0u))
+    return Status::Error(StatusCode::kInvalidArgument, "angle flag set on a dimension >= D");
+  if (ImageOffsets(d, angle_mask).cols() > 81)
+    return Status::Error(StatusCode::kInvalidArgument,
+                         "more than " + std::to_string(kMaxAngleDims) + " angle dimensions");
+  if (n == 0) return Status::Error(StatusCode::kNotEnoughData, "no data points");
+  const int64_t needed = static_cast<int64_t>(options.k) * (d + 1);
+  if (n < needed)
+    return Status::Error(StatusCode::kNotEnoughData,
+                         std::to_string(n) + " points, but K = " + std::to_string(options.k) +
+                             " components in D = " + std::to_string(d) + " need at least K (D + 1) = " +
+                             std::to_string(needed));
+  for (Eigen::Index c = 0; c < n; ++c)
+    for (int j = 0; j < d; ++j)
+      if (!std::isfinite(points(j, c)))
+        return Status::Error(StatusCode::kBadInput, "point " + std::to_string(c) + ", dimension " +
+                                                        std::to_string(j) + " is not finite");
+
+  *summary = FitSummary();
+  summary->n_points = n;
+  summary->dim = d;
+  summary->k_requested = options.k;
+  Eigen::MatrixXd x = points;
+  WrapAngleRows(angle_mask, &x);
+  const Eigen::MatrixXd xt = x.transpose();  // points as rows: see component_terms.hpp
+
+  FitState s;
+  s.xt = &xt;
+  s.mask = angle_mask;
+  s.options = &options;
+  s.summary = summary;
+  s.max_reseeds = options.max_reseeds < 0 ? 3 * options.k : options.max_reseeds;
+  ComputeDataInfo(xt, angle_mask, options, &s.info);
+  for (int j = 0; j < d; ++j)
+    if (!(s.info.cov(j, j) > options.reg_floor))
+      return Status::Error(StatusCode::kBadInput,
+                           "dimension " + std::to_string(j) + " is (nearly) constant: variance " +
+                               std::to_string(s.info.cov(j, j)) + " <= reg_floor");
+  {
+    Eigen::MatrixXd shrunk = s.info.cov * std::pow(static_cast<double>(options.k), -2.0 / d);
+    shrunk.diagonal() += s.info.reg;
+    Eigen::LLT<Eigen::MatrixXd> llt(shrunk);
+    if (llt.info() != Eigen::Success)
+      return Status::Error(StatusCode::kBadInput, "the data covariance is not positive definite");
+    s.reseed_chol = llt.matrixL().toDenseMatrix();
+  }
+
+  // Candidates: each restart is k-means++ + Lloyd, one M-step from the hard assignment, then
+  // screen_iterations EM steps; the best mean log-likelihood continues to convergence.
+  std::mt19937_64 rng(options.seed);
+  KMeansOptions ko;
+  ko.k = options.k;
+  ko.restarts = 1;
+  ko.max_iterations = options.kmeans_max_iterations;
+  std::vector<EmRun> runs(options.restarts);
+  int best = -1;
+  for (int r = 0; r < options.restarts; ++r) {
+    KMeansResult km;
+    Status st = KMeans(xt, angle_mask, ko, &rng, &km);
+    if (!st.ok()) return st;
+    EmRun& run = runs[r];
+    run.restart = r;
+    run.kmeans_inertia = km.inertia;
+    run.m.dim = d;
+    run.m.angle_mask = angle_mask;
+    run.stats.Reset(d, options.k);
+    run.score.resize(n);
+    Eigen::VectorXd delta(d);
+    for (Eigen::Index c = 0; c < n; ++c) {
+      const int l = km.labels[c];
+      delta = x.col(c) - km.centers.col(l);
+      for (int j = 0; j < d; ++j)
+        if ((angle_mask >> j) & 1u) delta[j] = gmmrrt_wrap_angle(delta[j]);
+      run.stats.nk[l] += 1.0;
+      run.stats.s1.col(l) += delta;
+      run.stats.s2[l] += delta * delta.transpose();
+      run.score[c] = -delta.squaredNorm();
+    }
+    MStep(s, run.stats, km.centers, run.score, 0, &run.m);
+    if (run.m.k() > 0) Advance(s, &run, options.screen_iterations);
+    if (run.m.k() > 0 && (best < 0 || run.ll.back() > runs[best].ll.back())) best = r;
+    if (options.restarts > 1 && options.progress && run.m.k() > 0)
+      options.progress(r, static_cast<int>(run.ll.size()) - 1, run.ll.back());
+  }
+  if (best < 0) return Status::Error(StatusCode::kNumericalFailure, "every component degenerate in every restart");
+  EmRun& run = runs[best];
+  Advance(s, &run, options.max_iterations);
+  if (run.m.k() == 0)
+    return Status::Error(StatusCode::kNumericalFailure, "every component degenerate (all dropped)");
+  Mixture m = std::move(run.m);
+  summary->log_likelihood = run.ll;
+  summary->iterations = run.iterations;
+  summary->converged = run.converged;
+  summary->kmeans_inertia = run.kmeans_inertia;
+  summary->restart_kept = best;
+  summary->k_final = m.k();
+  summary->final_mean_log_likelihood = summary->log_likelihood.back();
+  summary->bic = Bic(summary->final_mean_log_likelihood, n, m.k(), d);
+  Status st = ValidateMixture(m);
+  if (!st.ok()) return Status::Error(StatusCode::kNumericalFailure, "fit produced an invalid mixture: " + st.message);
+  *mixture = std::move(m);
+  return Status::Ok();
+}
+
+}  // namespace learn
+}  // namespace gmmrrt
