@@ -1,0 +1,801 @@
+#!/usr/bin/env python3
+"""Reproduces the paper's Table 1 and Figs. 1, 3, 5, 6 (Sect. 5.3) with gmmrrt, plus a real-data study.
+
+Every number comes from the project's executables (gmmrrt-plan, gmmrrt-learn) driven through
+gmmrrt_tools.runner; metrics are gmmrrt_tools.metrics (paper Sect. 5.2, eqs. (2)-(4)). Outputs go to
+docs/results/ (markdown table + PNG + JSON of every run with its seed and command line).
+
+Budgets are iteration caps (one iteration = one sample drawn, as OMPL counts them), not seconds as in
+the paper: an iteration cap makes a seeded run reproducible on any machine. A wall-clock cap
+(--budget-ms) is passed too, only as a safety net, and runs that hit it are reported.
+
+    tools/experiments.py all [--quick] [--jobs 2]
+    tools/experiments.py table1|fig1|fig3|fig5|fig6|real [--quick] ...
+"""
+from __future__ import annotations
+
+import argparse
+import concurrent.futures as cf
+import datetime as _dt
+import json
+import math
+import os
+import shlex
+import subprocess
+import sys
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Callable, Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from gmmrrt_tools import metrics as M  # noqa: E402
+from gmmrrt_tools import runner as R  # noqa: E402
+from gmmrrt_tools import scenes as S  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+
+# The paper's Table 1 (TDM [m], l_e [%]; mean ± std over 25 trials). None = not reported.
+PAPER_TABLE1 = {
+    ("avoid", "right", "GMM-RRT*"): ((0.0565, 0.0152), (3.66, 2.64)),
+    ("avoid", "right", "GMM-RRT"): ((0.0803, 0.0205), (4.00, 2.51)),
+    ("avoid", "left", "GMM-RRT*"): ((0.0484, 0.0109), (4.96, 2.37)),
+    ("avoid", "left", "GMM-RRT"): ((0.0676, 0.0169), (4.31, 3.1)),
+    ("approach", "right", "GMM-RRT*"): ((0.0906, 0.0176), (3.69, 2.54)),
+    ("approach", "right", "GMM-RRT"): ((0.0917, 0.0161), (4.96, 3.45)),
+    ("approach", "left", "GMM-RRT*"): ((0.0612, 0.0218), (4.22, 2.50)),
+    ("approach", "left", "GMM-RRT"): ((0.0666, 0.0169), (4.56, 3.62)),
+    ("approach", "frontal", "GMM-RRT*"): ((0.0376, 0.0141), (11.35, 5.35)),
+    ("approach", "frontal", "GMM-RRT"): ((0.0337, 0.0184), (8.55, 3.34)),
+}
+
+# Collision check radii = the planner's documented defaults (planner/src/config.c); they are also
+# passed explicitly so the two cannot drift apart.
+ROBOT_RADIUS_M = 0.3
+PERSON_RADIUS_M = 0.25
+# Real episodes: a start or goal closer than this to the person is pushed out to it (valid problem).
+CLEARANCE_M = ROBOT_RADIUS_M + PERSON_RADIUS_M + 0.05
+
+
+@dataclass
+class Settings:
+    trials: int = 25
+    iterations: int = 4000          # Table 1 / Fig. 5 / Fig. 6 / real: iteration cap per run
+    gmm_rrt_iterations: int = 4000  # the baseline RRT stops at its first solution anyway
+    fig1_iterations: int = 8000
+    fig3_budgets: Tuple[int, ...] = (250, 500, 1000, 2000, 4000, 8000)
+    fig5_gmm_rrt_factor: int = 10   # paper: 3 s for GMM-RRT* vs 100 s for GMM-RRT
+    real_max_episodes: int = 0      # 0 = every test episode
+    budget_ms: int = 60000          # safety net only
+    bias: float = 0.95
+    seed: int = 1
+    jobs: int = 1
+    quick: bool = False
+
+
+QUICK = dict(trials=5, iterations=1500, gmm_rrt_iterations=1500, fig1_iterations=2000,
+             fig3_budgets=(250, 500, 1000, 2000), real_max_episodes=12)
+
+
+class Ctx:
+    """Settings, paths and the command line that made the outputs."""
+
+    def __init__(self, args: argparse.Namespace):
+        s = Settings()
+        if args.quick:
+            for k, v in QUICK.items():
+                setattr(s, k, v)
+            s.quick = True
+        for k in ("trials", "iterations", "seed", "jobs"):
+            v = getattr(args, k, None)
+            if v is not None:
+                setattr(s, k, v)
+        self.s = s
+        self.out = Path(args.out)
+        self.out.mkdir(parents=True, exist_ok=True)
+        self.work = Path(args.work)
+        self.work.mkdir(parents=True, exist_ok=True)
+        self.bin_dir = args.bin_dir
+        self.demos_dir = args.demos_dir
+        self.real = Path(args.real_data) if args.real_data else None
+        self.command = "tools/experiments.py " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+        self.suffix = "-quick" if s.quick else ""
+        try:
+            self.commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
+                                         capture_output=True, text=True).stdout.strip()
+        except OSError:
+            self.commit = "?"
+
+    # ---------------------------------------------------------------- running
+    def run_plans(self, jobs: List[Tuple[dict, List[str], int]], desc: str) -> List[Tuple[dict, R.PlanResult]]:
+        """Runs gmmrrt-plan for each (tag, argv, seed) with a progress bar; results in input order."""
+        from tqdm import tqdm
+
+        results: List[Optional[Tuple[dict, R.PlanResult]]] = [None] * len(jobs)
+        with cf.ThreadPoolExecutor(max_workers=max(1, self.s.jobs)) as ex:
+            futs = {ex.submit(R.run_plan, argv, seed): i for i, (_, argv, seed) in enumerate(jobs)}
+            for fut in tqdm(cf.as_completed(futs), total=len(futs), desc=desc, unit="run", file=sys.stderr):
+                i = futs[fut]
+                results[i] = (jobs[i][0], fut.result())
+        errors = [r for _, r in results if r.status.startswith("error")]  # type: ignore[union-attr]
+        if errors and len(errors) == len(results):
+            raise R.ToolFailed(f"every gmmrrt-plan run of {desc} failed; the first: {errors[0].status}\n"
+                               f"  command: {shlex.join(errors[0].argv)}")
+        if errors:
+            print(f"{desc}: {len(errors)} of {len(results)} runs ended without a result (recorded as failures; "
+                  f"first: {errors[0].status})", file=sys.stderr)
+        return results  # type: ignore[return-value]
+
+    def plan(self, scene: R.Scene, planner: str, seed: int, model: Optional[Path] = None,
+             iterations: Optional[int] = None, bias: Optional[float] = None) -> List[str]:
+        return R.plan_argv(scene, planner, seed, model=str(model) if model else None,
+                           iterations=iterations or self.s.iterations, budget_ms=self.s.budget_ms,
+                           bias=bias, robot_radius_m=ROBOT_RADIUS_M, bin_dir=self.bin_dir)
+
+    # ---------------------------------------------------------------- outputs
+    def header(self, title: str, what: str) -> str:
+        s = self.s
+        return (f"# {title}\n\n{what}\n\nMade by `{self.command}` at commit {self.commit} on "
+                f"{_dt.datetime.utcnow():%Y-%m-%d %H:%M} UTC ({'quick' if s.quick else 'full'} settings: "
+                f"{s.trials} trials, base seed {s.seed}, iteration cap {s.iterations}, robot radius "
+                f"{ROBOT_RADIUS_M} m). Seeds and the command line of every run are in the JSON next to this file.\n\n")
+
+    def write(self, name: str, markdown: str, records: list, fig=None) -> None:
+        base = self.out / (name + self.suffix)
+        if fig is not None:
+            fig.savefig(str(base) + ".png", dpi=110, bbox_inches="tight")
+            markdown += f"\n![{name}]({base.name}.png)\n"
+        tmp = Path(str(base) + ".md.tmp")
+        tmp.write_text(markdown)
+        tmp.replace(str(base) + ".md")
+        jt = Path(str(base) + ".json.tmp")
+        jt.write_text(json.dumps({"command": self.command, "commit": self.commit, "settings": asdict(self.s),
+                                  "runs": records}, indent=1, default=_json_default))
+        jt.replace(str(base) + ".json")
+        print(f"wrote {base}.md" + (f", {base}.png" if fig is not None else "") + f", {base}.json")
+
+
+def _json_default(o):
+    if isinstance(o, (np.floating, np.integer)):
+        return o.item()
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    if isinstance(o, tuple):
+        return list(o)
+    raise TypeError(type(o))
+
+
+def fmt_ms(mean: float, std: float, digits: int = 4) -> str:
+    if not np.isfinite(mean):
+        return "–"
+    return f"{mean:.{digits}f} ± {std:.{digits}f}"
+
+
+def record(tag: dict, res: R.PlanResult, **extra) -> dict:
+    st = res.stats
+    return {**tag, "seed": res.seed, "status": res.status, "path_points": len(res.path),
+            **{k: st.get(k) for k in ("iterations", "nodes", "first_solution_ms", "best_cost", "time_ms")},
+            "argv": " ".join(shlex.quote(a) for a in res.argv[1:]), **extra}
+
+
+def classify(res: R.PlanResult, scene: R.Scene) -> str:
+    return M.outcome(res.status, res.path, scene.goal, circles=scene.circles, boxes=scene.boxes,
+                     people=scene.people, robot_radius_m=ROBOT_RADIUS_M, person_radius_m=PERSON_RADIUS_M)
+
+
+# ==================================================================== demonstrations and models
+
+_DEMOS: Optional[Dict[Tuple[str, str], List[S.Episode]]] = None
+
+
+def demos(ctx: Ctx) -> Dict[Tuple[str, str], List[S.Episode]]:
+    """logs/demos/ in the person frame, grouped by (task, homotopy)."""
+    global _DEMOS
+    if _DEMOS is None:
+        eps = [S.to_person_frame(e) for e in S.load_demo_logs(ctx.demos_dir)]
+        _DEMOS = {}
+        for e in eps:
+            _DEMOS.setdefault((e.task, e.homotopy), []).append(e)
+    return _DEMOS
+
+
+def demo_logs(ctx: Ctx, task: str) -> List[str]:
+    logs = sorted(str(p) for p in Path(ctx.demos_dir).glob("*.lcmlog"))
+    return logs
+
+
+def model(ctx: Ctx, task: str, homotopy: str = "all", kind: str = "features") -> Path:
+    """The learner's model for task/homotopy/kind, fitted from logs/demos/ into the work folder."""
+    out = ctx.work / "models" / f"demos_{task}_{homotopy}_{kind}.gmm"
+    return R.fit_model(out, task, demo_logs(ctx, task), homotopy=homotopy, kind=kind, seed=ctx.s.seed,
+                       bin_dir=ctx.bin_dir)
+
+
+def task_scene(ctx: Ctx, task: str, homotopy: str) -> R.Scene:
+    d = demos(ctx)
+    every = [e for (t, _), es in d.items() if t == task for e in es]
+    return S.canonical_scene(d[(task, homotopy)], bounds_from=every)
+
+
+def homotopies(ctx: Ctx, task: str) -> List[str]:
+    order = {"right": 0, "left": 1, "frontal": 2}
+    return sorted({h for (t, h) in demos(ctx) if t == task}, key=lambda h: order.get(h, 9))
+
+
+# ==================================================================== Table 1
+
+PLANNERS_T1 = [  # label, planner, model homotopy ("row" = the row's homotopy, "all" = the task model), kind
+    ("GMM-RRT*", "gmm-rrt-star", "row", "features"),
+    ("GMM-RRT* (task model)", "gmm-rrt-star", "all", "features"),
+    ("GMM-RRT", "gmm-rrt", "row", "xy"),
+    ("RRT*", "rrt-star", None, None),
+]
+
+
+def exp_table1(ctx: Ctx) -> None:
+    s = ctx.s
+    jobs, scenes_ = [], {}
+    for task in ("avoid", "approach"):
+        for hom in homotopies(ctx, task):
+            scene = task_scene(ctx, task, hom)
+            scenes_[(task, hom)] = scene
+            for label, planner, mh, kind in PLANNERS_T1:
+                if mh == "all" and task == "avoid" and hom != homotopies(ctx, task)[0]:
+                    continue  # same scene for both sides: run once, score by the side taken
+                mdl = model(ctx, task, hom if mh == "row" else "all", kind) if mh else None
+                iters = s.gmm_rrt_iterations if planner == "gmm-rrt" else s.iterations
+                for i in range(s.trials):
+                    seed = s.seed + i
+                    tag = {"task": task, "homotopy": hom, "planner": label}
+                    jobs.append((tag, ctx.plan(scene, planner, seed, mdl, iters,
+                                               s.bias if planner == "gmm-rrt-star" else None), seed))
+    results = ctx.run_plans(jobs, "table1")
+    d = demos(ctx)
+    records, cells = [], {}
+    for tag, res in results:
+        scene = scenes_[(tag["task"], tag["homotopy"])]
+        out = classify(res, scene)
+        row_h = tag["homotopy"]
+        extra = {"outcome": out}
+        if res.path:
+            side = M.passing_side(res.path, (0.0, 0.0, 0.0))
+            extra["side"] = side
+            if tag["planner"] == "GMM-RRT* (task model)" and tag["task"] == "avoid":
+                row_h = side
+            demos_h = d.get((tag["task"], row_h), [])
+            if demos_h:
+                t, le = M.per_plan_tdm_le([e.xy for e in demos_h], [res.path])
+                extra.update(tdm_m=float(t[0]), le=float(le[0]))
+        rec = record({**tag, "row": row_h}, res, **extra)
+        records.append(rec)
+        cells.setdefault((tag["task"], row_h, tag["planner"]), []).append(rec)
+
+    lines = ["| Homotopy | Planner | Avoid TDM (m) | Avoid l_e (%) | Approach TDM (m) | Approach l_e (%) | "
+             "success (avoid / approach) | paper avoid TDM, l_e | paper approach TDM, l_e |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for hom in ("right", "left", "frontal"):
+        for label, *_ in PLANNERS_T1:
+            row = [hom.capitalize(), label]
+            succ, paper = [], []
+            any_cell = False
+            for task in ("avoid", "approach"):
+                recs = cells.get((task, hom, label), [])
+                if recs:
+                    any_cell = True
+                ok = [r for r in recs if r["outcome"] == M.SUCCESS and "tdm_m" in r]
+                tm, ts = M.mean_std([r["tdm_m"] for r in ok])
+                lm, ls = M.mean_std([100.0 * r["le"] for r in ok])
+                row += [fmt_ms(tm, ts), fmt_ms(lm, ls, 2)]
+                succ.append(f"{len(ok)}/{len(recs)}" if recs else "–")
+                p = PAPER_TABLE1.get((task, hom, label))
+                paper.append(f"{p[0][0]:.4f} ± {p[0][1]:.4f}, {p[1][0]:.2f} ± {p[1][1]:.2f}" if p else "–")
+            if any_cell:
+                lines.append("| " + " | ".join(row + [" / ".join(succ)] + paper) + " |")
+    md = ctx.header(
+        "Table 1: trajectory quality, GMM-RRT* vs GMM-RRT vs RRT*",
+        "Synthetic demonstrations of logs/demos/ (9 per homotopy), in the person's frame; one scene per task and "
+        "homotopy (start and goal = the mean of the demonstrations' first and last points). TDM (eqs. (2)-(3), "
+        "distance from each demonstration point to the planned polyline) and l_e (eq. (4)) of each planned path "
+        "against the demonstrations of its homotopy, mean ± std over the successful trials. GMM-RRT* uses the "
+        "features model of the row's homotopy and bias 0.95; 'GMM-RRT* (task model)' uses one model of all the "
+        "task's homotopies (as the paper's Sect. 5.1) and, for avoid, each path is scored against the side it "
+        "took (success column: paths on that side / runs); GMM-RRT uses the x-y model of the row's homotopy; "
+        "RRT* has no model. Smaller is better.")
+    md += "\n".join(lines) + "\n"
+    ctx.write("table1", md, records, fig=_table1_figure(ctx, results, scenes_))
+
+
+def _table1_figure(ctx, results, scenes_):
+    import matplotlib.pyplot as plt
+
+    keys = list(scenes_)
+    fig, axes = plt.subplots(1, len(keys), figsize=(4.2 * len(keys), 4.2), squeeze=False)
+    colors = {"GMM-RRT*": "tab:red", "GMM-RRT": "tab:blue", "RRT*": "tab:gray", "GMM-RRT* (task model)": "tab:orange"}
+    d = demos(ctx)
+    for ax, key in zip(axes[0], keys):
+        for e in d[key]:
+            ax.plot(e.xy[:, 0], e.xy[:, 1], color="tab:green", lw=1.0, alpha=0.8)
+        for tag, res in results:
+            if (tag["task"], tag["homotopy"]) == key and res.path and tag["planner"] in ("GMM-RRT*", "GMM-RRT"):
+                p = np.asarray(res.path)
+                ax.plot(p[:, 0], p[:, 1], color=colors[tag["planner"]], lw=0.7, alpha=0.5)
+        _draw_scene(ax, scenes_[key])
+        ax.set_title(f"{key[0]} / {key[1]}")
+    axes[0][0].legend(handles=_legend([("demonstrations", "tab:green"), ("GMM-RRT*", "tab:red"),
+                                       ("GMM-RRT", "tab:blue")]), loc="best", fontsize=8)
+    fig.suptitle("Demonstrated (green) and planned paths, person frame (cf. paper Fig. 2)")
+    return fig
+
+
+def _legend(items):
+    from matplotlib.lines import Line2D
+    return [Line2D([0], [0], color=c, lw=2, label=l) for l, c in items]
+
+
+def _draw_scene(ax, scene: R.Scene):
+    import matplotlib.patches as mp
+
+    for (x, y, yaw) in scene.people:
+        ax.add_patch(mp.Circle((x, y), PERSON_RADIUS_M, color="k", fill=False))
+        tri = np.array([[0.35, 0.0], [-0.15, 0.2], [-0.15, -0.2]])
+        c, s_ = math.cos(yaw), math.sin(yaw)
+        pts = tri @ np.array([[c, s_], [-s_, c]]) + [x, y]
+        ax.add_patch(mp.Polygon(pts, closed=True, color="k"))
+    for (cx, cy, w, h, yaw) in scene.boxes:
+        ax.add_patch(mp.Rectangle((cx - w / 2, cy - h / 2), w, h, angle=math.degrees(yaw),
+                                  rotation_point="center", color="0.6", alpha=0.6))
+    for (x, y, r) in scene.circles:
+        ax.add_patch(mp.Circle((x, y), r, color="0.6", alpha=0.6))
+    ax.plot(*scene.start, "ko", ms=5)
+    ax.plot(*scene.goal, "k*", ms=9)
+    b = scene.bounds
+    ax.set_xlim(b[0], b[2])
+    ax.set_ylim(b[1], b[3])
+    ax.set_aspect("equal")
+    ax.grid(alpha=0.3)
+
+
+# ==================================================================== Fig. 1
+
+def cost_curve(res: R.PlanResult, cap: int) -> np.ndarray:
+    """Best cost after each iteration 1..cap (nan before the first solution), from the planner's cost
+    history in stats ("cost_history": [[iteration, cost], ...] or one cost per iteration)."""
+    hist = res.stats.get("cost_history")
+    if hist is None:
+        raise R.ToolFailed("gmmrrt-plan --json gave no stats.cost_history: Fig. 1 needs the planner's cost "
+                           "history (issue 5: 'statistics: ... cost history')")
+    curve = np.full(cap, np.nan)
+    if hist and isinstance(hist[0], (list, tuple)):
+        pts = sorted((int(i), float(c)) for i, c in hist)
+    else:
+        pts = [(i + 1, float(c)) for i, c in enumerate(hist)]
+    for it, c in pts:
+        if 1 <= it <= cap and np.isfinite(c):
+            curve[it - 1:] = c
+    return curve
+
+
+def exp_fig1(ctx: Ctx) -> None:
+    s = ctx.s
+    scene = task_scene(ctx, "avoid", homotopies(ctx, "avoid")[0])
+    mdl = model(ctx, "avoid", "all", "features")
+    jobs = []
+    for bias in (1.0, 0.0):
+        for i in range(s.trials):
+            jobs.append(({"bias": bias}, ctx.plan(scene, "gmm-rrt-star", s.seed + i, mdl, s.fig1_iterations, bias),
+                         s.seed + i))
+    results = ctx.run_plans(jobs, "fig1")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    lines, records = [], []
+    its = np.arange(1, s.fig1_iterations + 1)
+    for bias, color in ((1.0, "tab:red"), (0.0, "tab:blue")):
+        rs = [r for t, r in results if t["bias"] == bias]
+        curves = np.vstack([cost_curve(r, s.fig1_iterations) for r in rs])
+        solved = np.isfinite(curves)
+        with np.errstate(invalid="ignore"):
+            mean = np.nanmean(np.where(solved, curves, np.nan), axis=0)
+            std = np.nanstd(np.where(solved, curves, np.nan), axis=0)
+        ax.plot(its, mean, color=color, label=f"bias {bias:.0%} (mean ± std)")
+        ax.fill_between(its, mean - std, mean + std, color=color, alpha=0.2)
+        for checkpoint in sorted({min(s.fig1_iterations, c) for c in (250, 500, 1000, 2000, 4000, 8000)}):
+            k = checkpoint - 1
+            lines.append(f"| {bias:.0%} | {checkpoint} | {int(solved[:, k].sum())}/{len(rs)} | "
+                         f"{fmt_ms(mean[k], std[k], 3)} |")
+        for t, r in results:
+            if t["bias"] == bias:
+                records.append(record(t, r))
+    ax.set_xlabel("iterations")
+    ax.set_ylabel("best path cost")
+    ax.set_title("Avoid task, GMM-RRT*, task model: cost vs iterations (cf. paper Fig. 1)")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    md = ctx.header("Fig. 1: solution cost vs iterations, mixture bias 100 % and 0 %",
+                    "GMM-RRT* (task cost on) on the avoid scene with the two-homotopy model; bias = fraction of samples "
+                    "drawn from the mixture (the rest uniform). Mean ± std of the best cost over the trials that have a "
+                    "solution at that iteration; 'solved' = how many have one.")
+    md += "| bias | iteration | solved | best cost |\n|---|---|---|---|\n" + "\n".join(lines) + "\n"
+    ctx.write("fig1", md, records, fig)
+
+
+# ==================================================================== Fig. 3
+
+def exp_fig3(ctx: Ctx) -> None:
+    s = ctx.s
+    d = demos(ctx)
+    jobs, scenes_ = [], {}
+    for hom in homotopies(ctx, "avoid"):
+        scene = task_scene(ctx, "avoid", hom)
+        scenes_[hom] = scene
+        for planner, kind, label in (("gmm-rrt-star", "features", "GMM-RRT*"), ("gmm-rrt", "xy", "GMM-RRT")):
+            mdl = model(ctx, "avoid", hom, kind)
+            for budget in s.fig3_budgets:
+                for i in range(s.trials):
+                    jobs.append(({"homotopy": hom, "planner": label, "budget": budget},
+                                 ctx.plan(scene, planner, s.seed + i, mdl, budget,
+                                          s.bias if planner == "gmm-rrt-star" else None), s.seed + i))
+    results = ctx.run_plans(jobs, "fig3")
+    records, table = [], {}
+    for tag, res in results:
+        out = classify(res, scenes_[tag["homotopy"]])
+        extra = {"outcome": out}
+        if out == M.SUCCESS:
+            t, le = M.per_plan_tdm_le([e.xy for e in d[("avoid", tag["homotopy"])]], [res.path])
+            extra.update(tdm_m=float(t[0]), le=float(le[0]))
+        rec = record(tag, res, **extra)
+        records.append(rec)
+        table.setdefault((tag["planner"], tag["budget"]), []).append(rec)
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
+    lines = []
+    for label, color in (("GMM-RRT*", "tab:red"), ("GMM-RRT", "tab:blue")):
+        tm, ts, lm, ls, ok_n = [], [], [], [], []
+        for b in s.fig3_budgets:
+            recs = table.get((label, b), [])
+            ok = [r for r in recs if "tdm_m" in r]
+            a, b_ = M.mean_std([r["tdm_m"] for r in ok])
+            c, d_ = M.mean_std([100 * r["le"] for r in ok])
+            tm.append(a); ts.append(b_); lm.append(c); ls.append(d_); ok_n.append(len(ok))
+            lines.append(f"| {label} | {b} | {len(ok)}/{len(recs)} | {fmt_ms(a, b_)} | {fmt_ms(c, d_, 2)} |")
+        x = np.arange(len(s.fig3_budgets)) + (-0.1 if label == "GMM-RRT*" else 0.1)
+        axes[0].errorbar(x, tm, yerr=ts, fmt="o", color=color, label=label, capsize=3)
+        axes[1].errorbar(x, lm, yerr=ls, fmt="o", color=color, label=label, capsize=3)
+    for ax, yl in zip(axes, ("TDM (m)", "l_e (%)")):
+        ax.set_xticks(np.arange(len(s.fig3_budgets)))
+        ax.set_xticklabels([str(b) for b in s.fig3_budgets])
+        ax.set_xlabel("iteration cap")
+        ax.set_ylabel(yl)
+        ax.grid(alpha=0.3)
+        ax.legend()
+    fig.suptitle("Avoid task: metrics vs planning budget (cf. paper Fig. 3)")
+    md = ctx.header("Fig. 3: TDM and l_e vs planning budget (avoid task)",
+                    "Both homotopies pooled, each with its own model and scene; budget = iteration cap.")
+    md += "| planner | iteration cap | success | TDM (m) | l_e (%) |\n|---|---|---|---|---|\n" + "\n".join(lines) + "\n"
+    ctx.write("fig3", md, records, fig)
+
+
+# ==================================================================== Fig. 5 / Fig. 6
+
+def blocking_box(scene: R.Scene, side: str) -> Tuple[float, float, float, float, float]:
+    """A box closing one side of the person (person frame: left = +y) from the person's disc to the bounds."""
+    b = scene.bounds
+    inner = PERSON_RADIUS_M * 0.5
+    if side == "right":
+        lo, hi = b[1] - 1.0, -inner
+    else:
+        lo, hi = inner, b[3] + 1.0
+    return (0.0, (lo + hi) / 2.0, 0.8, hi - lo, 0.0)
+
+
+def exp_fig5(ctx: Ctx) -> None:
+    s = ctx.s
+    base = task_scene(ctx, "avoid", "right")
+    scene = R.Scene(base.start, base.goal, base.people, base.bounds, boxes=[blocking_box(base, "right")])
+    runs = [("GMM-RRT*, two-homotopy model", "gmm-rrt-star", model(ctx, "avoid", "all", "features"), s.iterations, s.bias),
+            ("GMM-RRT*, right-only model", "gmm-rrt-star", model(ctx, "avoid", "right", "features"), s.iterations, s.bias),
+            ("GMM-RRT, right-only x-y model", "gmm-rrt", model(ctx, "avoid", "right", "xy"),
+             s.iterations * s.fig5_gmm_rrt_factor, None)]
+    jobs = [({"planner": label}, ctx.plan(scene, pl, s.seed + i, mdl, it, bias), s.seed + i)
+            for label, pl, mdl, it, bias in runs for i in range(s.trials)]
+    results = ctx.run_plans(jobs, "fig5")
+    _obstacle_report(ctx, "fig5", scene, results, [r[0] for r in runs], ("avoid", None),
+                     "Fig. 5: an obstacle blocks one homotopy (avoid task)",
+                     "A box closes the person's right side (person frame). GMM-RRT* with the two-homotopy model "
+                     f"(bias {s.bias}) vs the baseline GMM-RRT with the right-only x-y model, which gets "
+                     f"{s.fig5_gmm_rrt_factor}x the iterations (the paper: 3 s vs 100 s). 'side' counts the side of "
+                     "the person the successful paths pass.")
+
+
+def exp_fig6(ctx: Ctx) -> None:
+    s = ctx.s
+    base = task_scene(ctx, "approach", "frontal")
+    sx, sy = base.start
+    gx, gy = base.goal
+    mx, my = (sx + gx) / 2.0, (sy + gy) / 2.0
+    yaw = math.atan2(gy - sy, gx - sx)
+    length = math.hypot(gx - sx, gy - sy)
+    box = (mx, my, min(0.6, 0.25 * length), 1.6, yaw)   # across the straight approach
+    scene = R.Scene(base.start, base.goal, base.people, base.bounds, boxes=[box])
+    mdl = model(ctx, "approach", "frontal", "features")
+    runs = [("GMM-RRT*, 100 % mixture sampling", 1.0), (f"GMM-RRT*, {s.bias:.0%} mixture / {1 - s.bias:.0%} uniform", s.bias)]
+    jobs = [({"planner": label}, ctx.plan(scene, "gmm-rrt-star", s.seed + i, mdl, s.iterations, bias), s.seed + i)
+            for label, bias in runs for i in range(s.trials)]
+    results = ctx.run_plans(jobs, "fig6")
+    _obstacle_report(ctx, "fig6", scene, results, [r[0] for r in runs], ("approach", "frontal"),
+                     "Fig. 6: an obstacle on the approach path",
+                     "Frontal approach with a box across the straight line from start to goal; the same iteration "
+                     "cap for both sampling mixes.")
+
+
+def _obstacle_report(ctx, name, scene, results, labels, demo_key, title, what):
+    import matplotlib.pyplot as plt
+
+    records, lines = [], []
+    fig, axes = plt.subplots(1, len(labels), figsize=(4.6 * len(labels), 4.4), squeeze=False)
+    d = demos(ctx)
+    for ax, label in zip(axes[0], labels):
+        rs = [r for t, r in results if t["planner"] == label]
+        outs, sides, lens, firsts = [], [], [], []
+        for r in rs:
+            o = classify(r, scene)
+            side = M.passing_side(r.path, scene.people[0]) if r.path else None
+            outs.append(o)
+            if o == M.SUCCESS:
+                sides.append(side)
+                lens.append(M.path_length(r.path))
+                p = np.asarray(r.path)
+                ax.plot(p[:, 0], p[:, 1], color="tab:red", lw=0.8, alpha=0.6)
+            if r.stats.get("first_solution_ms") is not None and o == M.SUCCESS:
+                firsts.append(r.stats.get("iterations"))
+            records.append(record({"planner": label}, r, outcome=o, side=side))
+        rt = M.rates(outs)
+        lm, ls = M.mean_std(lens)
+        lines.append(f"| {label} | {rt['success']:.0%} | {rt['collision']:.0%} | {rt['timeout']:.0%} | "
+                     f"{rt['failure']:.0%} | {sides.count('left')} / {sides.count('right')} | {fmt_ms(lm, ls, 2)} |")
+        if demo_key[1] is None:
+            keys = [k for k in d if k[0] == demo_key[0]]
+        else:
+            keys = [demo_key]
+        for k in keys:
+            for e in d[k]:
+                ax.plot(e.xy[:, 0], e.xy[:, 1], color="tab:green", lw=0.6, alpha=0.5)
+        _draw_scene(ax, scene)
+        ax.set_title(f"{label}\nsuccess {rt['success']:.0%}", fontsize=9)
+    md = ctx.header(title, what)
+    md += ("| planner | success | collision | no path (timeout) | other failure | side left / right | length (m) |\n"
+           "|---|---|---|---|---|---|---|\n" + "\n".join(lines) + "\n")
+    ctx.write(name, md, records, fig)
+
+
+# ==================================================================== real data
+
+def _real(ctx: Ctx) -> Path:
+    if ctx.real is None or not (ctx.real / "upo_avoid_episodes.csv").is_file():
+        raise RuntimeError(f"real data not found at {ctx.real} (set GMMRRT_REAL_DATA or --real-data to the folder "
+                           f"of ../shared/data/real): the real-data experiment is skipped")
+    return ctx.real
+
+
+def _social_row(paths, people_of, human_of=None, sides=None, true_sides=None, approach=False):
+    vals: Dict[str, List[float]] = {}
+    for i, p in enumerate(paths):
+        if p is None:
+            continue
+        sm = M.social_metrics(p, [people_of[i]])
+        for k, v in sm.items():
+            vals.setdefault(k, []).append(v)
+        if human_of is not None:
+            vals.setdefault("tdm_m", []).append(M.tdm_pair(human_of[i], p))
+            vals.setdefault("le", []).append(100 * M.length_error_pair(human_of[i], p))
+        if sides is not None:
+            vals.setdefault("same_side", []).append(1.0 if sides[i] == true_sides[i] else 0.0)
+        if approach:
+            vals.setdefault("final_heading_err_deg", []).append(
+                math.degrees(M.approach_end(p, people_of[i]).heading_error_rad))
+            vals.setdefault("final_dist_m", []).append(M.approach_end(p, people_of[i]).final_distance_m)
+    return vals
+
+
+def _plan_episodes(ctx, eps, planners, desc):
+    jobs = []
+    for k, e in enumerate(eps):
+        scene = S.episode_scene(e, clearance_m=CLEARANCE_M)
+        for label, planner, mdl, bias in planners:
+            seed = ctx.s.seed + k
+            jobs.append(({"episode": e.episode_id, "planner": label, "k": k}, ctx.plan(scene, planner, seed, mdl,
+                                                                                      None, bias), seed))
+    return ctx.run_plans(jobs, desc)
+
+
+def _real_table(ctx, eps, results, labels, approach):
+    people = [e.person for e in eps]
+    human = [e.xy for e in eps]
+    true_sides = [e.homotopy for e in eps]
+    rows, records = {}, []
+    by_label = {l: [None] * len(eps) for l in labels}
+    outcomes = {l: [] for l in labels}
+    for tag, res in results:
+        scene = S.episode_scene(eps[tag["k"]], clearance_m=CLEARANCE_M)
+        o = classify(res, scene)
+        outcomes[tag["planner"]].append(o)
+        if o in (M.SUCCESS, M.COLLISION) and res.path:
+            by_label[tag["planner"]][tag["k"]] = res.path
+        records.append(record(tag, res, outcome=o))
+    straight = []
+    for e in eps:
+        sc = S.episode_scene(e, clearance_m=CLEARANCE_M)
+        straight.append(np.array([sc.start, sc.goal]))
+    cols = [("success", None)]
+    table = []
+    metrics_cols = (["tdm_m", "le"] + ([] if approach else ["same_side"]) + ["min_dist_person_m", "frac_within_0.45m",
+                    "frac_within_1.2m", "smoothness_rad", "length_m"] + (["final_dist_m", "final_heading_err_deg"] if approach else []))
+
+    def side_list(paths):
+        return [M.passing_side(p, eps[i].person) if p is not None else None for i, p in enumerate(paths)]
+
+    series = [("human (reference)", human, None)]
+    for l in labels:
+        series.append((l, by_label[l], M.rates(outcomes[l])))
+    series.append(("straight line", straight, None))
+    for name, paths, rt in series:
+        v = _social_row(paths, people, None if name.startswith("human") else human,
+                        None if approach else side_list(paths), true_sides, approach)
+        cells = [name, f"{rt['success']:.0%} ({rt['collision']:.0%} coll.)" if rt else
+                 ("–" if name.startswith("human") else f"{100 * np.mean([M.path_collides(p, people=[eps[i].person], robot_radius_m=ROBOT_RADIUS_M, person_radius_m=PERSON_RADIUS_M) for i, p in enumerate(paths)]):.0f} % coll.")]
+        for c in metrics_cols:
+            m_, s_ = M.mean_std(v.get(c, []))
+            if c == "same_side":
+                cells.append("–" if not np.isfinite(m_) else f"{100 * m_:.0f} %")
+            elif c.startswith("frac"):
+                cells.append(fmt_ms(100 * m_, 100 * s_, 1))
+            else:
+                cells.append(fmt_ms(m_, s_, 3 if c in ("tdm_m",) else 2))
+        table.append("| " + " | ".join(cells) + " |")
+    head = ["planner", "success"] + [{"tdm_m": "TDM vs human (m)", "le": "l_e vs human (%)", "same_side": "same side",
+                                      "min_dist_person_m": "min dist. person (m)", "frac_within_0.45m": "% path < 0.45 m",
+                                      "frac_within_1.2m": "% path < 1.2 m", "smoothness_rad": "heading change (rad)",
+                                      "length_m": "length (m)", "final_dist_m": "final dist. (m)",
+                                      "final_heading_err_deg": "final heading err. (deg)"}[c] for c in metrics_cols]
+    md = "| " + " | ".join(head) + " |\n|" + "---|" * len(head) + "\n" + "\n".join(table) + "\n"
+    return md, records, by_label, straight
+
+
+def exp_real(ctx: Ctx) -> None:
+    s = ctx.s
+    real = _real(ctx)
+    ep_csv, idx = str(real / "upo_avoid_episodes.csv"), str(real / "upo_avoid_index.csv")
+    mdl = R.fit_model(ctx.work / "models" / "upo_avoid_train_all.gmm", "avoid", [ep_csv], homotopy="all",
+                      seed=s.seed, index=idx, split="train", bin_dir=ctx.bin_dir)
+    eps = S.read_episodes(ep_csv, index=idx, split="test")
+    if s.real_max_episodes:
+        eps = eps[:: max(1, len(eps) // s.real_max_episodes)][: s.real_max_episodes]
+    planners = [("GMM-RRT*", "gmm-rrt-star", mdl, s.bias), ("RRT*", "rrt-star", None, None)]
+    results = _plan_episodes(ctx, eps, planners, "real upo avoid")
+    md_tab, records, by_label, straight = _real_table(ctx, eps, results, [p[0] for p in planners], approach=False)
+    md = ctx.header("Real data: UPO avoid, learned on the train split, evaluated on the test split",
+                    f"Avoid model (all homotopies, features) fitted by `gmmrrt-learn fit --index upo_avoid_index.csv "
+                    f"--split train` on {ep_csv}; for each of the {len(eps)} test episodes, plans from the mover's first "
+                    "to its last position around the episode's person (other people ignored), compared with what the "
+                    "human drove: TDM (human points to the planned polyline), l_e, whether the plan passes the person "
+                    "on the same side as the human, social metrics. Straight line = start to goal. 'coll.' = within "
+                    f"robot ({ROBOT_RADIUS_M} m) + person ({PERSON_RADIUS_M} m) radius of the person.")
+    md += md_tab
+    fig = _real_figure(eps, by_label, "UPO avoid test episodes (person frame)")
+    ctx.write("real_upo_avoid", md, records, fig)
+    _real_ucy_approach(ctx)
+
+
+def _real_ucy_approach(ctx: Ctx) -> None:
+    s = ctx.s
+    real = _real(ctx)
+    gmms = real / "upo_approach_gmms.json"
+    eps = S.read_episodes(str(real / "ucy_approach_episodes.csv"), index=str(real / "ucy_index.csv"))
+    models = {}
+    for e in eps:
+        name = (e.meta or {}).get("upo_task") or ""
+        if not name:
+            continue
+        if name not in models:
+            out = ctx.work / "models" / f"upo_approach_{name}.gmm"
+            if not out.exists():
+                out.parent.mkdir(parents=True, exist_ok=True)
+                R.learn(["import", "--json", str(gmms), "--name", name, "-o", str(out)], ctx.bin_dir)
+            models[name] = out
+    eps = [e for e in eps if (e.meta or {}).get("upo_task") in models]
+    jobs = []
+    for k, e in enumerate(eps):
+        scene = S.episode_scene(e, clearance_m=CLEARANCE_M)
+        for label, planner, bias in (("GMM-RRT* (lab's model)", "gmm-rrt-star", s.bias), ("RRT*", "rrt-star", None)):
+            mdl = models[e.meta["upo_task"]] if planner == "gmm-rrt-star" else None
+            jobs.append(({"episode": e.episode_id, "planner": label, "k": k},
+                          ctx.plan(scene, planner, s.seed + k, mdl, None, bias), s.seed + k))
+    results = ctx.run_plans(jobs, "real ucy approach")
+    md_tab, records, by_label, _ = _real_table(ctx, eps, results, ["GMM-RRT* (lab's model)", "RRT*"], approach=True)
+    md = ctx.header("Real data: the lab's published approach models against the UCY approach episodes",
+                    f"{gmms.name} imported with `gmmrrt-learn import`, one model per approach direction (the index's "
+                    f"upo_task column); all {len(eps)} UCY approach episodes are held-out data for these models (they were "
+                    "learned by the UPO lab on their robot data). Final heading error = angle between the path's last "
+                    "segment and the bearing to the person.")
+    md += md_tab
+    fig = _real_figure(eps, by_label, "UCY approach episodes (person frame)")
+    ctx.write("real_ucy_approach", md, records, fig)
+
+
+def _real_figure(eps, by_label, title, n=6):
+    import matplotlib.pyplot as plt
+    from gmmrrt_tools import core
+
+    pick = eps[:: max(1, len(eps) // n)][:n]
+    fig, axes = plt.subplots(1, len(pick), figsize=(3.4 * len(pick), 3.6), squeeze=False)
+    colors = {"GMM-RRT*": "tab:red", "GMM-RRT* (lab's model)": "tab:red", "RRT*": "tab:gray"}
+    for ax, e in zip(axes[0], pick):
+        k = eps.index(e)
+        def pf(p):
+            return np.array([core.world_to_person(e.person, x, y) for x, y in p])
+        h = pf(e.xy)
+        ax.plot(h[:, 0], h[:, 1], color="tab:green", lw=1.5)
+        for l, paths in by_label.items():
+            if paths[k] is not None:
+                p = pf(paths[k])
+                ax.plot(p[:, 0], p[:, 1], color=colors.get(l, "tab:blue"), lw=1)
+        ax.add_patch(__import__("matplotlib.patches", fromlist=["Circle"]).Circle((0, 0), PERSON_RADIUS_M, fill=False))
+        ax.arrow(0, 0, 0.4, 0, head_width=0.12, color="k")
+        ax.set_aspect("equal")
+        ax.set_title(e.episode_id, fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[0][0].legend(handles=_legend([("human", "tab:green"), ("GMM-RRT*", "tab:red"), ("RRT*", "tab:gray")]),
+                      fontsize=7)
+    fig.suptitle(title)
+    return fig
+
+
+# ==================================================================== CLI
+
+EXPERIMENTS: Dict[str, Callable[[Ctx], None]] = {
+    "table1": exp_table1, "fig1": exp_fig1, "fig3": exp_fig3, "fig5": exp_fig5, "fig6": exp_fig6, "real": exp_real,
+}
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("experiment", choices=list(EXPERIMENTS) + ["all"])
+    ap.add_argument("--quick", action="store_true", help="small settings for a smoke run (minutes); outputs get a -quick suffix")
+    ap.add_argument("--trials", type=int, help="trials per cell (default 25, quick 5)")
+    ap.add_argument("--iterations", type=int, help="iteration cap per run (default 4000, quick 1500)")
+    ap.add_argument("--seed", type=int, help="base seed: trial i uses seed + i (default 1)")
+    ap.add_argument("--jobs", type=int, help="planner runs in parallel (default 1)")
+    ap.add_argument("--out", default=str(ROOT / "docs" / "results"), help="where tables and plots go (default docs/results)")
+    ap.add_argument("--work", default=str(ROOT / "out" / "experiments"), help="scratch folder for models (default out/experiments)")
+    ap.add_argument("--bin-dir", default=os.environ.get("GMMRRT_BIN_DIR"), help="folder of gmmrrt-plan and gmmrrt-learn")
+    ap.add_argument("--demos-dir", default=str(ROOT / "logs" / "demos"), help="demonstration logs (default logs/demos)")
+    ap.add_argument("--real-data", default=os.environ.get("GMMRRT_REAL_DATA", str(ROOT.parent / "shared" / "data" / "real")),
+                    help="folder of the real episodes (default $GMMRRT_REAL_DATA or ../shared/data/real)")
+    args = ap.parse_args(argv)
+    for k in ("trials", "iterations", "jobs"):
+        v = getattr(args, k)
+        if v is not None and v < 1:
+            ap.error(f"--{k} must be >= 1, got {v}")
+    ctx = Ctx(args)
+    names = list(EXPERIMENTS) if args.experiment == "all" else [args.experiment]
+    failed = []
+    for name in names:
+        t0 = time.time()
+        try:
+            EXPERIMENTS[name](ctx)
+            print(f"{name}: done in {time.time() - t0:.0f} s")
+        except (R.MissingTool, R.ToolFailed, RuntimeError, ValueError) as exc:
+            print(f"{name}: NOT RUN: {exc}", file=sys.stderr)
+            failed.append(name)
+    if failed:
+        print(f"experiments not run: {', '.join(failed)}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
