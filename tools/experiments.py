@@ -89,6 +89,8 @@ class Ctx:
             for k, v in QUICK.items():
                 setattr(s, k, v)
             s.quick = True
+        if getattr(args, "max_episodes", None) is not None:
+            s.real_max_episodes = args.max_episodes
         for k in ("trials", "iterations", "seed", "jobs"):
             v = getattr(args, k, None)
             if v is not None:
@@ -707,6 +709,8 @@ def _real_ucy_approach(ctx: Ctx) -> None:
                 R.learn(["import", "--json", str(gmms), "--name", name, "-o", str(out)], ctx.bin_dir)
             models[name] = out
     eps = [e for e in eps if (e.meta or {}).get("upo_task") in models]
+    if s.real_max_episodes:
+        eps = eps[:: max(1, len(eps) // s.real_max_episodes)][: s.real_max_episodes]
     jobs = []
     for k, e in enumerate(eps):
         scene = S.episode_scene(e, clearance_m=CLEARANCE_M)
@@ -769,6 +773,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     ap.add_argument("--iterations", type=int, help="iteration cap per run (default 4000, quick 1500)")
     ap.add_argument("--seed", type=int, help="base seed: trial i uses seed + i (default 1)")
     ap.add_argument("--jobs", type=int, help="planner runs in parallel (default 1)")
+    ap.add_argument("--max-episodes", type=int,
+                    help="real data: at most this many episodes per data set, evenly spread (default all, quick 12)")
     ap.add_argument("--out", default=str(ROOT / "docs" / "results"), help="where tables and plots go (default docs/results)")
     ap.add_argument("--work", default=str(ROOT / "out" / "experiments"), help="scratch folder for models (default out/experiments)")
     ap.add_argument("--bin-dir", default=os.environ.get("GMMRRT_BIN_DIR"), help="folder of gmmrrt-plan and gmmrrt-learn")
@@ -776,10 +782,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     ap.add_argument("--real-data", default=os.environ.get("GMMRRT_REAL_DATA", str(ROOT.parent / "shared" / "data" / "real")),
                     help="folder of the real episodes (default $GMMRRT_REAL_DATA or ../shared/data/real)")
     args = ap.parse_args(argv)
-    for k in ("trials", "iterations", "jobs"):
+    for k in ("trials", "iterations", "jobs", "max_episodes"):
         v = getattr(args, k)
         if v is not None and v < 1:
-            ap.error(f"--{k} must be >= 1, got {v}")
+            ap.error(f"--{k.replace('_', '-')} must be >= 1, got {v}")
     ctx = Ctx(args)
     names = list(EXPERIMENTS) if args.experiment == "all" else [args.experiment]
     failed = []
