@@ -145,9 +145,14 @@ def load_demo_logs(demos_dir: str) -> List[Episode]:
                            f"it comes with the demos branch (issue 3)") from None
     out: List[Episode] = []
     for log in logs:
-        for demo in demolog.read_demo_log(str(log)):
-            out.append(Episode(getattr(demo, "episode_id", log.stem), demo.task, demo.homotopy,
-                               tuple(demo.person), np.asarray(demo.xy, dtype=float), ""))
+        eps, warnings = demolog.read_demo_log(str(log))
+        for w in warnings:
+            print(f"warning: {w}")
+        for demo in eps:
+            # The standing person's pose is constant in a demonstration; its first sample stands for it.
+            person = (float(demo.person_x[0]), float(demo.person_y[0]), float(demo.person_yaw[0]))
+            xy = np.column_stack((demo.robot_x, demo.robot_y)).astype(float)
+            out.append(Episode(demo.id, demo.task, demo.homotopy, person, xy, ""))
     return out
 
 
