@@ -706,7 +706,8 @@ def _real_ucy_approach(ctx: Ctx) -> None:
             out = ctx.work / "models" / f"upo_approach_{name}.gmm"
             if not out.exists():
                 out.parent.mkdir(parents=True, exist_ok=True)
-                R.learn(["import", "--json", str(gmms), "--name", name, "-o", str(out)], ctx.bin_dir)
+                R.learn(["import", "--json", str(gmms), "--set", "tasks", "--task-name", name, "--task", "approach",
+                         "-o", str(out)], ctx.bin_dir)
             models[name] = out
     eps = [e for e in eps if (e.meta or {}).get("upo_task") in models]
     if s.real_max_episodes:
