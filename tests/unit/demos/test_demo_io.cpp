@@ -206,10 +206,12 @@ void test_log_pose_without_recent_person_is_skipped(void** state) {
         LogWriter w(path);
         w.Write("DEMO_INFO", Info(kT0, 0, 1, 2, 3), kT0);
         w.Write("PEOPLE", People(kT0, 3, 1, 1, 0), kT0);
-        w.Write("ROBOT_POSE", Pose(kT0 + 100000, 0, 0, 0), kT0 + 100000);  // 0.1 s old person: paired
-        w.Write("ROBOT_POSE", Pose(kT0 + 900000, 1, 0, 0), kT0 + 900000);  // 0.9 s: skipped
-        w.Write("PEOPLE", People(kT0 + 950000, 9, 1, 1, 0), kT0 + 950000);  // other person only
-        w.Write("ROBOT_POSE", Pose(kT0 + 1000000, 2, 0, 0), kT0 + 1000000);  // still 1 s: skipped
+        // Ages relative to the person's entry at kT0, against kMaxPersonAgeS.
+        const int64_t max_age_us = static_cast<int64_t>(gmmrrt::learn::kMaxPersonAgeS * 1e6);
+        w.Write("ROBOT_POSE", Pose(kT0 + max_age_us, 0, 0, 0), kT0);                     // at the limit: paired
+        w.Write("ROBOT_POSE", Pose(kT0 + max_age_us + 1000, 1, 0, 0), kT0);              // 1 ms over: skipped
+        w.Write("PEOPLE", People(kT0 + max_age_us + 2000, 9, 1, 1, 0), kT0);            // other person only
+        w.Write("ROBOT_POSE", Pose(kT0 + max_age_us + 3000, 2, 0, 0), kT0);              // still stale: skipped
     }
     std::vector<Episode> eps;
     ReadResult r = gmmrrt::learn::ReadDemoLog(path, &eps);
@@ -375,7 +377,7 @@ void test_log_flipped_bytes_never_crash_and_broken_headers_are_named(void** stat
 void test_log_garbage_file_is_not_a_log(void** state) {
     (void)state;
     const std::string path = TempPath("garbage.lcmlog");
-    WriteText(path, "this is not an LCM log at all, just text\n");
+    WriteText(path, "not a log\n");  // shorter than an event header
     std::vector<Episode> eps;
     ReadResult r = gmmrrt::learn::ReadDemoLog(path, &eps);
     assert_false(r.ok);
