@@ -56,6 +56,10 @@ PAPER_TABLE1 = {
 # passed explicitly so the two cannot drift apart.
 ROBOT_RADIUS_M = 0.3
 PERSON_RADIUS_M = 0.25
+# The lab's approach models: the 'tasks' set's two-homotopy entries (3-90 .. 7-90) have priors summing
+# to 2 (two one-homotopy mixtures side by side), which the learner's import rightly refuses; the
+# 'only_one_homotopy_tasks' set is a valid mixture for each of the 8 directions.
+UPO_APPROACH_SET = "only_one_homotopy_tasks"
 # Real episodes: a start or goal closer than this to the person is pushed out to it (valid problem).
 CLEARANCE_M = ROBOT_RADIUS_M + PERSON_RADIUS_M + 0.05
 
@@ -697,7 +701,7 @@ def _real_ucy_approach(ctx: Ctx) -> None:
             out = ctx.work / "models" / f"upo_approach_{name}.gmm"
             if not out.exists():
                 out.parent.mkdir(parents=True, exist_ok=True)
-                R.learn(["import", "--json", str(gmms), "--set", "tasks", "--task-name", name, "--task", "approach",
+                R.learn(["import", "--json", str(gmms), "--set", UPO_APPROACH_SET, "--task-name", name, "--task", "approach",
                          "-o", str(out)], ctx.bin_dir)
             models[name] = out
     eps = [e for e in eps if (e.meta or {}).get("upo_task") in models]
@@ -713,7 +717,8 @@ def _real_ucy_approach(ctx: Ctx) -> None:
     results = ctx.run_plans(jobs, "real ucy approach")
     md_tab, records, by_label, _ = _real_table(ctx, eps, results, ["GMM-RRT* (lab's model)", "RRT*"], approach=True)
     md = ctx.header("Real data: the lab's published approach models against the UCY approach episodes",
-                    f"{gmms.name} imported with `gmmrrt-learn import`, one model per approach direction (the index's "
+                    f"{gmms.name} (set {UPO_APPROACH_SET}; the 'tasks' set's two-homotopy mixtures have priors summing to 2 "
+                    f"and are refused by the learner) imported with `gmmrrt-learn import`, one model per approach direction (the index's "
                     f"upo_task column); all {len(eps)} UCY approach episodes are held-out data for these models (they were "
                     "learned by the UPO lab on their robot data). Final heading error = angle between the path's last "
                     "segment and the bearing to the person.")
