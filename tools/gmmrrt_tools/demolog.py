@@ -40,7 +40,7 @@ from .episodes import (HOMOTOPIES, HOMOTOPY_NAMES, TASKS, TASK_NAMES, Episode, E
 SYNC_WORD = 0xEDA1DA01
 HEADER = struct.Struct(">IqqII")  # sync, eventnum, timestamp, channel length, data length
 MAX_CHANNEL_LEN = 255
-MAX_PERSON_AGE_S = 2.0
+MAX_PERSON_AGE_S = 5.0
 MAX_WARNINGS = 100
 CH_INFO, CH_POSE, CH_PEOPLE = "DEMO_INFO", "ROBOT_POSE", "PEOPLE"
 
@@ -256,14 +256,19 @@ EPISODE_GAP_S = 10.0                          # pause between episodes in a writ
 
 
 def write_demo_log(path: str, episodes: List[Episode], start_utime: int = DEFAULT_START_UTIME,
-                   distractors: Optional[List[List[Tuple[int, float, float, float]]]] = None) -> None:
+                   distractors: Optional[List[List[Tuple[int, float, float, float]]]] = None,
+                   people_every: int = 1) -> None:
     """Writes episodes as a demonstration log, as lcm-logger would have recorded them: per episode
     a DEMO_INFO (episode numbers 0, 1, ... in list order), then per sample a PEOPLE and a ROBOT_POSE
     with the same utime (start of the episode + round(t * 1e6)). Episodes follow each other with
     EPISODE_GAP_S between them. Robot yaw that is NaN is replaced by the heading from the motion,
     then by the last known heading (0 when the robot never moves), since pose2d_t.yaw must be
     finite. distractors[e][i]: other people (id, x, y, yaw) at sample i of episode e (optional).
-    The file appears whole or not at all. Raises EpisodeError on invalid input."""
+    people_every: write PEOPLE only at every k-th sample (k >= 1; the first sample always), as a
+    slower people tracker would; keep (k - 1) sample periods <= MAX_PERSON_AGE_S or the readers
+    drop poses. The file appears whole or not at all. Raises EpisodeError on invalid input."""
+    if people_every < 1:
+        raise EpisodeError(f"{path}: people_every must be >= 1, not {people_every}")
     for ep in episodes:
         if ep.task not in TASKS or ep.homotopy not in HOMOTOPIES:
             raise EpisodeError(f"{path}: episode '{ep.id}': unknown task/homotopy {ep.task}/{ep.homotopy}")
@@ -289,15 +294,16 @@ def write_demo_log(path: str, episodes: List[Episode], start_utime: int = DEFAUL
             yaw = _finite_headings(ep)
             for i in range(len(ep)):
                 ut = utime0 + int(round(float(ep.t[i]) * 1e6))
-                people = people_t()
-                people.utime = ut
-                others = distractors[e][i] if distractors else []
-                people.num_people = 1 + len(others)
-                for k, (pid, x, y, pyaw) in enumerate([(ep.person_id, ep.person_x[i], ep.person_y[i],
-                                                         ep.person_yaw[i])] + list(others)):
-                    p = people.people[k]
-                    p.utime, p.id, p.x, p.y, p.yaw = ut, int(pid), float(x), float(y), float(pyaw)
-                log.write_event(ut, CH_PEOPLE, people.encode())
+                if i % people_every == 0:
+                    people = people_t()
+                    people.utime = ut
+                    others = distractors[e][i] if distractors else []
+                    people.num_people = 1 + len(others)
+                    for k, (pid, x, y, pyaw) in enumerate([(ep.person_id, ep.person_x[i], ep.person_y[i],
+                                                             ep.person_yaw[i])] + list(others)):
+                        p = people.people[k]
+                        p.utime, p.id, p.x, p.y, p.yaw = ut, int(pid), float(x), float(y), float(pyaw)
+                    log.write_event(ut, CH_PEOPLE, people.encode())
                 pose = pose2d_t()
                 pose.utime, pose.x, pose.y, pose.yaw = ut, float(ep.robot_x[i]), float(ep.robot_y[i]), yaw[i]
                 log.write_event(ut, CH_POSE, pose.encode())
