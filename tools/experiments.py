@@ -56,6 +56,13 @@ PAPER_TABLE1 = {
 # passed explicitly so the two cannot drift apart.
 ROBOT_RADIUS_M = 0.3
 PERSON_RADIUS_M = 0.25
+# The GMM-RRT baseline samples only from its mixture: the paper (Sect. 5.3) says the mixed 95/5
+# sampling "is only applicable to the GMM-RRT* planner presented in this paper".
+GMM_RRT_BIAS = 1.0
+# A path counts as colliding when it overlaps an obstacle or person disc by more than this: the
+# planner checks edges every 5 cm (edge_resolution_m), so a chord can graze a box corner by a
+# fraction of a millimetre (seen: 0.2 mm) without being a collision in any practical sense.
+COLLISION_TOLERANCE_M = 0.01
 # The lab's approach models: the 'tasks' set's two-homotopy entries (3-90 .. 7-90) have priors summing
 # to 2 (two one-homotopy mixtures side by side), which the learner's import rightly refuses; the
 # 'only_one_homotopy_tasks' set is a valid mixture for each of the 8 directions.
@@ -189,7 +196,8 @@ def record(tag: dict, res: R.PlanResult, **extra) -> dict:
 
 def classify(res: R.PlanResult, scene: R.Scene) -> str:
     return M.outcome(res.status, res.path, scene.goal, circles=scene.circles, boxes=scene.boxes,
-                     people=scene.people, robot_radius_m=ROBOT_RADIUS_M, person_radius_m=PERSON_RADIUS_M)
+                     people=scene.people, robot_radius_m=ROBOT_RADIUS_M, person_radius_m=PERSON_RADIUS_M,
+                     tolerance_m=COLLISION_TOLERANCE_M)
 
 
 # ==================================================================== demonstrations and models
@@ -209,8 +217,10 @@ def demos(ctx: Ctx) -> Dict[Tuple[str, str], List[S.Episode]]:
 
 
 def demo_logs(ctx: Ctx, task: str) -> List[str]:
-    logs = sorted(str(p) for p in Path(ctx.demos_dir).glob("*.lcmlog"))
-    return logs
+    """The task's logs (logs/demos/<task>_*.lcmlog), or every log when none is named so; the learner
+    keeps the episodes labelled with the task either way."""
+    logs = sorted(str(p) for p in Path(ctx.demos_dir).glob(f"{task}_*.lcmlog"))
+    return logs or sorted(str(p) for p in Path(ctx.demos_dir).glob("*.lcmlog"))
 
 
 def model(ctx: Ctx, task: str, homotopy: str = "all", kind: str = "features") -> Path:
@@ -220,10 +230,25 @@ def model(ctx: Ctx, task: str, homotopy: str = "all", kind: str = "features") ->
                        bin_dir=ctx.bin_dir)
 
 
+def demo_scene(ctx: Ctx, demo: S.Episode) -> R.Scene:
+    """The problem the demonstrator solved, in the person frame: from its first to its last point
+    (pushed out to CLEARANCE_M from the person if closer), bounds around all demonstrations of the
+    task plus 1 m."""
+    every = [e for (t, _), es in demos(ctx).items() if t == demo.task for e in es]
+    sc = S.episode_scene(demo, margin_m=1.0, clearance_m=CLEARANCE_M)
+    pts = np.vstack([e.xy for e in every] + [np.zeros((1, 2))])
+    return R.Scene(sc.start, sc.goal, sc.people, S.bounds_of(pts, 1.0))
+
+
+def medoid(ds: List[S.Episode]) -> S.Episode:
+    """The demonstration whose start and goal are closest to the mean start and goal of `ds`."""
+    ms, mg = np.mean([e.xy[0] for e in ds], axis=0), np.mean([e.xy[-1] for e in ds], axis=0)
+    return min(ds, key=lambda e: float(np.linalg.norm(e.xy[0] - ms) + np.linalg.norm(e.xy[-1] - mg)))
+
+
 def task_scene(ctx: Ctx, task: str, homotopy: str) -> R.Scene:
-    d = demos(ctx)
-    every = [e for (t, _), es in d.items() if t == task for e in es]
-    return S.canonical_scene(d[(task, homotopy)], bounds_from=every)
+    """The scene of the homotopy's most typical demonstration (see medoid)."""
+    return demo_scene(ctx, medoid(demos(ctx)[(task, homotopy)]))
 
 
 def homotopies(ctx: Ctx, task: str) -> List[str]:
@@ -242,74 +267,76 @@ PLANNERS_T1 = [  # label, planner, model homotopy ("row" = the row's homotopy, "
 
 
 def exp_table1(ctx: Ctx) -> None:
+    """Trial i of a (task, homotopy, planner) cell re-plans demonstration i mod 9 of that homotopy: its
+    start, goal and person (person frame), scored against that demonstration (eqs. (2)-(4) with
+    |D| = |P| = 1). The synthetic demonstrations vary start, goal and person pose, so one fixed scene
+    scored against all nine (the paper's set-up, where the nine were recorded in one set-up) would
+    measure the spread of the demonstrations rather than the planner."""
     s = ctx.s
+    d = demos(ctx)
     jobs, scenes_ = [], {}
     for task in ("avoid", "approach"):
         for hom in homotopies(ctx, task):
-            scene = task_scene(ctx, task, hom)
-            scenes_[(task, hom)] = scene
+            ds = d[(task, hom)]
             for label, planner, mh, kind in PLANNERS_T1:
-                if mh == "all" and task == "avoid" and hom != homotopies(ctx, task)[0]:
-                    continue  # same scene for both sides: run once, score by the side taken
                 mdl = model(ctx, task, hom if mh == "row" else "all", kind) if mh else None
                 iters = s.gmm_rrt_iterations if planner == "gmm-rrt" else s.iterations
                 for i in range(s.trials):
+                    demo = ds[i % len(ds)]
+                    scene = scenes_.setdefault(demo.episode_id, demo_scene(ctx, demo))
                     seed = s.seed + i
-                    tag = {"task": task, "homotopy": hom, "planner": label}
+                    tag = {"task": task, "homotopy": hom, "planner": label, "demo": demo.episode_id}
                     jobs.append((tag, ctx.plan(scene, planner, seed, mdl, iters,
-                                               s.bias if planner == "gmm-rrt-star" else None), seed))
+                                               s.bias if planner == "gmm-rrt-star" else GMM_RRT_BIAS), seed))
     results = ctx.run_plans(jobs, "table1")
-    d = demos(ctx)
+    by_id = {e.episode_id: e for es in d.values() for e in es}
     records, cells = [], {}
     for tag, res in results:
-        scene = scenes_[(tag["task"], tag["homotopy"])]
+        scene = scenes_[tag["demo"]]
+        demo = by_id[tag["demo"]]
         out = classify(res, scene)
-        row_h = tag["homotopy"]
         extra = {"outcome": out}
         if res.path:
             side = M.passing_side(res.path, (0.0, 0.0, 0.0))
-            extra["side"] = side
-            if tag["planner"] == "GMM-RRT* (task model)" and tag["task"] == "avoid":
-                row_h = side
-            demos_h = d.get((tag["task"], row_h), [])
-            if demos_h:
-                t, le = M.per_plan_tdm_le([e.xy for e in demos_h], [res.path])
-                extra.update(tdm_m=float(t[0]), le=float(le[0]))
-        rec = record({**tag, "row": row_h}, res, **extra)
+            extra.update(side=side, same_homotopy=M.same_homotopy(res.path, demo.xy, (0.0, 0.0, 0.0)),
+                         tdm_m=M.tdm_pair(demo.xy, res.path), le=M.length_error_pair(demo.xy, res.path))
+        rec = record(tag, res, **extra)
         records.append(rec)
-        cells.setdefault((tag["task"], row_h, tag["planner"]), []).append(rec)
+        cells.setdefault((tag["task"], tag["homotopy"], tag["planner"]), []).append(rec)
 
     lines = ["| Homotopy | Planner | Avoid TDM (m) | Avoid l_e (%) | Approach TDM (m) | Approach l_e (%) | "
-             "success (avoid / approach) | paper avoid TDM, l_e | paper approach TDM, l_e |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "success (avoid / approach) | same side as the demo (avoid / approach) | paper avoid TDM, l_e (%) | "
+             "paper approach TDM, l_e (%) |", "|---|---|---|---|---|---|---|---|---|---|"]
     for hom in ("right", "left", "frontal"):
         for label, *_ in PLANNERS_T1:
             row = [hom.capitalize(), label]
-            succ, paper = [], []
+            succ, side, paper = [], [], []
             any_cell = False
             for task in ("avoid", "approach"):
                 recs = cells.get((task, hom, label), [])
-                if recs:
-                    any_cell = True
-                ok = [r for r in recs if r["outcome"] == M.SUCCESS and "tdm_m" in r]
+                any_cell = any_cell or bool(recs)
+                ok = [r for r in recs if r["outcome"] == M.SUCCESS]
                 tm, ts = M.mean_std([r["tdm_m"] for r in ok])
                 lm, ls = M.mean_std([100.0 * r["le"] for r in ok])
                 row += [fmt_ms(tm, ts), fmt_ms(lm, ls, 2)]
                 succ.append(f"{len(ok)}/{len(recs)}" if recs else "–")
+                side.append(f"{sum(bool(r['same_homotopy']) for r in ok)}/{len(ok)}" if recs else "–")
                 p = PAPER_TABLE1.get((task, hom, label))
                 paper.append(f"{p[0][0]:.4f} ± {p[0][1]:.4f}, {p[1][0]:.2f} ± {p[1][1]:.2f}" if p else "–")
             if any_cell:
-                lines.append("| " + " | ".join(row + [" / ".join(succ)] + paper) + " |")
+                lines.append("| " + " | ".join(row + [" / ".join(succ), " / ".join(side)] + paper) + " |")
     md = ctx.header(
         "Table 1: trajectory quality, GMM-RRT* vs GMM-RRT vs RRT*",
-        "Synthetic demonstrations of logs/demos/ (9 per homotopy), in the person's frame; one scene per task and "
-        "homotopy (start and goal = the mean of the demonstrations' first and last points). TDM (eqs. (2)-(3), "
-        "distance from each demonstration point to the planned polyline) and l_e (eq. (4)) of each planned path "
-        "against the demonstrations of its homotopy, mean ± std over the successful trials. GMM-RRT* uses the "
-        "features model of the row's homotopy and bias 0.95; 'GMM-RRT* (task model)' uses one model of all the "
-        "task's homotopies (as the paper's Sect. 5.1) and, for avoid, each path is scored against the side it "
-        "took (success column: paths on that side / runs); GMM-RRT uses the x-y model of the row's homotopy; "
-        "RRT* has no model. Smaller is better.")
+        "Synthetic demonstrations of logs/demos/ (9 per task and homotopy), in the person's frame. Trial i of each "
+        "cell re-plans demonstration i mod 9 (its start, goal and person) and is scored against it: TDM (eq. (2), "
+        "the mean distance from the demonstration's points to the planned polyline) and l_e (eq. (4)); mean ± std "
+        "over the successful trials. The paper's nine demonstrations share one set-up, ours vary start, goal and "
+        "person pose, hence one demonstration per trial instead of all nine (see docs/experiments.md). GMM-RRT* "
+        "uses the features model of the row's homotopy and bias 0.95; 'GMM-RRT* (task model)' one model of all "
+        "the task's homotopies (the paper's Sect. 5.1: one model per task); GMM-RRT the x-y model of the row's "
+        "homotopy; RRT* no model. Models are learned from the same demonstrations, as in the paper (no hold-out). "
+        "'same side' = the plan passes the person on the same side as the demonstration (swept bearing angles "
+        "within pi, metrics.same_homotopy). Smaller is better.")
     md += "\n".join(lines) + "\n"
     ctx.write("table1", md, records, fig=_table1_figure(ctx, results, scenes_))
 
@@ -317,7 +344,7 @@ def exp_table1(ctx: Ctx) -> None:
 def _table1_figure(ctx, results, scenes_):
     import matplotlib.pyplot as plt
 
-    keys = list(scenes_)
+    keys = sorted({(t["task"], t["homotopy"]) for t, _ in results}, key=lambda k: (k[0] != "avoid", k[1]))
     fig, axes = plt.subplots(1, len(keys), figsize=(4.2 * len(keys), 4.2), squeeze=False)
     colors = {"GMM-RRT*": "tab:red", "GMM-RRT": "tab:blue", "RRT*": "tab:gray", "GMM-RRT* (task model)": "tab:orange"}
     d = demos(ctx)
@@ -328,7 +355,7 @@ def _table1_figure(ctx, results, scenes_):
             if (tag["task"], tag["homotopy"]) == key and res.path and tag["planner"] in ("GMM-RRT*", "GMM-RRT"):
                 p = np.asarray(res.path)
                 ax.plot(p[:, 0], p[:, 1], color=colors[tag["planner"]], lw=0.7, alpha=0.5)
-        _draw_scene(ax, scenes_[key])
+        _draw_scene(ax, demo_scene(ctx, medoid(d[key])), endpoints=False)
         ax.set_title(f"{key[0]} / {key[1]}")
     axes[0][0].legend(handles=_legend([("demonstrations", "tab:green"), ("GMM-RRT*", "tab:red"),
                                        ("GMM-RRT", "tab:blue")]), loc="best", fontsize=8)
@@ -341,7 +368,7 @@ def _legend(items):
     return [Line2D([0], [0], color=c, lw=2, label=l) for l, c in items]
 
 
-def _draw_scene(ax, scene: R.Scene):
+def _draw_scene(ax, scene: R.Scene, endpoints: bool = True):
     import matplotlib.patches as mp
 
     for (x, y, yaw) in scene.people:
@@ -355,8 +382,9 @@ def _draw_scene(ax, scene: R.Scene):
                                   rotation_point="center", color="0.6", alpha=0.6))
     for (x, y, r) in scene.circles:
         ax.add_patch(mp.Circle((x, y), r, color="0.6", alpha=0.6))
-    ax.plot(*scene.start, "ko", ms=5)
-    ax.plot(*scene.goal, "k*", ms=9)
+    if endpoints:
+        ax.plot(*scene.start, "ko", ms=5)
+        ax.plot(*scene.goal, "k*", ms=9)
     b = scene.bounds
     ax.set_xlim(b[0], b[2])
     ax.set_ylim(b[1], b[3])
@@ -422,27 +450,31 @@ def exp_fig1(ctx: Ctx) -> None:
 # ==================================================================== Fig. 3
 
 def exp_fig3(ctx: Ctx) -> None:
+    """As Table 1 (trial i re-plans demonstration i mod 9 and is scored against it), avoid task, both
+    homotopies pooled, for a range of iteration caps."""
     s = ctx.s
     d = demos(ctx)
     jobs, scenes_ = [], {}
     for hom in homotopies(ctx, "avoid"):
-        scene = task_scene(ctx, "avoid", hom)
-        scenes_[hom] = scene
+        ds = d[("avoid", hom)]
         for planner, kind, label in (("gmm-rrt-star", "features", "GMM-RRT*"), ("gmm-rrt", "xy", "GMM-RRT")):
             mdl = model(ctx, "avoid", hom, kind)
             for budget in s.fig3_budgets:
                 for i in range(s.trials):
-                    jobs.append(({"homotopy": hom, "planner": label, "budget": budget},
+                    demo = ds[i % len(ds)]
+                    scene = scenes_.setdefault(demo.episode_id, demo_scene(ctx, demo))
+                    jobs.append(({"homotopy": hom, "planner": label, "budget": budget, "demo": demo.episode_id},
                                  ctx.plan(scene, planner, s.seed + i, mdl, budget,
-                                          s.bias if planner == "gmm-rrt-star" else None), s.seed + i))
+                                          s.bias if planner == "gmm-rrt-star" else GMM_RRT_BIAS), s.seed + i))
     results = ctx.run_plans(jobs, "fig3")
+    by_id = {e.episode_id: e for es in d.values() for e in es}
     records, table = [], {}
     for tag, res in results:
-        out = classify(res, scenes_[tag["homotopy"]])
+        out = classify(res, scenes_[tag["demo"]])
         extra = {"outcome": out}
         if out == M.SUCCESS:
-            t, le = M.per_plan_tdm_le([e.xy for e in d[("avoid", tag["homotopy"])]], [res.path])
-            extra.update(tdm_m=float(t[0]), le=float(le[0]))
+            demo = by_id[tag["demo"]]
+            extra.update(tdm_m=M.tdm_pair(demo.xy, res.path), le=M.length_error_pair(demo.xy, res.path))
         rec = record(tag, res, **extra)
         records.append(rec)
         table.setdefault((tag["planner"], tag["budget"]), []).append(rec)
@@ -471,46 +503,57 @@ def exp_fig3(ctx: Ctx) -> None:
         ax.legend()
     fig.suptitle("Avoid task: metrics vs planning budget (cf. paper Fig. 3)")
     md = ctx.header("Fig. 3: TDM and l_e vs planning budget (avoid task)",
-                    "Both homotopies pooled, each with its own model and scene; budget = iteration cap.")
+                    "Protocol of Table 1 (trial i re-plans demonstration i mod 9 of its homotopy and is scored against it), "
+                    "both homotopies pooled, each with its own model; budget = iteration cap. GMM-RRT stops at its "
+                    "first solution, so its cap only matters when it has not found one.")
     md += "| planner | iteration cap | success | TDM (m) | l_e (%) |\n|---|---|---|---|---|\n" + "\n".join(lines) + "\n"
     ctx.write("fig3", md, records, fig)
 
 
 # ==================================================================== Fig. 5 / Fig. 6
 
-def blocking_box(scene: R.Scene, side: str) -> Tuple[float, float, float, float, float]:
-    """A box closing one side of the person (person frame: left = +y) from the person's disc to the bounds."""
+def blocking_wall(scene: R.Scene, demo: S.Episode, width_m: float = 0.6) -> Tuple[float, float, float, float, float]:
+    """A wall from the person's disc outwards past the bounds, through the point where `demo` passes
+    closest to the person: any path between the demo's start and goal on the demo's side of the person
+    crosses it, the other side stays open."""
+    px, py = scene.people[0][:2]
+    v = demo.xy - np.array([px, py])
+    k = int(np.argmin(np.linalg.norm(v, axis=1)))
+    u = v[k] / np.linalg.norm(v[k])
     b = scene.bounds
-    inner = PERSON_RADIUS_M * 0.5
-    if side == "right":
-        lo, hi = b[1] - 1.0, -inner
-    else:
-        lo, hi = inner, b[3] + 1.0
-    return (0.0, (lo + hi) / 2.0, 0.8, hi - lo, 0.0)
+    reach = math.hypot(b[2] - b[0], b[3] - b[1]) + 1.0
+    inner = PERSON_RADIUS_M * 0.5           # overlap the person's disc: no gap next to the person
+    centre = np.array([px, py]) + u * (inner + reach / 2.0)
+    return (float(centre[0]), float(centre[1]), reach, width_m, math.atan2(u[1], u[0]))
 
 
 def exp_fig5(ctx: Ctx) -> None:
     s = ctx.s
-    base = task_scene(ctx, "avoid", "right")
-    scene = R.Scene(base.start, base.goal, base.people, base.bounds, boxes=[blocking_box(base, "right")])
+    demo = medoid(demos(ctx)[("avoid", "right")])
+    base = demo_scene(ctx, demo)
+    scene = R.Scene(base.start, base.goal, base.people, base.bounds, boxes=[blocking_wall(base, demo)])
     runs = [("GMM-RRT*, two-homotopy model", "gmm-rrt-star", model(ctx, "avoid", "all", "features"), s.iterations, s.bias),
             ("GMM-RRT*, right-only model", "gmm-rrt-star", model(ctx, "avoid", "right", "features"), s.iterations, s.bias),
             ("GMM-RRT, right-only x-y model", "gmm-rrt", model(ctx, "avoid", "right", "xy"),
-             s.iterations * s.fig5_gmm_rrt_factor, None)]
+             s.iterations * s.fig5_gmm_rrt_factor, GMM_RRT_BIAS)]
     jobs = [({"planner": label}, ctx.plan(scene, pl, s.seed + i, mdl, it, bias), s.seed + i)
             for label, pl, mdl, it, bias in runs for i in range(s.trials)]
     results = ctx.run_plans(jobs, "fig5")
     _obstacle_report(ctx, "fig5", scene, results, [r[0] for r in runs], ("avoid", None),
                      "Fig. 5: an obstacle blocks one homotopy (avoid task)",
-                     "A box closes the person's right side (person frame). GMM-RRT* with the two-homotopy model "
-                     f"(bias {s.bias}) vs the baseline GMM-RRT with the right-only x-y model, which gets "
-                     f"{s.fig5_gmm_rrt_factor}x the iterations (the paper: 3 s vs 100 s). 'side' counts the side of "
-                     "the person the successful paths pass.")
+                     f"The avoid/right demonstration {demo.episode_id} (the most typical start and goal) re-planned "
+                     "with a wall from the person outwards through the demonstration's closest point: its (right) "
+                     f"side is closed, the left side open. GMM-RRT* with the two-homotopy model (bias {s.bias}) and "
+                     f"with the right-only model vs the baseline GMM-RRT with the right-only x-y model, which gets "
+                     f"{s.fig5_gmm_rrt_factor}x the iterations (the paper: 3 s vs 100 s). 'demo side / other side' "
+                     "counts the successful paths passing the person on the demonstration's side (same_homotopy) or "
+                     "not.", ref=demo)
 
 
 def exp_fig6(ctx: Ctx) -> None:
     s = ctx.s
-    base = task_scene(ctx, "approach", "frontal")
+    demo = medoid(demos(ctx)[("approach", "frontal")])
+    base = demo_scene(ctx, demo)
     sx, sy = base.start
     gx, gy = base.goal
     mx, my = (sx + gx) / 2.0, (sy + gy) / 2.0
@@ -525,11 +568,12 @@ def exp_fig6(ctx: Ctx) -> None:
     results = ctx.run_plans(jobs, "fig6")
     _obstacle_report(ctx, "fig6", scene, results, [r[0] for r in runs], ("approach", "frontal"),
                      "Fig. 6: an obstacle on the approach path",
-                     "Frontal approach with a box across the straight line from start to goal; the same iteration "
-                     "cap for both sampling mixes.")
+                     f"Frontal approach (demonstration {demo.episode_id}, the most typical start and goal) with a box "
+                     "across the straight line from start to goal; the same iteration cap for both sampling mixes.",
+                     ref=demo)
 
 
-def _obstacle_report(ctx, name, scene, results, labels, demo_key, title, what):
+def _obstacle_report(ctx, name, scene, results, labels, demo_key, title, what, ref: S.Episode):
     import matplotlib.pyplot as plt
 
     records, lines = [], []
@@ -540,7 +584,8 @@ def _obstacle_report(ctx, name, scene, results, labels, demo_key, title, what):
         outs, sides, lens, firsts = [], [], [], []
         for r in rs:
             o = classify(r, scene)
-            side = M.passing_side(r.path, scene.people[0]) if r.path else None
+            side = (("demo side" if M.same_homotopy(r.path, ref.xy, scene.people[0]) else "other side")
+                    if r.path else None)
             outs.append(o)
             if o == M.SUCCESS:
                 sides.append(side)
@@ -553,7 +598,7 @@ def _obstacle_report(ctx, name, scene, results, labels, demo_key, title, what):
         rt = M.rates(outs)
         lm, ls = M.mean_std(lens)
         lines.append(f"| {label} | {rt['success']:.0%} | {rt['collision']:.0%} | {rt['timeout']:.0%} | "
-                     f"{rt['failure']:.0%} | {sides.count('left')} / {sides.count('right')} | {fmt_ms(lm, ls, 2)} |")
+                     f"{rt['failure']:.0%} | {sides.count('demo side')} / {sides.count('other side')} | {fmt_ms(lm, ls, 2)} |")
         if demo_key[1] is None:
             keys = [k for k in d if k[0] == demo_key[0]]
         else:
@@ -564,7 +609,7 @@ def _obstacle_report(ctx, name, scene, results, labels, demo_key, title, what):
         _draw_scene(ax, scene)
         ax.set_title(f"{label}\nsuccess {rt['success']:.0%}", fontsize=9)
     md = ctx.header(title, what)
-    md += ("| planner | success | collision | no path (timeout) | other failure | side left / right | length (m) |\n"
+    md += ("| planner | success | collision | no path (timeout) | other failure | demo side / other side | length (m) |\n"
            "|---|---|---|---|---|---|---|\n" + "\n".join(lines) + "\n")
     ctx.write(name, md, records, fig)
 
@@ -589,8 +634,9 @@ def _social_row(paths, people_of, human_of=None, sides=None, true_sides=None, ap
         if human_of is not None:
             vals.setdefault("tdm_m", []).append(M.tdm_pair(human_of[i], p))
             vals.setdefault("le", []).append(100 * M.length_error_pair(human_of[i], p))
-        if sides is not None:
-            vals.setdefault("same_side", []).append(1.0 if sides[i] == true_sides[i] else 0.0)
+        if sides is not None and human_of is not None:
+            vals.setdefault("same_side", []).append(
+                1.0 if M.same_homotopy(p, human_of[i], people_of[i]) else 0.0)
         if approach:
             vals.setdefault("final_heading_err_deg", []).append(
                 math.degrees(M.approach_end(p, people_of[i]).heading_error_rad))
@@ -643,7 +689,7 @@ def _real_table(ctx, eps, results, labels, approach):
         v = _social_row(paths, people, None if name.startswith("human") else human,
                         None if approach else side_list(paths), true_sides, approach)
         cells = [name, f"{rt['success']:.0%} ({rt['collision']:.0%} coll.)" if rt else
-                 ("–" if name.startswith("human") else f"{100 * np.mean([M.path_collides(p, people=[eps[i].person], robot_radius_m=ROBOT_RADIUS_M, person_radius_m=PERSON_RADIUS_M) for i, p in enumerate(paths)]):.0f} % coll.")]
+                 ("–" if name.startswith("human") else f"{100 * np.mean([M.path_collides(p, people=[eps[i].person], robot_radius_m=ROBOT_RADIUS_M, person_radius_m=PERSON_RADIUS_M, tolerance_m=COLLISION_TOLERANCE_M) for i, p in enumerate(paths)]):.0f} % coll.")]
         for c in metrics_cols:
             m_, s_ = M.mean_std(v.get(c, []))
             if c == "same_side":

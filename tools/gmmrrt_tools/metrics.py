@@ -266,19 +266,21 @@ def distance_to_box(path, box: Sequence[float]) -> float:
 
 
 def path_collides(path, circles=(), boxes=(), people=(), robot_radius_m: float = 0.0,
-                  person_radius_m: float = 0.0) -> bool:
+                  person_radius_m: float = 0.0, tolerance_m: float = 1e-9) -> bool:
     """True if the disc robot (radius robot_radius_m) swept along the polyline overlaps an obstacle
-    circle (x, y, r), an oriented box (cx, cy, w, h, yaw) or a person disc (person_radius_m)."""
+    circle (x, y, r), an oriented box (cx, cy, w, h, yaw) or a person disc (person_radius_m) by more
+    than tolerance_m (a planner that checks edges at a finite resolution can graze a corner by a
+    fraction of that resolution)."""
     p = as_path(path)
     for x, y, r in circles:
-        if point_to_path_distances([[x, y]], p)[0] < r + robot_radius_m - 1e-9:
+        if point_to_path_distances([[x, y]], p)[0] < r + robot_radius_m - tolerance_m:
             return True
     for b in boxes:
         d = distance_to_box(p, b)
-        if d == 0.0 or d < robot_radius_m - 1e-9:
+        if d < robot_radius_m - tolerance_m or (robot_radius_m <= tolerance_m and d == 0.0):
             return True
     if len(people) and person_radius_m + robot_radius_m > 0.0:
-        if min_distance_to_people(p, people) < person_radius_m + robot_radius_m - 1e-9:
+        if min_distance_to_people(p, people) < person_radius_m + robot_radius_m - tolerance_m:
             return True
     return False
 
@@ -334,6 +336,24 @@ def passing_side(path, person: Sequence[float]) -> Optional[str]:
     return "left" if th > 0.0 else "right"
 
 
+def swept_angle(path, person: Sequence[float]) -> float:
+    """Signed angle [rad] swept by the bearing from the person to the mover along the polyline
+    (counter-clockwise positive): the sum of the wrapped bearing changes between consecutive points.
+    Two paths with the same start and goal pass the person on the same side iff their swept angles
+    differ by less than pi (otherwise by about 2 pi): see same_homotopy."""
+    p = as_path(path) - np.asarray(person[:2], dtype=float)
+    b = np.arctan2(p[:, 1], p[:, 0])
+    db = (np.diff(b) + np.pi) % (2.0 * np.pi) - np.pi
+    return float(np.sum(db))
+
+
+def same_homotopy(path_a, path_b, person: Sequence[float]) -> bool:
+    """True when two paths between (about) the same start and goal pass `person` on the same side:
+    their swept angles (swept_angle) differ by less than pi. Robust where the side at the closest
+    point is not (a closest approach in front of or behind the person)."""
+    return abs(swept_angle(path_a, person) - swept_angle(path_b, person)) < math.pi
+
+
 def mean_std(values) -> Tuple[float, float]:
     """Mean and population std of the finite values (nan, nan if none)."""
     v = np.asarray([x for x in values if x is not None and np.isfinite(x)], dtype=float)
@@ -347,5 +367,6 @@ __all__ = [
     "tdm_pair", "length_error_pair", "tdm", "length_error", "per_plan_tdm_le",
     "min_distance_to_people", "fraction_within", "smoothness", "approach_end", "ApproachEnd",
     "distance_to_box", "path_collides", "outcome", "rates", "social_metrics", "passing_side",
+    "swept_angle", "same_homotopy",
     "mean_std", "SUCCESS", "COLLISION", "TIMEOUT", "FAILURE",
 ]

@@ -158,3 +158,25 @@ def test_passing_side_person_frame():
     person = (0.0, 0.0, math.pi)
     assert m.passing_side([[-5.0, 1.0], [5.0, 1.0]], person) == "right"
     assert m.passing_side([[-5.0, -1.0], [5.0, -1.0]], person) == "left"
+
+
+def test_swept_angle_and_same_homotopy():
+    person = (0.0, 0.0, 0.0)
+    above = [[-2.0, 0.0], [0.0, 1.0], [2.0, 0.0]]   # person on the mover's right: clockwise, -pi
+    below = [[-2.0, 0.0], [0.0, -1.0], [2.0, 0.0]]  # counter-clockwise, +pi
+    assert m.swept_angle(above, person) == pytest.approx(-math.pi)
+    assert m.swept_angle(below, person) == pytest.approx(math.pi)
+    assert not m.same_homotopy(above, below, person)
+    wide = [[-2.0, 0.0], [-1.0, 3.0], [1.0, 3.0], [2.0, 0.0]]
+    assert m.same_homotopy(above, wide, person)
+    # A path that passes right behind the person (closest point on the axis) still has a side.
+    behind = [[-2.0, 2.0], [0.0, 0.3], [2.0, 2.0]]
+    assert m.swept_angle(behind, person) < 0 and m.same_homotopy(behind, above, person)
+
+
+def test_collision_tolerance_for_grazing_paths():
+    line = [[-5.0, 0.7998], [5.0, 0.7998]]  # 0.2998 m from the box top edge (y = 0.5)
+    box = (0.0, 0.0, 2.0, 1.0, 0.0)
+    assert m.path_collides(line, boxes=[box], robot_radius_m=0.3) is True
+    assert m.path_collides(line, boxes=[box], robot_radius_m=0.3, tolerance_m=0.01) is False
+    assert m.path_collides([[-5.0, 0.7], [5.0, 0.7]], boxes=[box], robot_radius_m=0.3, tolerance_m=0.01) is True
