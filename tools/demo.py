@@ -56,23 +56,27 @@ def lcm_tool(name: str) -> str:
     return found
 
 
-def pick_scenario(arg: Optional[str]) -> Path:
-    if arg:
-        p = Path(arg)
-        if not p.is_file():
-            raise DemoError(f"scenario log {p} does not exist")
-        return p
+DEFAULT_SCENARIOS = ("avoid_obstacles", "approach_obstacles")
+
+
+def pick_scenarios(args: Optional[List[str]]) -> List[Path]:
+    """The scenario logs to play: those given, else avoid_obstacles and approach_obstacles of
+    logs/scenarios/ (one per task), else the first clean one there."""
+    if args:
+        out = [Path(a) for a in args]
+        for p in out:
+            if not p.is_file():
+                raise DemoError(f"scenario log {p} does not exist")
+        return out
     d = ROOT / "logs" / "scenarios"
     logs = sorted(d.glob("*.lcmlog"))
     if not logs:
         raise DemoError(f"no scenario logs in {d}: they come with the daemon branch (issue 6)")
-    # A clean scenario that shows both tasks if there is one, else the first clean avoid one.
-    clean = [p for p in logs if not any(w in p.stem for w in ("fault", "bad", "corrupt", "stale", "unreachable"))]
-    for pref in ("demo", "both", "mixed", "avoid_obstacle", "avoid"):
-        for p in clean:
-            if pref in p.stem:
-                return p
-    return (clean or logs)[0]
+    chosen = [d / f"{n}.lcmlog" for n in DEFAULT_SCENARIOS if (d / f"{n}.lcmlog").is_file()]
+    if chosen:
+        return chosen
+    clean = [p for p in logs if "fault" not in p.stem]
+    return [(clean or logs)[0]]
 
 
 # ---------------------------------------------------------------- LCM logs
@@ -134,11 +138,11 @@ def learn_models(out: Path, bin_dir: Optional[str], seed: int) -> Dict[str, Path
 def run_daemon(scenario: Path, models: Dict[str, Path], out: Path, bin_dir: Optional[str], transport: str,
                budget_ms: int, iterations: int) -> Path:
     gmmrrtd = R.find_tool("gmmrrtd", bin_dir)
-    rec = out / "plans.lcmlog"
+    rec = out / f"plans_{scenario.stem}.lcmlog"
     if rec.exists():
         rec.unlink()
     common = ["--model-avoid", str(models["avoid"]), "--model-approach", str(models["approach"])]
-    daemon_log = open(out / "gmmrrtd.log", "w")
+    daemon_log = open(out / f"gmmrrtd_{scenario.stem}.log", "w")
     if transport == "file":
         say(f"deterministic replay: gmmrrtd reads {scenario.name} via file:// and writes {rec.name}")
         argv = [gmmrrtd, "--lcm-url", f"file://{scenario}?speed=0", "--lcm-out-url", f"file://{rec}?mode=w",
@@ -146,7 +150,7 @@ def run_daemon(scenario: Path, models: Dict[str, Path], out: Path, bin_dir: Opti
         proc = subprocess.run(argv, stdout=daemon_log, stderr=subprocess.STDOUT, timeout=600)
         daemon_log.close()
         if proc.returncode != 0:
-            raise DemoError(f"gmmrrtd exited with {proc.returncode}: see {out / 'gmmrrtd.log'}")
+            raise DemoError(f"gmmrrtd exited with {proc.returncode}: see {daemon_log.name}")
         return rec
     port = random.Random(os.getpid()).randint(20000, 60000)
     url = f"udpm://239.255.76.67:{port}?ttl=0"
@@ -158,7 +162,7 @@ def run_daemon(scenario: Path, models: Dict[str, Path], out: Path, bin_dir: Opti
     try:
         time.sleep(1.0)
         if daemon.poll() is not None:
-            raise DemoError(f"gmmrrtd exited at start-up with {daemon.returncode}: see {out / 'gmmrrtd.log'}")
+            raise DemoError(f"gmmrrtd exited at start-up with {daemon.returncode}: see {daemon_log.name}")
         play = subprocess.run([lcm_tool("lcm-logplayer"), f"--lcm-url={url}", str(scenario)],
                               capture_output=True, text=True, timeout=600)
         if play.returncode != 0:
@@ -175,14 +179,15 @@ def run_daemon(scenario: Path, models: Dict[str, Path], out: Path, bin_dir: Opti
                     p.wait()
         daemon_log.close()
     if daemon.returncode not in (0, -signal.SIGTERM):
-        raise DemoError(f"gmmrrtd ended with {daemon.returncode}: see {out / 'gmmrrtd.log'}")
+        raise DemoError(f"gmmrrtd ended with {daemon.returncode}: see {daemon_log.name}")
     if not rec.is_file():
         raise DemoError("lcm-logger wrote no recording")
     return rec
 
 
-def analyse(scenario: Path, rec: Path) -> Tuple[dict, List[str]]:
-    """Plans, inputs and a metrics table (lines) from the scenario and the recording."""
+def analyse(scenario: Path, rec: Path) -> Tuple[dict, List[str], str]:
+    """Plans and inputs (for the plot), metrics table rows and a status line, from the scenario and
+    the recording."""
     inputs = read_log(scenario, ("ROBOT_POSE", "PEOPLE", "NAV_GOAL", "OBSTACLES"))
     outputs = read_log(rec, ("PLAN", "PLANNER_STATUS"))
     plans = [m for _, c, m in outputs if c == "PLAN"]
@@ -220,16 +225,12 @@ def analyse(scenario: Path, rec: Path) -> Tuple[dict, List[str]]:
                 end = M.approach_end(path, tgt)
                 sm["final_dist_m"] = end.final_distance_m
                 sm["final_heading_err_deg"] = math.degrees(end.heading_error_rad)
-        rows.setdefault(f"{task_name.get(pl.task, pl.task)} / {planner_name.get(pl.planner, pl.planner)}", []).append(sm)
-    cols = [("plans", None), ("length_m", "length (m)"), ("min_dist_person_m", "min dist. person (m)"),
-            ("frac_within_0.45m", "% < 0.45 m"), ("frac_within_1.2m", "% < 1.2 m"), ("smoothness_rad", "heading change (rad)"),
-            ("collides", "% colliding"), ("final_dist_m", "approach: final dist. (m)"),
-            ("final_heading_err_deg", "approach: heading err. (deg)")]
-    lines = ["| task / planner | " + " | ".join(c[1] or c[0] for c in cols[0:1]) + " | "
-             + " | ".join(c[1] for c in cols[1:]) + " |", "|---" * (len(cols) + 1) + "|"]
+        rows.setdefault(f"{scenario.stem}: {task_name.get(pl.task, pl.task)} / "
+                        f"{planner_name.get(pl.planner, pl.planner)}", []).append(sm)
+    lines = []
     for key, sms in sorted(rows.items()):
         cells = [key, str(len(sms))]
-        for k, _ in cols[1:]:
+        for k, _ in TABLE_COLS[1:]:
             v = [s[k] for s in sms if k in s]
             mean, std = M.mean_std(v)
             if not np.isfinite(mean):
@@ -244,14 +245,27 @@ def analyse(scenario: Path, rec: Path) -> Tuple[dict, List[str]]:
         reasons = ["decode", "count", "not_finite", "time_backwards", "goal_in_collision", "goal_unreachable",
                    "pose_stale", "bad_value", "unknown_target", "start_in_collision", "model_reload"]
         rej = ", ".join(f"{r}={st.rejected[i]}" for i, r in enumerate(reasons) if st.rejected[i]) or "none"
-        lines.append("")
-        lines.append(f"daemon: {st.plans_published} plans published, {st.missed_deadlines} missed deadlines, "
-                     f"rejected inputs: {rej}; last cycle {st.iterations} iterations, {st.plan_time_ms:.1f} ms")
-    data = {"plans": plans, "people": people, "poses": poses, "goals": goals, "circles": circles, "boxes": boxes}
-    return data, lines
+        status = (f"{scenario.stem}: gmmrrtd published {st.plans_published} plans, {st.missed_deadlines} missed "
+                  f"deadlines, rejected inputs: {rej}; last cycle {st.iterations} iterations, {st.plan_time_ms:.1f} ms")
+    else:
+        status = f"{scenario.stem}: no PLANNER_STATUS recorded"
+    data = {"name": scenario.stem, "plans": plans, "people": people, "poses": poses, "goals": goals,
+            "circles": circles, "boxes": boxes}
+    return data, lines, status
 
 
-def draw(out_png: Path, data: dict, models: Dict[str, Path]) -> None:
+TABLE_COLS = [("plans", "plans"), ("length_m", "length (m)"), ("min_dist_person_m", "min dist. person (m)"),
+              ("frac_within_0.45m", "% < 0.45 m"), ("frac_within_1.2m", "% < 1.2 m"),
+              ("smoothness_rad", "heading change (rad)"), ("collides", "% colliding"),
+              ("final_dist_m", "approach: final dist. (m)"), ("final_heading_err_deg", "approach: heading err. (deg)")]
+
+
+def table_header() -> List[str]:
+    return ["| scenario: task / planner | " + " | ".join(c[1] for c in TABLE_COLS) + " |",
+            "|---" * (len(TABLE_COLS) + 1) + "|"]
+
+
+def draw(out_png: Path, datas: List[dict], models: Dict[str, Path]) -> None:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.patches as mp
@@ -260,7 +274,7 @@ def draw(out_png: Path, data: dict, models: Dict[str, Path]) -> None:
     from gmmrrt_tools import mixture, scenes
 
     demos = [scenes.to_person_frame(e) for e in scenes.load_demo_logs(str(ROOT / "logs" / "demos"))]
-    fig, axes = plt.subplots(1, 3, figsize=(16, 5.2))
+    fig, axes = plt.subplots(1, 2 + len(datas), figsize=(5.4 * (2 + len(datas)), 5.2))
     colors = {"left": "tab:blue", "right": "tab:orange", "frontal": "tab:green"}
     xs = np.linspace(-5, 5, 161)
     ys = np.linspace(-4, 4, 129)
@@ -274,12 +288,24 @@ def draw(out_png: Path, data: dict, models: Dict[str, Path]) -> None:
                 ax.plot(e.xy[:, 0], e.xy[:, 1], color=colors.get(e.homotopy, "k"), lw=0.8, alpha=0.8)
         ax.add_patch(mp.Circle((0, 0), 0.25, fill=False, color="k"))
         ax.arrow(0, 0, 0.5, 0, head_width=0.15, color="k")
-        ax.set_title(f"{task}: demonstrations (by homotopy) and log10 mixture density\nperson's frame, facing +x")
+        ax.set_title(f"{task}: demonstrations, log10 mixture density\n(person's frame, person faces +x)", fontsize=10)
+        from matplotlib.lines import Line2D
+        hs = sorted({e.homotopy for e in demos if e.task == task})
+        ax.legend(handles=[Line2D([0], [0], color=colors.get(h, "k"), label=h) for h in hs], fontsize=8,
+                  loc="lower right")
         ax.set_xlim(xs[0], xs[-1])
         ax.set_ylim(ys[0], ys[-1])
         ax.set_xlabel("x' (m)")
         ax.set_ylabel("y' (m), + = person's left")
-    ax = axes[2]
+    for ax, data in zip(axes[2:], datas):
+        _draw_world(ax, data)
+    fig.tight_layout()
+    fig.savefig(out_png, dpi=100)
+
+
+def _draw_world(ax, data: dict) -> None:
+    import matplotlib.patches as mp
+
     for (x, y, r) in data["circles"]:
         ax.add_patch(mp.Circle((x, y), r, color="0.6"))
     for (cx, cy, w, h, yaw) in data["boxes"]:
@@ -302,14 +328,14 @@ def draw(out_png: Path, data: dict, models: Dict[str, Path]) -> None:
     ax.autoscale()
     ax.grid(alpha=0.3)
     ax.legend(loc="best", fontsize=8)
-    ax.set_title(f"scenario: {len(plans)} plans from gmmrrtd (world frame)")
-    fig.tight_layout()
-    fig.savefig(out_png, dpi=100)
+    ax.set_title(f"{data['name']}: {len(plans)} plans from gmmrrtd\n(world frame)", fontsize=10)
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--scenario", help="scenario log to play (default: a clean one from logs/scenarios/)")
+    ap.add_argument("--scenario", action="append",
+                    help="scenario log to play; repeat for several (default: logs/scenarios/avoid_obstacles and "
+                         "approach_obstacles)")
     ap.add_argument("--out", default=str(ROOT / "out" / "demo"), help="output folder (default out/demo)")
     ap.add_argument("--transport", choices=("auto", "udpm", "file"), default="auto",
                     help="udpm: lcm-logplayer/lcm-logger over multicast; file: deterministic file:// replay; "
@@ -324,30 +350,39 @@ def main(argv=None) -> int:
     try:
         for tool in ("gmmrrt-learn", "gmmrrtd"):
             R.find_tool(tool, args.bin_dir)
-        scenario = pick_scenario(args.scenario)
+        scenarios = pick_scenarios(args.scenario)
         models = learn_models(out, args.bin_dir, args.seed)
         transport = args.transport
-        if transport == "auto":
+        if transport in ("auto", "udpm"):
+            lcm_tool("lcm-logger"), lcm_tool("lcm-logplayer")
             probe = f"udpm://239.255.76.67:{random.Random(os.getpid() + 1).randint(20000, 60000)}?ttl=0"
-            transport = "udpm" if multicast_works(probe) else "file"
+            works = multicast_works(probe)
+            if transport == "udpm" and not works:
+                raise DemoError("UDP multicast does not work on this host (try --transport file)")
+            transport = "udpm" if works else "file"
             if transport == "file":
                 say("UDP multicast does not work on this host: using the deterministic file:// replay")
-        rec = run_daemon(scenario, models, out, args.bin_dir, transport, args.budget_ms, args.iterations)
-        data, lines = analyse(scenario, rec)
-        table = "\n".join(lines)
+        datas, lines, statuses = [], table_header(), []
+        for sc in scenarios:
+            rec = run_daemon(sc, models, out, args.bin_dir, transport, args.budget_ms, args.iterations)
+            data, rows, status = analyse(sc, rec)
+            datas.append(data)
+            lines += rows
+            statuses.append(status)
+        table = "\n".join(lines + [""] + statuses)
         print()
-        print(f"Plans of gmmrrtd on {scenario.name} (mean ± std over the published plans):")
+        print("Plans of gmmrrtd (mean ± std over the published plans of each scenario):")
         print(table)
-        (out / "metrics.md").write_text(f"# Demo: gmmrrtd on {scenario.name}\n\nMade by `tools/run demo` "
-                                        f"(transport {transport}).\n\n{table}\n")
-        png = out / "demo.png"
-        draw(png, data, models)
-    except (DemoError, R.MissingTool, R.ToolFailed, ValueError) as exc:
+        (out / "metrics.md").write_text(
+            f"# Demo: gmmrrtd on {', '.join(p.name for p in scenarios)}\n\nMade by `tools/run demo` (transport "
+            f"{transport}).\n\n{table}\n")
+        draw(out / "demo.png", datas, models)
+    except (DemoError, R.MissingTool, R.ToolFailed, ValueError, OSError) as exc:
         print(f"[demo] error: {exc}", file=sys.stderr)
         return 1
     print()
-    say(f"outputs in {out}/: models/avoid.gmm, models/approach.gmm, plans.lcmlog (recorded plans), "
-        f"gmmrrtd.log, metrics.md, demo.png")
+    say(f"outputs in {out}/: demo.png (demonstrations, mixtures, plans), metrics.md, models/avoid.gmm, "
+        f"models/approach.gmm, plans_<scenario>.lcmlog (recorded plans), gmmrrtd_<scenario>.log")
     return 0
 
 
