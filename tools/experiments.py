@@ -801,6 +801,38 @@ def _real_figure(eps, by_label, title, n=6):
     return fig
 
 
+# ==================================================================== docs
+
+REPORT_ORDER = [("table1", "Table 1"), ("fig1", "Fig. 1"), ("fig3", "Fig. 3"), ("fig5", "Fig. 5"), ("fig6", "Fig. 6"),
+                ("real_upo_avoid", "Real data: UPO avoid"), ("real_ucy_approach", "Real data: UCY approach")]
+REPORT_MARK = "<!-- RESULTS (tools/experiments.py report writes everything below this line) -->"
+
+
+def write_report(out_dir: Path, doc: Path) -> None:
+    """Copies the result tables of out_dir (docs/results) into doc (docs/experiments.md) below
+    REPORT_MARK, headings demoted, figures linked: the docs quote only numbers the runs wrote."""
+    text = doc.read_text()
+    if REPORT_MARK not in text:
+        raise RuntimeError(f"{doc}: no line '{REPORT_MARK}' to write the results under")
+    parts = [text.split(REPORT_MARK)[0] + REPORT_MARK + "\n"]
+    rel = os.path.relpath(out_dir, doc.parent)
+    missing = []
+    for name, title in REPORT_ORDER:
+        md = out_dir / f"{name}.md"
+        if not md.is_file():
+            missing.append(name)
+            continue
+        body = md.read_text().replace(f"]({name}.png)", f"]({rel}/{name}.png)")
+        body = "\n".join(("##" + line) if line.startswith("# ") else line for line in body.splitlines())
+        parts.append("\n" + body.strip() + "\n")
+    if missing:
+        parts.append("\nNot run yet: " + ", ".join(missing) + "\n")
+    tmp = doc.with_suffix(".md.tmp")
+    tmp.write_text("".join(parts))
+    tmp.replace(doc)
+    print(f"wrote the results section of {doc}" + (f" (missing: {', '.join(missing)})" if missing else ""))
+
+
 # ==================================================================== CLI
 
 EXPERIMENTS: Dict[str, Callable[[Ctx], None]] = {
@@ -810,7 +842,8 @@ EXPERIMENTS: Dict[str, Callable[[Ctx], None]] = {
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("experiment", choices=list(EXPERIMENTS) + ["all"])
+    ap.add_argument("experiment", choices=list(EXPERIMENTS) + ["all", "report"],
+                    help="an experiment, all of them, or report (copy docs/results/*.md into docs/experiments.md)")
     ap.add_argument("--quick", action="store_true", help="small settings for a smoke run (minutes); outputs get a -quick suffix")
     ap.add_argument("--trials", type=int, help="trials per cell (default 25, quick 5)")
     ap.add_argument("--iterations", type=int, help="iteration cap per run (default 4000, quick 1500)")
@@ -829,6 +862,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         v = getattr(args, k)
         if v is not None and v < 1:
             ap.error(f"--{k.replace('_', '-')} must be >= 1, got {v}")
+    if args.experiment == "report":
+        write_report(Path(args.out), ROOT / "docs" / "experiments.md")
+        return 0
     ctx = Ctx(args)
     names = list(EXPERIMENTS) if args.experiment == "all" else [args.experiment]
     failed = []

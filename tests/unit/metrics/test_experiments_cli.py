@@ -47,21 +47,25 @@ def _run(args, bin_dir, tmp_path):
                            "--real-data", str(REAL)], capture_output=True, text=True, env=env, timeout=300)
 
 
-def test_missing_planner_is_reported_and_writes_nothing(tmp_path):
+def test_missing_tool_is_named(tmp_path):
+    sys.path.insert(0, str(ROOT / "tools"))
+    from gmmrrt_tools import runner
+    with pytest.raises(runner.MissingTool, match="gmmrrt-nosuchtool not found in .*tools/run build"):
+        runner.find_tool("gmmrrt-nosuchtool", str(tmp_path))
+
+
+def test_failed_runs_are_kept_as_errors_and_all_failing_aborts(tmp_path):
     if not (REAL / "upo_avoid_episodes.csv").is_file():
         pytest.skip(f"real data not found at {REAL} (set GMMRRT_REAL_DATA)")
     bin_dir = tmp_path / "bin"
     bin_dir.mkdir()
+    _tool(bin_dir, "gmmrrt-plan", "#!/bin/sh\necho 'gmmrrt-plan: error: planning problem refused' >&2\nexit 1\n")
     _tool(bin_dir, "gmmrrt-learn", FAKE_LEARN)
-    env_path = os.environ.get("PATH", "")
-    if any((Path(p) / "gmmrrt-plan").exists() for p in env_path.split(os.pathsep) if p):
-        pytest.skip("a gmmrrt-plan is on PATH; cannot test its absence")
     proc = _run(["real", "--quick", "--max-episodes", "2"], bin_dir, tmp_path)
     assert proc.returncode == 1
-    # the harness falls back to <repo>/build/bin; without the real planner there it must say so
-    if not (ROOT / "build" / "bin" / "gmmrrt-plan").exists():
-        assert "gmmrrt-plan not found" in proc.stderr
-        assert not list((tmp_path / "out").glob("*.md"))
+    assert "every gmmrrt-plan run of real upo avoid failed" in proc.stderr
+    assert "planning problem refused" in proc.stderr
+    assert not list((tmp_path / "out").glob("*.md"))
 
 
 def test_missing_demos_are_reported(tmp_path):
