@@ -114,6 +114,8 @@ class Ctx:
         self.bin_dir = args.bin_dir
         self.demos_dir = args.demos_dir
         self.real = Path(args.real_data) if args.real_data else None
+        global _REAL_DIR
+        _REAL_DIR = str(self.real) if self.real else None
         self.command = "tools/experiments.py " + " ".join(shlex.quote(a) for a in sys.argv[1:])
         self.suffix = "-quick" if s.quick else ""
         try:
@@ -191,7 +193,18 @@ def record(tag: dict, res: R.PlanResult, **extra) -> dict:
     st = res.stats
     return {**tag, "seed": res.seed, "status": res.status, "path_points": len(res.path),
             **{k: st.get(k) for k in ("iterations", "nodes", "first_solution_ms", "best_cost", "time_ms")},
-            "argv": " ".join(shlex.quote(a) for a in res.argv[1:]), **extra}
+            "argv": portable(" ".join(shlex.quote(a) for a in res.argv[1:])), **extra}
+
+
+def portable(text: str) -> str:
+    """Paths in recorded command lines relative to the repository, real data as $GMMRRT_REAL_DATA."""
+    if _REAL_DIR:
+        for form in {str(Path(_REAL_DIR).resolve()), str(_REAL_DIR).rstrip("/")}:
+            text = text.replace(form + "/", "$GMMRRT_REAL_DATA/")
+    return text.replace(str(ROOT) + "/", "")
+
+
+_REAL_DIR: Optional[str] = None
 
 
 def classify(res: R.PlanResult, scene: R.Scene) -> str:
@@ -722,7 +735,7 @@ def exp_real(ctx: Ctx) -> None:
     md_tab, records, by_label, straight = _real_table(ctx, eps, results, [p[0] for p in planners], approach=False)
     md = ctx.header("Real data: UPO avoid, learned on the train split, evaluated on the test split",
                     f"Avoid model (all homotopies, features) fitted by `gmmrrt-learn fit --index upo_avoid_index.csv "
-                    f"--split train` on {ep_csv}; for each of the {len(eps)} test episodes, plans from the mover's first "
+                    f"--split train` on $GMMRRT_REAL_DATA/upo_avoid_episodes.csv; for each of the {len(eps)} test episodes, plans from the mover's first "
                     "to its last position around the episode's person (other people ignored), compared with what the "
                     "human drove: TDM (human points to the planned polyline), l_e, whether the plan passes the person "
                     "on the same side as the human, social metrics. Straight line = start to goal. 'coll.' = within "
