@@ -23,7 +23,7 @@ def run(tool, *args, env=None):
 def test_demo_stats_prints_both_tables():
     r = run("demo_stats.py", "--markdown", "--real-data", REAL)
     assert r.returncode == 0, r.stderr
-    assert "vs UPO avoid (all, 398 episodes)" in r.stdout
+    assert "vs UPO avoid (all, frontal encounters, 122 episodes)" in r.stdout
     rows = [l for l in r.stdout.splitlines() if l.startswith("| min distance to the person [m] | synthetic | 18 |")]
     assert len(rows) == 1
     ks = float(rows[0].rstrip(" |").split("|")[-1])
