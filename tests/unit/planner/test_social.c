@@ -265,6 +265,63 @@ static void test_gmm_rrt_follows_its_xy_model(void **state)
     }
 }
 
+/* APPROACH: the model of the target person (components on their front axis, theta = 0,
+ * at 1.3-3.1 m) bends the arrival towards that axis: 2 m of path before the goal the
+ * bearing from the person is smaller than plain RRT*'s straight-line arrival. Person 0
+ * stands far off and is not the target. */
+static void test_approach_arrives_along_the_model(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    memset(&m, 0, sizeof m);
+    m.kind = GMMRRT_MODEL_KIND_FEATURES;
+    m.task = GMMRRT_TASK_APPROACH;
+    m.dim = 2;
+    m.k = 4;
+    m.angle_mask = 0x2u;
+    m.delta = GMMRRT_MODEL_DEFAULT_DELTA;
+    for (int32_t i = 0; i < 4; ++i) {
+        m.weight[i] = 0.25;
+        m.mean[i][0] = 1.3 + 0.6 * i;
+        m.mean[i][1] = 0.0;
+        m.chol[i][0] = 0.3;
+        m.chol[i][2] = 0.15;
+    }
+    assert_int_equal(gmmrrt_model_prepare(&m, NULL, 0), GMMRRT_OK);
+    const gmmrrt_pose_t target = {0.0, 0.0, 0.0}; /* faces +x: the goal is 1 m in front */
+    double bearing[2];
+    for (int plain = 0; plain < 2; ++plain) {
+        gmmrrt_planner_config_t cfg;
+        gmmrrt_planner_config_default(&cfg);
+        cfg.planner = plain ? GMMRRT_PLANNER_RRT_STAR : GMMRRT_PLANNER_GMM_RRT_STAR;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(4.0, 3.0, 1.0, 0.0);
+        pr.goal_tolerance_m = 0.1;
+        pr.task = GMMRRT_TASK_APPROACH;
+        pr.target_person = 1;
+        pr.model = &m;
+        pr.obstacles.num_people = 2;
+        pr.obstacles.people[0] = (gmmrrt_pose_t){-6.0, -4.0, 0.0};
+        pr.obstacles.people[1] = target;
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        gmmrrt_budget_t b = {0.0, 15000, 0.0, 0};
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+        gmmrrt_path_t path;
+        assert_int_equal(gmmrrt_planner_best_path(t.p, &path), GMMRRT_OK);
+        const int32_t back = (int32_t)(2.0 / cfg.waypoint_spacing_m);
+        assert_true(path.num_points > back + 1);
+        const int32_t i = path.num_points - 1 - back;
+        double d;
+        gmmrrt_features_from_xy(&target, path.x[i], path.y[i], &d, &bearing[plain]);
+        printf("approach, %s: 2 m before the goal at (%.2f, %.2f), d = %.2f, theta = %.2f\n",
+               plain ? "rrt-star" : "gmm-rrt-star", path.x[i], path.y[i], d, bearing[plain]);
+        test_planner_free(&t);
+    }
+    assert_true(bearing[0] < bearing[1] - 0.08);
+    assert_true(fabs(bearing[0]) < 0.45);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -275,6 +332,7 @@ int main(void)
         cmocka_unit_test(test_two_side_model_takes_the_free_side_when_one_is_blocked),
         cmocka_unit_test(test_only_people_near_the_path_count),
         cmocka_unit_test(test_gmm_rrt_follows_its_xy_model),
+        cmocka_unit_test(test_approach_arrives_along_the_model),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
