@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Writes the scenario logs of logs/scenarios/ for gmmrrtd's replay tests (issue 6).
 
-Each scenario is a small LCM log (lcm.EventLog) of the daemon's inputs: ROBOT_POSE and PEOPLE
-at 10 Hz, OBSTACLES and NAV_GOAL re-sent at 1 Hz, event timestamps equal to the messages'
+Each scenario is a small LCM log (lcm.EventLog) of the daemon's inputs: ROBOT_POSE at 10 Hz,
+PEOPLE at 5 Hz, OBSTACLES and NAV_GOAL re-sent at 1 Hz, event timestamps equal to the messages'
 utime. scenarios.json (written next to the logs) lists each scenario with what it shows and
 the planner_status_t.rejected counters its planted faults must produce, which the replay
 checker (tools/gmmrrt_tools/replay_check.py) compares with the daemon's last status.
@@ -116,14 +116,15 @@ def along(points, speed, t_s):
 
 
 def fill(sc, robot_path, robot_speed, persons_at, goal_at, obst=None, skip_pose=lambda t: False):
-    """The regular traffic: pose and people every 100 ms, obstacles and goal every second."""
+    """The regular traffic: pose every 100 ms, people every 200 ms, obstacles and goal every second."""
     n = int(round(sc.duration_s * 1e6 / PERIOD_US))
     for k in range(n + 1):
         t = k * PERIOD_US * 1e-6
         if not skip_pose(t):
             x, y, yaw = along(robot_path, robot_speed, t)
             sc.add(t, "ROBOT_POSE", pose(t, x, y, yaw))
-        sc.add(t, "PEOPLE", people(t, persons_at(t)))
+        if k % 2 == 0:  # 5 Hz: a people_t is 1.6 kB, the logs stay small
+            sc.add(t, "PEOPLE", people(t, persons_at(t)))
         if k % 10 == 0:
             if obst is not None:
                 sc.add(t, "OBSTACLES", obst(t))

@@ -90,3 +90,13 @@ def test_another_seed_changes_the_plans_but_not_the_checks(gmmrrtd, models, tmp_
     summary, failures = replay_check.check(os.path.join(SCENARIOS, "avoid_one_person.lcmlog"), out_b,
                                            expected_rejected={})
     assert not failures, "\n".join(failures)
+
+
+def test_scenario_logs_match_their_generator():
+    """logs/scenarios/ is exactly what tools/make_scenarios.py writes (no hand-edited logs)."""
+    import subprocess as sp
+    import sys
+    from conftest import ROOT
+    res = sp.run([sys.executable, os.path.join(ROOT, "tools", "make_scenarios.py"), "--check", "--out", SCENARIOS],
+                 capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr

@@ -5,7 +5,7 @@ PLANNER_STATUS, written by gmmrrtd's file:// output or recorded by lcm-logger), 
 the daemon knew at each cycle from the valid inputs, and checks that
 
   * every non-empty plan starts at the robot pose it names (waypoints_t.utime),
-  * ends within the goal's tolerance of the goal in force,
+  * ends within the goal's tolerance of the goal in force and was made for its task,
   * is collision-free: robot disc against circles, oriented boxes and people (discs),
   * every empty plan (a stop) carries a non-zero status saying why,
   * cycles come at the promised rate (log clock: one per period of input time; live: the
@@ -152,7 +152,7 @@ def plan_clearance(plan, obstacles, people, robot_radius, person_radius, step=0.
 
 
 def check(in_log, out_log, rate_hz=10.0, robot_radius=0.3, person_radius=0.25, expected_rejected=None,
-          live=False, static_slack=0.03, people_slack=0.08):
+          live=False, static_slack=0.03, people_slack=0.08, live_window_us=300_000):
     """Returns (summary, failures). failures is a list of one-line reasons; empty = all checks pass."""
     lines, first, last = read_inputs(in_log)
     cycles = read_outputs(out_log)
@@ -175,11 +175,22 @@ def check(in_log, out_log, rate_hz=10.0, robot_radius=0.3, person_radius=0.25, e
             failures.append("plan seq %d starts at (%.3f, %.3f), the robot was at (%.3f, %.3f)"
                             % (plan.seq, plan.x[0], plan.y[0], pose.x, pose.y))
         goal = lines["NAV_GOAL"].latest_before(tick, inclusive=live)
-        if goal is None:
+        # Live: the daemon's clock runs ahead of the messages in flight, so the goal in force may
+        # be any valid goal sent within live_window_us around the cycle.
+        candidates = [goal] if goal is not None else []
+        if live:
+            early = lines["NAV_GOAL"].latest_before(tick - live_window_us) if tick else None
+            candidates += [g for g in lines["NAV_GOAL"].msgs if abs(g.utime - tick) <= live_window_us]
+            candidates += [early] if early is not None else []
+        if not candidates:
             failures.append("plan seq %d made before any goal" % plan.seq)
         else:
             n = plan.num_waypoints
-            d = math.hypot(plan.x[n - 1] - goal.x, plan.y[n - 1] - goal.y)
+            ends = [(math.hypot(plan.x[n - 1] - g.x, plan.y[n - 1] - g.y) - g.tolerance_m, g) for g in candidates]
+            margin, goal = min(ends, key=lambda e: e[0])
+            d = margin + goal.tolerance_m
+            if plan.task != goal.task:
+                failures.append("plan seq %d made for task %d, the goal's task is %d" % (plan.seq, plan.task, goal.task))
             if d > goal.tolerance_m + 1e-6:
                 failures.append("plan seq %d ends %.3f m from the goal (%.2f, %.2f), tolerance %.2f"
                                 % (plan.seq, d, goal.x, goal.y, goal.tolerance_m))
