@@ -63,10 +63,10 @@ GMM_RRT_BIAS = 1.0
 # planner checks edges every 5 cm (edge_resolution_m), so a chord can graze a box corner by a
 # fraction of a millimetre (seen: 0.2 mm) without being a collision in any practical sense.
 COLLISION_TOLERANCE_M = 0.01
-# The lab's approach models: the 'tasks' set's two-homotopy entries (3-90 .. 7-90) have priors summing
-# to 2 (two one-homotopy mixtures side by side), which the learner's import rightly refuses; the
-# 'only_one_homotopy_tasks' set is a valid mixture for each of the 8 directions.
-UPO_APPROACH_SET = "only_one_homotopy_tasks"
+# The lab's approach models, set 'tasks' (the lab's main set). Its two-homotopy entries (3-90 .. 7-90)
+# store two one-homotopy mixtures side by side with priors summing to 2; gmmrrt-learn import reads
+# them as their equal-weight union (docs/learner.md).
+UPO_APPROACH_SET = "tasks"
 # Real episodes: a start or goal closer than this to the person is pushed out to it (valid problem).
 CLEARANCE_M = ROBOT_RADIUS_M + PERSON_RADIUS_M + 0.05
 
@@ -776,8 +776,8 @@ def _real_ucy_approach(ctx: Ctx) -> None:
     results = ctx.run_plans(jobs, "real ucy approach")
     md_tab, records, by_label, _ = _real_table(ctx, eps, results, ["GMM-RRT* (lab's model)", "RRT*"], approach=True)
     md = ctx.header("Real data: the lab's published approach models against the UCY approach episodes",
-                    f"{gmms.name} (set {UPO_APPROACH_SET}; the 'tasks' set's two-homotopy mixtures have priors summing to 2 "
-                    f"and are refused by the learner) imported with `gmmrrt-learn import`, one model per approach direction (the index's "
+                    f"{gmms.name} (set {UPO_APPROACH_SET}; its two-homotopy mixtures, priors summing to 2, are imported as "
+                    f"the equal-weight union) imported with `gmmrrt-learn import`, one model per approach direction (the index's "
                     f"upo_task column); all {len(eps)} UCY approach episodes are held-out data for these models (they were "
                     "learned by the UPO lab on their robot data). Final heading error = angle between the path's last "
                     "segment and the bearing to the person.")
