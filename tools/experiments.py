@@ -563,7 +563,12 @@ def exp_fig5(ctx: Ctx) -> None:
                      "not.", ref=demo)
 
 
+FIG6_WIDTHS_M = (1.6, 2.4, 3.2)   # extent of the box across the straight approach
+
+
 def exp_fig6(ctx: Ctx) -> None:
+    """A box across the straight frontal approach, for a few widths (the paper gives no size): how
+    often 100 % mixture sampling and the 95 % / 5 % mix find a way round, with the same iteration cap."""
     s = ctx.s
     demo = medoid(demos(ctx)[("approach", "frontal")])
     base = demo_scene(ctx, demo)
@@ -572,27 +577,40 @@ def exp_fig6(ctx: Ctx) -> None:
     mx, my = (sx + gx) / 2.0, (sy + gy) / 2.0
     yaw = math.atan2(gy - sy, gx - sx)
     length = math.hypot(gx - sx, gy - sy)
-    box = (mx, my, min(0.6, 0.25 * length), 1.6, yaw)   # across the straight approach
-    scene = R.Scene(base.start, base.goal, base.people, base.bounds, boxes=[box])
     mdl = model(ctx, "approach", "frontal", "features")
-    runs = [("GMM-RRT*, 100 % mixture sampling", 1.0), (f"GMM-RRT*, {s.bias:.0%} mixture / {1 - s.bias:.0%} uniform", s.bias)]
-    jobs = [({"planner": label}, ctx.plan(scene, "gmm-rrt-star", s.seed + i, mdl, s.iterations, bias), s.seed + i)
-            for label, bias in runs for i in range(s.trials)]
+    mixes = [("100 % mixture", 1.0), (f"{s.bias:.0%} mixture / {1 - s.bias:.0%} uniform", s.bias)]
+    jobs, scene_of, labels = [], {}, []
+    for width in FIG6_WIDTHS_M:
+        box = (mx, my, min(0.6, 0.25 * length), width, yaw)
+        scene = R.Scene(base.start, base.goal, base.people, base.bounds, boxes=[box])
+        for name, bias in mixes:
+            label = f"GMM-RRT*, {name}, box {width:.1f} m"
+            labels.append(label)
+            scene_of[label] = scene
+            jobs += [({"planner": label, "box_width_m": width, "bias": bias},
+                      ctx.plan(scene, "gmm-rrt-star", s.seed + i, mdl, s.iterations, bias), s.seed + i)
+                     for i in range(s.trials)]
     results = ctx.run_plans(jobs, "fig6")
-    _obstacle_report(ctx, "fig6", scene, results, [r[0] for r in runs], ("approach", "frontal"),
+    _obstacle_report(ctx, "fig6", base, results, labels, ("approach", "frontal"),
                      "Fig. 6: an obstacle on the approach path",
                      f"Frontal approach (demonstration {demo.episode_id}, the most typical start and goal) with a box "
-                     "across the straight line from start to goal; the same iteration cap for both sampling mixes.",
-                     ref=demo)
+                     f"{min(0.6, 0.25 * length):.2f} m deep across the straight line from start to goal, "
+                     f"{', '.join(f'{w:.1f}' for w in FIG6_WIDTHS_M)} m wide (the paper gives no size); the same "
+                     "iteration cap for both sampling mixes.", ref=demo, scene_of=scene_of)
 
 
-def _obstacle_report(ctx, name, scene, results, labels, demo_key, title, what, ref: S.Episode):
+def _obstacle_report(ctx, name, scene, results, labels, demo_key, title, what, ref: S.Episode,
+                     scene_of: Optional[Dict[str, R.Scene]] = None):
     import matplotlib.pyplot as plt
 
     records, lines = [], []
-    fig, axes = plt.subplots(1, len(labels), figsize=(4.6 * len(labels), 4.4), squeeze=False)
+    ncols = min(3, len(labels))
+    nrows = (len(labels) + ncols - 1) // ncols
+    fig, axes = plt.subplots(nrows, ncols, figsize=(4.6 * ncols, 4.4 * nrows), squeeze=False)
     d = demos(ctx)
-    for ax, label in zip(axes[0], labels):
+    scene_default = scene
+    for ax, label in zip(axes.flatten(), labels):
+        scene = (scene_of or {}).get(label, scene_default)
         rs = [r for t, r in results if t["planner"] == label]
         outs, sides, lens, firsts = [], [], [], []
         for r in rs:
@@ -608,6 +626,9 @@ def _obstacle_report(ctx, name, scene, results, labels, demo_key, title, what, r
             if r.stats.get("first_solution_ms") is not None and o == M.SUCCESS:
                 firsts.append(r.stats.get("iterations"))
             records.append(record({"planner": label}, r, outcome=o, side=side))
+        tag_extra = next((t for t, _ in results if t["planner"] == label), {})
+        for rec in records[-len(rs):]:
+            rec.update({k: v for k, v in tag_extra.items() if k != "planner"})
         rt = M.rates(outs)
         lm, ls = M.mean_std(lens)
         lines.append(f"| {label} | {rt['success']:.0%} | {rt['collision']:.0%} | {rt['timeout']:.0%} | "
