@@ -91,6 +91,12 @@ int64_t gmmrrtd_mono_us(void);
 /* inputs.c: subscribes the four input channels. 0 or -1 (logged). */
 int gmmrrtd_inputs_subscribe(gmmrrtd_t *d);
 
+/* inputs.c: decodes, validates and applies one message of `input` (GMMRRTD_IN_*; other values
+ * are ignored) from len raw bytes at buf, exactly as the LCM handler of its channel does:
+ * rejections are counted, in log-clock mode due cycles run first. The bytes are only read,
+ * never kept. The entry point of the handlers and of tests/fuzz/fuzz_daemon_inputs.c. */
+void gmmrrtd_inputs_handle(gmmrrtd_t *d, int input, const void *buf, size_t len);
+
 /* inputs.c: counts a rejection and logs it rate-limited. input = GMMRRTD_IN_* or
  * GMMRRTD_NUM_INPUTS for the planner's own reasons. */
 void gmmrrtd_reject(gmmrrtd_t *d, int input, int reason, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
