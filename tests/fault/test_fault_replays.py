@@ -217,3 +217,33 @@ def test_unreachable_goal(gmmrrtd, models, tmp_path):
     assert walled and all(s.state == R.STATE_STOPPED for s in walled), [(s.state, s.last_error) for s in walled]
     assert walled[-1].last_error == 40, walled[-1].last_error
     assert any(s.state == R.STATE_PLANNING for s in statuses_between(statuses, 2.8, 4.0))
+
+
+def test_no_leaks_or_memory_errors_under_valgrind(gmmrrtd, models, tmp_path):
+    """The plain build's daemon through a log with every kind of bad message under valgrind's
+    memcheck: no invalid access, no definite or indirect leak (exit 1 otherwise). Registered only
+    in builds without ASan (fault.valgrind); the ASan build runs LeakSanitizer on every fault test."""
+    import shutil
+    valgrind = shutil.which("valgrind")
+    if valgrind is None:
+        pytest.fail("valgrind is not installed (tools/run setup installs it)")
+    sc = base("valgrind", duration_s=2.0)
+    good = ms.people(0, [PERSON]).encode()
+    sc.add(0.55, "PEOPLE", good[:40])
+    sc.add(0.65, "PEOPLE", set_bytes(good, OFF_FIRST_FIELD, struct.pack(">i", 1 << 30)))
+    sc.add(0.75, "ROBOT_POSE", set_bytes(ms.pose(0.75, 0, 0, 0).encode(), OFF_FIRST_FIELD, struct.pack(">d", math.nan)))
+    sc.add(0.85, "NAV_GOAL", b"\xff" * 60)
+    sc.add(0.95, "ROBOT_POSE", ms.pose(0.95, 0, 0, 0, utime=ms.us(0.2)))
+    sc.expect(R.REJECT_DECODE, 2)
+    sc.expect(R.REJECT_COUNT_OVER_BOUND, 1)
+    sc.expect(R.REJECT_NOT_FINITE, 1)
+    sc.expect(R.REJECT_TIME_BACKWARDS, 1)
+    in_log, out_log = str(tmp_path / "in.lcmlog"), str(tmp_path / "out.lcmlog")
+    sc.write(in_log)
+    stderr = run_log_clock(gmmrrtd, models, in_log, out_log, iterations=300,
+                           wrapper=(valgrind, "--leak-check=full", "--errors-for-leak-kinds=definite,indirect",
+                                    "--error-exitcode=1", "--quiet"))
+    assert "Invalid" not in stderr and "definitely lost" not in stderr, stderr[-4000:]
+    _, failures = replay_check.check(in_log, out_log, expected_rejected={replay_check.REASONS[k]: v
+                                                                         for k, v in sc.expected.items()})
+    assert not failures, "\n".join(failures)
