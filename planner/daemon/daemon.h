@@ -20,6 +20,9 @@
 #include "log.h"
 #include "settings.h"
 
+/* Largest input utime accepted (us); larger or negative ones count as REJECT_BAD_VALUE. */
+#define GMMRRTD_MAX_UTIME ((int64_t)1 << 53)
+
 enum { GMMRRTD_IN_POSE = 0, GMMRRTD_IN_PEOPLE = 1, GMMRRTD_IN_GOAL = 2, GMMRRTD_IN_OBSTACLES = 3, GMMRRTD_NUM_INPUTS = 4 };
 
 /* What the last published plan was made in: the warm start compares against it. */

@@ -80,6 +80,13 @@ static void advance_clock(gmmrrtd_t *d, int64_t utime)
 /* Common checks after a successful decode. 1 to apply the message, 0 when rejected. */
 static int accept_time(gmmrrtd_t *d, int input, int64_t utime)
 {
+    /* utime in 0..2^53 us (up to the year 2255): differences of accepted utimes and the clock
+     * arithmetic below then cannot overflow int64 (found by tests/fuzz/fuzz_daemon_inputs). */
+    if (utime < 0 || utime > GMMRRTD_MAX_UTIME) {
+        gmmrrtd_reject(d, input, GMMRRT_PLANNER_STATUS_T_REJECT_BAD_VALUE, "utime %lld is outside 0..2^53 us",
+                       (long long)utime);
+        return 0;
+    }
     if (d->have[input] && utime < d->last_utime[input]) {
         gmmrrtd_reject(d, input, GMMRRT_PLANNER_STATUS_T_REJECT_TIME_BACKWARDS,
                        "utime %lld is %.3f s older than the last accepted one", (long long)utime,

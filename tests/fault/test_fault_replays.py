@@ -99,6 +99,11 @@ def test_corrupted_bytes(gmmrrtd, models, tmp_path):
     sc.add(t + 0.06, "NAV_GOAL", ms.goal(t, 8, 0, 7).encode())  # unknown task
     sc.add(t + 0.07, "NAV_GOAL", ms.goal(t, 8, 0, APPROACH, target=-4).encode())
     sc.expect(R.REJECT_BAD_VALUE, 3)
+    # utimes outside 0..2^53 us: would overflow the clock arithmetic (found by fuzz_daemon_inputs).
+    sc.add(t + 0.08, "ROBOT_POSE", ms.pose(t, 0, 0, 0, utime=-5))
+    sc.add(t + 0.09, "ROBOT_POSE", ms.pose(t, 0, 0, 0, utime=1 << 62))
+    sc.add(t + 0.10, "PEOPLE", set_bytes(ms.people(t, [PERSON]).encode(), 8, struct.pack(">q", -(1 << 63))))
+    sc.expect(R.REJECT_BAD_VALUE, 3)
     replay(gmmrrtd, models, tmp_path, sc)
 
 
