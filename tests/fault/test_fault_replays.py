@@ -252,3 +252,18 @@ def test_no_leaks_or_memory_errors_under_valgrind(gmmrrtd, models, tmp_path):
     _, failures = replay_check.check(in_log, out_log, expected_rejected={replay_check.REASONS[k]: v
                                                                          for k, v in sc.expected.items()})
     assert not failures, "\n".join(failures)
+
+
+def test_far_away_obstacles_and_people(gmmrrtd, models, tmp_path):
+    """Finite but huge coordinates are valid on the wire: a circle, a box and a person 1e300 m
+    away change nothing (the clearance grid once converted them to int: UB, found by
+    tests/fuzz/fuzz_daemon_inputs; the plain and ASan builds replay this, the fuzz build's
+    UBSan checks the conversion itself)."""
+    def obst(t):
+        return ms.obstacles(t, [CIRCLE, (1e300, -1e300, 0.5)], [BOX, (-1e300, 1e300, 1e300, 2.0, 0.3)])
+
+    def persons_at(t):
+        return [PERSON, (2, 1e300, 1e300, 0.0, 0.0, 0.0)]
+
+    sc = base("far_away", duration_s=3.0, obst=obst, persons_at=persons_at)
+    replay(gmmrrtd, models, tmp_path, sc)
