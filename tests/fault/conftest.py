@@ -26,11 +26,6 @@ def gmmrrtd_path():
     return os.path.join(bindir, "gmmrrtd")
 
 
-def sanitized():
-    """True when this build's gmmrrtd carries ASan (CMake passes GMMRRT_SANITIZE through)."""
-    return os.environ.get("GMMRRT_SANITIZE", "OFF").upper() in ("1", "ON", "TRUE", "YES")
-
-
 def daemon_env():
     env = dict(os.environ)
     # Leaks and memory errors end the daemon with a distinct code and a report on stderr.

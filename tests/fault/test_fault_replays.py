@@ -13,14 +13,13 @@ tools/gmmrrt_tools/replay_check.py that
 Run one: ctest --test-dir build -R '^fault\\.' --output-on-failure
 """
 import math
-import os
 import random
 import struct
 
 import pytest
 from conftest import run_log_clock
 
-from gmmrrt import nav_goal_t, obstacles_t, people_t, planner_status_t, pose2d_t
+from gmmrrt import planner_status_t
 from gmmrrt_tools import replay_check
 import make_scenarios as ms
 
