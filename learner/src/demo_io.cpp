@@ -41,6 +41,12 @@ const char* const kCsvHeader[] = {"episode_id", "task",    "homotopy", "t",     
                                   "robot_y",    "person_x", "person_y", "person_yaw"};
 constexpr size_t kCsvColumns = sizeof(kCsvHeader) / sizeof(kCsvHeader[0]);
 
+// Seconds from utime a to utime b. In double: utimes come from the file, and their int64
+// difference can overflow (found by tests/fuzz/fuzz_demo_log); exact below 2^53 us.
+double SecondsBetween(int64_t a_utime, int64_t b_utime) {
+    return (static_cast<double>(b_utime) - static_cast<double>(a_utime)) * 1e-6;
+}
+
 // Collects warnings up to kMaxWarnings, then counts the rest.
 class Warnings {
   public:
@@ -283,13 +289,13 @@ class LogReader {
             return;
         }
         ep->last_pose_utime = pose.utime;
-        const double age_s = std::fabs(static_cast<double>(pose.utime - ep->person.utime)) * 1e-6;
+        const double age_s = std::fabs(SecondsBetween(ep->person.utime, pose.utime));
         if (!ep->person.valid || age_s > kMaxPersonAgeS) {
             ++ep->unpaired_poses;
             return;
         }
         PoseSample s;
-        s.t_s = static_cast<double>(pose.utime - ep->start_utime) * 1e-6;
+        s.t_s = SecondsBetween(ep->start_utime, pose.utime);
         s.robot_x = pose.x;
         s.robot_y = pose.y;
         s.robot_yaw = pose.yaw;

@@ -14,6 +14,15 @@
 
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
 
+/* build_problem() copies wire counts (checked against the messages' MAX_*) into the core's
+ * arrays (sized by limits.h, which a build may override), and publish_plan() copies a path
+ * into waypoints_t: the sizes must agree or a valid message overflows an array. */
+_Static_assert(GMMRRT_MAX_PEOPLE >= GMMRRT_PEOPLE_T_MAX_PEOPLE, "limits.h: GMMRRT_MAX_PEOPLE < people_t.MAX_PEOPLE");
+_Static_assert(GMMRRT_MAX_CIRCLES >= GMMRRT_OBSTACLES_T_MAX_CIRCLES, "limits.h: GMMRRT_MAX_CIRCLES < obstacles_t.MAX_CIRCLES");
+_Static_assert(GMMRRT_MAX_BOXES >= GMMRRT_OBSTACLES_T_MAX_BOXES, "limits.h: GMMRRT_MAX_BOXES < obstacles_t.MAX_BOXES");
+_Static_assert(GMMRRT_MAX_WAYPOINTS <= GMMRRT_WAYPOINTS_T_MAX_WAYPOINTS,
+               "limits.h: GMMRRT_MAX_WAYPOINTS > waypoints_t.MAX_WAYPOINTS");
+
 /* Counts `reason` at most once per goal (per goal content, see inputs.c). */
 static void reject_once_per_goal(gmmrrtd_t *d, int reason, gmmrrt_status_t why)
 {

@@ -20,6 +20,9 @@
 #include "log.h"
 #include "settings.h"
 
+/* Largest input utime accepted (us); larger or negative ones count as REJECT_BAD_VALUE. */
+#define GMMRRTD_MAX_UTIME ((int64_t)1 << 53)
+
 enum { GMMRRTD_IN_POSE = 0, GMMRRTD_IN_PEOPLE = 1, GMMRRTD_IN_GOAL = 2, GMMRRTD_IN_OBSTACLES = 3, GMMRRTD_NUM_INPUTS = 4 };
 
 /* What the last published plan was made in: the warm start compares against it. */
@@ -90,6 +93,12 @@ int64_t gmmrrtd_mono_us(void);
 
 /* inputs.c: subscribes the four input channels. 0 or -1 (logged). */
 int gmmrrtd_inputs_subscribe(gmmrrtd_t *d);
+
+/* inputs.c: decodes, validates and applies one message of `input` (GMMRRTD_IN_*; other values
+ * are ignored) from len raw bytes at buf, exactly as the LCM handler of its channel does:
+ * rejections are counted, in log-clock mode due cycles run first. The bytes are only read,
+ * never kept. The entry point of the handlers and of tests/fuzz/fuzz_daemon_inputs.c. */
+void gmmrrtd_inputs_handle(gmmrrtd_t *d, int input, const void *buf, size_t len);
 
 /* inputs.c: counts a rejection and logs it rate-limited. input = GMMRRTD_IN_* or
  * GMMRRTD_NUM_INPUTS for the planner's own reasons. */

@@ -80,6 +80,13 @@ static void advance_clock(gmmrrtd_t *d, int64_t utime)
 /* Common checks after a successful decode. 1 to apply the message, 0 when rejected. */
 static int accept_time(gmmrrtd_t *d, int input, int64_t utime)
 {
+    /* utime in 0..2^53 us (up to the year 2255): differences of accepted utimes and the clock
+     * arithmetic below then cannot overflow int64 (found by tests/fuzz/fuzz_daemon_inputs). */
+    if (utime < 0 || utime > GMMRRTD_MAX_UTIME) {
+        gmmrrtd_reject(d, input, GMMRRT_PLANNER_STATUS_T_REJECT_BAD_VALUE, "utime %lld is outside 0..2^53 us",
+                       (long long)utime);
+        return 0;
+    }
     if (d->have[input] && utime < d->last_utime[input]) {
         gmmrrtd_reject(d, input, GMMRRT_PLANNER_STATUS_T_REJECT_TIME_BACKWARDS,
                        "utime %lld is %.3f s older than the last accepted one", (long long)utime,
@@ -92,34 +99,30 @@ static int accept_time(gmmrrtd_t *d, int input, int64_t utime)
     return 1;
 }
 
-#define DECODE_INPUT(d, input, fn, rbuf, out)                                                       \
+#define DECODE_INPUT(d, input, fn, buf, len, out)                                                   \
     do {                                                                                            \
         char err_[256];                                                                             \
-        gmmrrt_msg_result_t r_ = fn((rbuf)->data, (size_t)(rbuf)->data_size, (out), err_, sizeof err_); \
+        gmmrrt_msg_result_t r_ = fn((buf), (len), (out), err_, sizeof err_);                        \
         if (r_ != GMMRRT_MSG_OK) {                                                                  \
             gmmrrtd_reject((d), (input), reason_of(r_), "%s", err_);                                \
             return;                                                                                 \
         }                                                                                           \
     } while (0)
 
-static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+static void handle_pose(gmmrrtd_t *d, const void *buf, size_t len)
 {
-    (void)channel;
-    gmmrrtd_t *d = user;
     static gmmrrt_pose2d_t m;
-    DECODE_INPUT(d, GMMRRTD_IN_POSE, gmmrrt_msg_decode_pose2d, rbuf, &m);
+    DECODE_INPUT(d, GMMRRTD_IN_POSE, gmmrrt_msg_decode_pose2d, buf, len, &m);
     if (!accept_time(d, GMMRRTD_IN_POSE, m.utime))
         return;
     d->pose = m;
     d->pose_stale_counted = 0;
 }
 
-static void on_people(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+static void handle_people(gmmrrtd_t *d, const void *buf, size_t len)
 {
-    (void)channel;
-    gmmrrtd_t *d = user;
     static gmmrrt_people_t m;
-    DECODE_INPUT(d, GMMRRTD_IN_PEOPLE, gmmrrt_msg_decode_people, rbuf, &m);
+    DECODE_INPUT(d, GMMRRTD_IN_PEOPLE, gmmrrt_msg_decode_people, buf, len, &m);
     if (!accept_time(d, GMMRRTD_IN_PEOPLE, m.utime))
         return;
     d->people = m;
@@ -131,12 +134,10 @@ static int same_goal(const gmmrrt_nav_goal_t *a, const gmmrrt_nav_goal_t *b)
            a->target_person_id == b->target_person_id;
 }
 
-static void on_goal(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+static void handle_goal(gmmrrtd_t *d, const void *buf, size_t len)
 {
-    (void)channel;
-    gmmrrtd_t *d = user;
     static gmmrrt_nav_goal_t m;
-    DECODE_INPUT(d, GMMRRTD_IN_GOAL, gmmrrt_msg_decode_nav_goal, rbuf, &m);
+    DECODE_INPUT(d, GMMRRTD_IN_GOAL, gmmrrt_msg_decode_nav_goal, buf, len, &m);
     const int had_goal = d->have[GMMRRTD_IN_GOAL];
     if (!accept_time(d, GMMRRTD_IN_GOAL, m.utime))
         return;
@@ -160,12 +161,10 @@ static int same_obstacles(const gmmrrt_obstacles_t *a, const gmmrrt_obstacles_t 
            !memcmp(a->box_height, b->box_height, nb) && !memcmp(a->box_yaw, b->box_yaw, nb);
 }
 
-static void on_obstacles(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+static void handle_obstacles(gmmrrtd_t *d, const void *buf, size_t len)
 {
-    (void)channel;
-    gmmrrtd_t *d = user;
     static gmmrrt_obstacles_t m;
-    DECODE_INPUT(d, GMMRRTD_IN_OBSTACLES, gmmrrt_msg_decode_obstacles, rbuf, &m);
+    DECODE_INPUT(d, GMMRRTD_IN_OBSTACLES, gmmrrt_msg_decode_obstacles, buf, len, &m);
     const int had = d->have[GMMRRTD_IN_OBSTACLES];
     if (!accept_time(d, GMMRRTD_IN_OBSTACLES, m.utime))
         return;
@@ -173,6 +172,29 @@ static void on_obstacles(const lcm_recv_buf_t *rbuf, const char *channel, void *
         d->obstacles_version++;
     d->obstacles = m;
 }
+
+void gmmrrtd_inputs_handle(gmmrrtd_t *d, int input, const void *buf, size_t len)
+{
+    switch (input) {
+    case GMMRRTD_IN_POSE: handle_pose(d, buf, len); break;
+    case GMMRRTD_IN_PEOPLE: handle_people(d, buf, len); break;
+    case GMMRRTD_IN_GOAL: handle_goal(d, buf, len); break;
+    case GMMRRTD_IN_OBSTACLES: handle_obstacles(d, buf, len); break;
+    default: break;
+    }
+}
+
+/* The LCM handlers: the message's bytes go to gmmrrtd_inputs_handle (the channel picks the input). */
+#define ON_INPUT(name, input)                                                                       \
+    static void on_##name(const lcm_recv_buf_t *rbuf, const char *channel, void *user)             \
+    {                                                                                               \
+        (void)channel;                                                                              \
+        gmmrrtd_inputs_handle(user, (input), rbuf->data, (size_t)rbuf->data_size);                  \
+    }
+ON_INPUT(pose, GMMRRTD_IN_POSE)
+ON_INPUT(people, GMMRRTD_IN_PEOPLE)
+ON_INPUT(goal, GMMRRTD_IN_GOAL)
+ON_INPUT(obstacles, GMMRRTD_IN_OBSTACLES)
 
 int gmmrrtd_inputs_subscribe(gmmrrtd_t *d)
 {

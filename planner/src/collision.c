@@ -82,6 +82,15 @@ static void splat(struct gmmrrt_world *w, int kind, double cx, double cy, double
 {
     const gmmrrt_bounds_t *b = &w->obstacles.bounds;
     const double res = w->resolution_m;
+    /* Clip in double first: any finite position is valid on the wire, and one far outside the
+     * bounds overflowed the int conversion below (UB; found by tests/fuzz/fuzz_daemon_inputs).
+     * The margin of one cell keeps the cell range below exactly what it was for near obstacles. */
+    if (!(x1 >= b->xmin - res && x0 <= b->xmax + res && y1 >= b->ymin - res && y0 <= b->ymax + res))
+        return;
+    x0 = fmax(x0, b->xmin - res);
+    x1 = fmin(x1, b->xmax + res);
+    y0 = fmax(y0, b->ymin - res);
+    y1 = fmin(y1, b->ymax + res);
     int32_t i0 = (int32_t)floor((x0 - b->xmin) / res - 0.5), i1 = (int32_t)ceil((x1 - b->xmin) / res - 0.5);
     int32_t j0 = (int32_t)floor((y0 - b->ymin) / res - 0.5), j1 = (int32_t)ceil((y1 - b->ymin) / res - 0.5);
     if (i1 < 0 || j1 < 0 || i0 >= w->nx || j0 >= w->ny)

@@ -41,8 +41,16 @@ def _finite(*v):
     return all(math.isfinite(x) for x in v)
 
 
+MAX_UTIME = 1 << 53  # gmmrrtd takes utimes in 0..2^53 us only (GMMRRTD_MAX_UTIME)
+
+
 def _valid(channel, data):
     """The message decoded when gmmrrtd would accept it on its own (msg_decode.c rules), else None."""
+    m = _valid_content(channel, data)
+    return m if m is not None and 0 <= m.utime <= MAX_UTIME else None
+
+
+def _valid_content(channel, data):
     try:
         if channel == "ROBOT_POSE":
             m = pose2d_t.decode(data)
