@@ -1,0 +1,42 @@
+/*
+ * model_file.h - reading and atomically writing model files (format: model.h and
+ * docs/model-format.md). Kept out of the planner core, which does no I/O: the learner
+ * CLI, the planner CLI and the daemon link gmmrrt_io for these two calls.
+ */
+#ifndef GMMRRT_MODEL_FILE_H
+#define GMMRRT_MODEL_FILE_H
+
+#include <stddef.h>
+
+#include "gmmrrt/model.h"
+#include "gmmrrt/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Reads the model file at `path` into *model. Reads at most
+ * gmmrrt_model_max_encoded_size() + 1 bytes, so an oversized file is rejected as
+ * GMMRRT_ERR_MODEL_TOO_LARGE without reading it all. The file is decoded into a scratch
+ * model and *model is overwritten only when the result is GMMRRT_OK: on any failure the
+ * caller's model is untouched (the cFE table pattern).
+ * Returns GMMRRT_OK; GMMRRT_ERR_INVALID_ARGUMENT (NULL path or model);
+ * GMMRRT_ERR_IO when the file cannot be opened or read (err names the path and the
+ * system's reason); or the GMMRRT_ERR_MODEL_* status of gmmrrt_model_decode().
+ * err[errcap] (may be NULL) receives a message starting with the path. */
+gmmrrt_status_t gmmrrt_model_load_file(const char *path, gmmrrt_model_t *model, char *err, size_t errcap);
+
+/* Writes *model to `path` atomically: the encoding goes to a temporary file in the same
+ * directory, which is written, fsync'ed and renamed over `path` (the directory is then
+ * fsync'ed). On any failure the temporary file is removed and `path` is left as it was:
+ * never a partial model. The new file gets mode 0644.
+ * Returns GMMRRT_OK; GMMRRT_ERR_INVALID_ARGUMENT (NULL path or model); the
+ * GMMRRT_ERR_MODEL_* status when the model does not validate (nothing is written); or
+ * GMMRRT_ERR_IO with the path and the system's reason. */
+gmmrrt_status_t gmmrrt_model_save_file(const char *path, const gmmrrt_model_t *model, char *err,
+                                       size_t errcap);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* GMMRRT_MODEL_FILE_H */

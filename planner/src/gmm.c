@@ -1,0 +1,210 @@
+/*
+ * gmm.c - density, log-density, task cost and sampling of a Gaussian mixture (gmm.h):
+ * paper eq. 1 (the mixture) and Sect. 4 (the task cost c(f) = delta / max(p(f), delta)).
+ *
+ * Angle dimensions (model->angle_mask) use the wrapped normal of gmm.h: the difference
+ * f_j - mu_j is first wrapped into (-pi, pi], then the images n in {-1, 0, 1} (times 2 pi)
+ * of every angle dimension are summed. All component-image terms go through one
+ * streaming log-sum-exp, so nothing underflows before the sum; a term more than
+ * LSE_CUTOFF below the running maximum adds less than e^-40 (4e-18) relative and its
+ * exp() is skipped, which is what makes the hot path cheap for far-away components.
+ *
+ * D = 2 (the paper's (d, theta) features) has its own unrolled path. Nothing here
+ * allocates or does I/O; the model must have been prepared (gmmrrt_model_prepare).
+ */
+#include "gmmrrt/gmm.h"
+
+#include <assert.h>
+#include <math.h>
+
+#include "gmmrrt/features.h"
+
+#define TWO_PI (2.0 * M_PI)
+#define LSE_CUTOFF 40.0
+
+/* Streaming log-sum-exp: value = max + log(sum). */
+typedef struct {
+    double max;
+    double sum;
+} lse_t;
+
+static inline void lse_add(lse_t *acc, double x)
+{
+    if (x <= acc->max) {
+        if (x > acc->max - LSE_CUTOFF)
+            acc->sum += exp(x - acc->max);
+    } else { /* new maximum (or NaN, which then propagates) */
+        acc->sum = (acc->max > x - LSE_CUTOFF) ? acc->sum * exp(acc->max - x) + 1.0 : 1.0;
+        acc->max = x;
+    }
+}
+
+static inline double lse_value(const lse_t *acc)
+{
+    return (acc->max == -INFINITY) ? -INFINITY : acc->max + log(acc->sum);
+}
+
+/* f_j - mu_j into (-pi, pi] for f_j already in (-pi, pi] and mu_j in [-pi, pi]. */
+static inline double wrap_diff(double d)
+{
+    if (d > M_PI)
+        return d - TWO_PI;
+    if (d <= -M_PI)
+        return d + TWO_PI;
+    return d;
+}
+
+/* ------------------------------------------------------------------ D = 2 */
+
+static inline void add_component_2d(const gmmrrt_model_t *m, int32_t i, double f0, double f1,
+                                    unsigned a0, unsigned a1, lse_t *acc)
+{
+    const double *inv = m->inv_chol[i];
+    const double c = m->log_coef[i];
+    double d0 = f0 - m->mean[i][0], d1 = f1 - m->mean[i][1];
+    if (a0)
+        d0 = wrap_diff(d0);
+    if (a1)
+        d1 = wrap_diff(d1);
+    if (!a0 && !a1) {
+        const double z0 = inv[0] * d0, z1 = inv[1] * d0 + inv[2] * d1;
+        lse_add(acc, c - 0.5 * (z0 * z0 + z1 * z1));
+        return;
+    }
+    const int n0 = a0 ? 1 : 0, n1 = a1 ? 1 : 0;
+    for (int k0 = -n0; k0 <= n0; ++k0) {
+        const double x0 = d0 + TWO_PI * k0;
+        const double z0 = inv[0] * x0, part = inv[1] * x0;
+        for (int k1 = -n1; k1 <= n1; ++k1) {
+            const double z1 = part + inv[2] * (d1 + TWO_PI * k1);
+            lse_add(acc, c - 0.5 * (z0 * z0 + z1 * z1));
+        }
+    }
+}
+
+/* ------------------------------------------------------------------ any D */
+
+/* fw: f with its angle entries already wrapped into (-pi, pi]. */
+static void add_component_nd(const gmmrrt_model_t *m, int32_t i, const double *fw, lse_t *acc)
+{
+    const int32_t dim = m->dim;
+    const double *inv = m->inv_chol[i];
+    const double c = m->log_coef[i];
+    double diff[GMMRRT_MAX_DIM];
+    int32_t angle_dim[GMMRRT_MAX_DIM];
+    int image[GMMRRT_MAX_DIM];
+    int32_t n_angles = 0;
+    for (int32_t j = 0; j < dim; ++j) {
+        diff[j] = fw[j] - m->mean[i][j];
+        if ((m->angle_mask >> j) & 1u) {
+            diff[j] = wrap_diff(diff[j]);
+            angle_dim[n_angles] = j;
+            image[n_angles] = -1;
+            ++n_angles;
+        }
+    }
+    for (;;) {
+        double x[GMMRRT_MAX_DIM];
+        for (int32_t j = 0; j < dim; ++j)
+            x[j] = diff[j];
+        for (int32_t a = 0; a < n_angles; ++a)
+            x[angle_dim[a]] += TWO_PI * image[a];
+        double q = 0.0;
+        for (int32_t r = 0; r < dim; ++r) {
+            const double *row = inv + GMMRRT_TRI(r);
+            double z = 0.0;
+            for (int32_t s = 0; s <= r; ++s)
+                z += row[s] * x[s];
+            q += z * z;
+        }
+        lse_add(acc, c - 0.5 * q);
+        /* Next image combination (an odometer over {-1, 0, 1}^A). */
+        int32_t a = 0;
+        while (a < n_angles && image[a] == 1)
+            image[a++] = -1;
+        if (a == n_angles)
+            break;
+        ++image[a];
+    }
+}
+
+static void wrap_angles(const gmmrrt_model_t *m, const double *f, double *fw)
+{
+    for (int32_t j = 0; j < m->dim; ++j)
+        fw[j] = ((m->angle_mask >> j) & 1u) ? gmmrrt_wrap_angle(f[j]) : f[j];
+}
+
+/* ------------------------------------------------------------------ public */
+
+double gmmrrt_gmm_log_density(const gmmrrt_model_t *model, const double *f)
+{
+    assert(model != NULL && f != NULL);
+    lse_t acc = {-INFINITY, 0.0};
+    const int32_t k = model->k;
+    if (model->dim == 2) {
+        const unsigned a0 = model->angle_mask & 1u, a1 = (model->angle_mask >> 1) & 1u;
+        const double f0 = a0 ? gmmrrt_wrap_angle(f[0]) : f[0];
+        const double f1 = a1 ? gmmrrt_wrap_angle(f[1]) : f[1];
+        for (int32_t i = 0; i < k; ++i)
+            add_component_2d(model, i, f0, f1, a0, a1, &acc);
+        return lse_value(&acc);
+    }
+    double fw[GMMRRT_MAX_DIM];
+    wrap_angles(model, f, fw);
+    for (int32_t i = 0; i < k; ++i)
+        add_component_nd(model, i, fw, &acc);
+    return lse_value(&acc);
+}
+
+double gmmrrt_gmm_density(const gmmrrt_model_t *model, const double *f)
+{
+    return exp(gmmrrt_gmm_log_density(model, f));
+}
+
+double gmmrrt_gmm_component_log_density(const gmmrrt_model_t *model, int32_t i, const double *f)
+{
+    assert(model != NULL && f != NULL);
+    if (i < 0 || i >= model->k)
+        return NAN;
+    lse_t acc = {-INFINITY, 0.0};
+    double fw[GMMRRT_MAX_DIM];
+    wrap_angles(model, f, fw);
+    add_component_nd(model, i, fw, &acc);
+    return lse_value(&acc);
+}
+
+double gmmrrt_gmm_task_cost(const gmmrrt_model_t *model, const double *f, double delta)
+{
+    assert(delta > 0.0);
+    const double p = gmmrrt_gmm_density(model, f);
+    /* delta / max(p, delta); a NaN density (NaN features) costs the maximum, 1. */
+    return (p > delta) ? delta / p : 1.0;
+}
+
+void gmmrrt_gmm_sample_component(const gmmrrt_model_t *model, int32_t i, gmmrrt_rng_t *rng, double *f_out)
+{
+    assert(model != NULL && rng != NULL && f_out != NULL && i >= 0 && i < model->k);
+    const int32_t dim = model->dim;
+    const double *l = model->chol[i];
+    double z[GMMRRT_MAX_DIM];
+    for (int32_t j = 0; j < dim; ++j)
+        z[j] = gmmrrt_rng_normal(rng);
+    for (int32_t r = 0; r < dim; ++r) {
+        const double *row = l + GMMRRT_TRI(r);
+        double v = model->mean[i][r];
+        for (int32_t s = 0; s <= r; ++s)
+            v += row[s] * z[s];
+        f_out[r] = ((model->angle_mask >> r) & 1u) ? gmmrrt_wrap_angle(v) : v;
+    }
+}
+
+int32_t gmmrrt_gmm_sample(const gmmrrt_model_t *model, gmmrrt_rng_t *rng, double *f_out)
+{
+    assert(model != NULL && rng != NULL && f_out != NULL);
+    const double u = gmmrrt_rng_uniform(rng); /* [0, 1); cum_weight[k-1] == 1 */
+    int32_t i = 0;
+    while (i < model->k - 1 && !(u < model->cum_weight[i]))
+        ++i;
+    gmmrrt_gmm_sample_component(model, i, rng, f_out);
+    return i;
+}
