@@ -1,0 +1,48 @@
+// bic.hpp - choosing K by the Bayesian information criterion (Schwarz 1978): fit K = A..B with
+// the same options and seed, keep the K of lowest BIC = -2 ln L + p ln N. The paper chose
+// k = 19 by hand (Sect. 5.1); `gmmrrt-learn fit --k auto` runs this sweep and prints the table.
+#ifndef GMMRRT_LEARNER_BIC_HPP
+#define GMMRRT_LEARNER_BIC_HPP
+
+#include <Eigen/Dense>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gmmrrt_learner/em.hpp"
+#include "gmmrrt_learner/mixture.hpp"
+#include "gmmrrt_learner/status.hpp"
+
+namespace gmmrrt {
+namespace learn {
+
+struct BicRow {
+  int k = 0;                       // requested K
+  int k_final = 0;                 // after dropped components
+  double mean_log_likelihood = 0;  // per point
+  double bic = 0;
+  int iterations = 0;
+  bool converged = false;
+};
+
+struct BicSweepResult {
+  std::vector<BicRow> rows;
+  int best_k = 0;        // requested K of the lowest BIC
+  Mixture best;          // its mixture
+  FitSummary best_summary;
+  std::string note;      // why the sweep stopped early, if it did
+};
+
+// Fits K = k_min..k_max (1 <= k_min <= k_max <= GMMRRT_MAX_K; options.k is ignored). A K with
+// too few points for it ends the sweep early (note says so) unless it is k_min, which is an
+// error. Other fit errors are returned as they are.
+Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
+                int k_min, int k_max, BicSweepResult* result);
+
+// The rows as a fixed-width text table (header, one line per K, the chosen K marked with *).
+std::string FormatBicTable(const BicSweepResult& result);
+
+}  // namespace learn
+}  // namespace gmmrrt
+
+#endif  // GMMRRT_LEARNER_BIC_HPP

@@ -1,0 +1,85 @@
+// em.hpp - fitting a Gaussian mixture (paper Sect. 3, eq. 1) by expectation-maximisation in log
+// space, seeded by k-means++ (kmeans.hpp), with the seam-safe wrapped normal for angle
+// dimensions (gmm.h): the E-step gives responsibilities over component x image n in
+// {-1,0,1}^A, the M-step averages the unwrapped copies mu + wrap(f - mu) + 2 pi n and wraps the
+// new means back into (-pi, pi].
+//
+// Numerics: covariances are kept as Cholesky factors L (Sigma = L L^T); the E-step uses
+// z = L^-1 (f - mu) (L^-T is the Cholesky factor of the precision) and log-sum-exp over the
+// K * 3^A terms. Regularisation adds reg = max(reg_relative * mean per-dimension data variance,
+// reg_floor) to every covariance diagonal: scale-aware, with an absolute floor so that data of
+// tiny scale still gets a positive definite covariance. Convergence: |mean log-likelihood per
+// point - previous| < tolerance (default 1e-6 nats), capped by max_iterations M-steps.
+//
+// A component is degenerate when its effective point count falls below D + 1 or a variance
+// collapses onto the regularisation (<= 2 reg): it is re-seeded at the worst-explained point
+// with the data covariance shrunk by K^(-2/D) (warning), and once max_reseeds are spent it is
+// dropped (warning). The fit never aborts because of it; convergence is re-armed after either.
+// Deterministic: the same points, options and seed give the same mixture bit for bit.
+#ifndef GMMRRT_LEARNER_EM_HPP
+#define GMMRRT_LEARNER_EM_HPP
+
+#include <Eigen/Dense>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gmmrrt_learner/mixture.hpp"
+#include "gmmrrt_learner/status.hpp"
+
+namespace gmmrrt {
+namespace learn {
+
+struct FitOptions {
+  int k = 19;                   // components (the paper's choice, Sect. 5.1), 1..GMMRRT_MAX_K
+  uint64_t seed = 1;            // seeds k-means++; same seed -> same result
+  int restarts = 4;             // k-means++ seedings (each followed by Lloyd); lowest inertia kept
+  int kmeans_max_iterations = 100;
+  int max_iterations = 500;     // EM M-steps at most
+  double tolerance = 1e-6;      // stop when |delta mean log-likelihood per point| < this [nats]
+  double reg_relative = 1e-6;   // regularisation relative to the mean data variance
+  double reg_floor = 1e-9;      // absolute regularisation floor [unit^2 of each dimension]
+  int max_reseeds = -1;         // re-seeds allowed over the fit; -1 means 3 K
+  // Called after each E-step with the iteration (0 = the seed mixture) and the mean
+  // log-likelihood per point; may be empty.
+  std::function<void(int iteration, double mean_log_likelihood)> progress;
+  // Called with each warning (degenerate component re-seeded or dropped); may be empty.
+  std::function<void(const std::string& warning)> warn;
+
+  // True when every option is in range; otherwise false with the reason in *error.
+  bool IsValid(std::string* error) const;
+};
+
+struct FitSummary {
+  int64_t n_points = 0;
+  int dim = 0;
+  int k_requested = 0;
+  int k_final = 0;                      // k_requested minus dropped components
+  int iterations = 0;                   // M-steps done
+  bool converged = false;               // tolerance reached before max_iterations
+  std::vector<double> log_likelihood;   // mean log-likelihood per point after each step (0 = seed)
+  std::vector<int> reseed_iterations;   // iterations at which a component was re-seeded or dropped
+  double final_mean_log_likelihood = 0.0;
+  double bic = 0.0;                     // Bic(final mean LL, N, k_final, D)
+  double kmeans_inertia = 0.0;
+  int reseeds = 0;
+  int dropped = 0;
+  std::vector<std::string> warnings;
+
+  // One line: N, D, K, iterations, convergence, final mean LL, BIC.
+  std::string BriefReport() const;
+};
+
+// Fits a mixture to the columns of points (D x N, finite; angle rows flagged in angle_mask may
+// hold any angle and are wrapped first). On kOk, *mixture is valid (ValidateMixture) and
+// *summary describes the run. Errors: kInvalidArgument (options, D, angle mask),
+// kNotEnoughData (N < K (D + 1)), kBadInput (non-finite value, or a constant dimension),
+// kNumericalFailure (every component dropped).
+Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
+                  Mixture* mixture, FitSummary* summary);
+
+}  // namespace learn
+}  // namespace gmmrrt
+
+#endif  // GMMRRT_LEARNER_EM_HPP

@@ -1,0 +1,48 @@
+// kmeans.hpp - k-means++ seeding (greedy, 2 + ln K local trials, Arthur & Vassilvitskii 2007)
+// and Lloyd iterations, with several restarts of which the lowest inertia is kept. It seeds EM
+// (learner issue: "k-means++ seeding with several restarts (best kept)"). Angle dimensions use
+// the wrapped difference, so a cluster across the theta = +-pi seam is one cluster.
+#ifndef GMMRRT_LEARNER_KMEANS_HPP
+#define GMMRRT_LEARNER_KMEANS_HPP
+
+#include <Eigen/Dense>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "gmmrrt_learner/status.hpp"
+
+namespace gmmrrt {
+namespace learn {
+
+struct KMeansOptions {
+  int k = 1;                // clusters, >= 1, <= number of points
+  int restarts = 4;         // independent seedings; the lowest final inertia is kept
+  int max_iterations = 100; // Lloyd iterations per restart
+  bool IsValid(std::string* error) const;
+};
+
+struct KMeansResult {
+  Eigen::MatrixXd centers;  // D x K; angle rows in (-pi, pi]
+  std::vector<int> labels;  // N, cluster of each point
+  double inertia = 0.0;     // sum of squared (wrapped) distances to the assigned centers
+  int iterations = 0;       // Lloyd iterations of the kept restart
+};
+
+// Squared distances of every column of points to center (angle rows wrapped) into *d2 (N).
+void SquaredDistances(const Eigen::MatrixXd& points, const Eigen::VectorXd& center,
+                      uint32_t angle_mask, Eigen::VectorXd* d2);
+
+// Clusters the columns of points (D x N, finite). rng is advanced deterministically.
+// kInvalidArgument for bad options or K > N.
+Status KMeans(const Eigen::MatrixXd& points, uint32_t angle_mask, const KMeansOptions& options,
+              std::mt19937_64* rng, KMeansResult* result);
+
+// Uniform double in [0, 1) from 53 random bits: the same on every platform, unlike
+// std::uniform_real_distribution.
+double Uniform01(std::mt19937_64* rng);
+
+}  // namespace learn
+}  // namespace gmmrrt
+
+#endif  // GMMRRT_LEARNER_KMEANS_HPP

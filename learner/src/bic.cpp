@@ -1,0 +1,65 @@
+// bic.cpp - BIC sweep over K for `--k auto` (see bic.hpp; paper Sect. 5.1 chose k = 19 by hand).
+#include "gmmrrt_learner/bic.hpp"
+
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+namespace gmmrrt {
+namespace learn {
+
+Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
+                int k_min, int k_max, BicSweepResult* result) {
+  if (k_min < 1 || k_max < k_min || k_max > GMMRRT_MAX_K)
+    return Status::Error(StatusCode::kInvalidArgument,
+                         "K range " + std::to_string(k_min) + ".." + std::to_string(k_max) +
+                             " is not within 1.." + std::to_string(GMMRRT_MAX_K));
+  *result = BicSweepResult();
+  double best_bic = std::numeric_limits<double>::infinity();
+  for (int k = k_min; k <= k_max; ++k) {
+    FitOptions o = options;
+    o.k = k;
+    Mixture m;
+    FitSummary s;
+    Status st = FitMixture(points, angle_mask, o, &m, &s);
+    if (st.code == StatusCode::kNotEnoughData && k > k_min) {
+      result->note = "sweep stopped at K = " + std::to_string(k - 1) + ": " + st.message;
+      break;
+    }
+    if (!st.ok()) return st;
+    BicRow row;
+    row.k = k;
+    row.k_final = s.k_final;
+    row.mean_log_likelihood = s.final_mean_log_likelihood;
+    row.bic = s.bic;
+    row.iterations = s.iterations;
+    row.converged = s.converged;
+    result->rows.push_back(row);
+    if (s.bic < best_bic) {
+      best_bic = s.bic;
+      result->best_k = k;
+      result->best = m;
+      result->best_summary = s;
+    }
+  }
+  return Status::Ok();
+}
+
+std::string FormatBicTable(const BicSweepResult& result) {
+  std::ostringstream o;
+  char line[160];
+  std::snprintf(line, sizeof line, "%4s %7s %16s %18s %6s %s\n", "K", "K_final", "mean_loglik", "BIC",
+                "iters", "converged");
+  o << line;
+  for (const BicRow& r : result.rows) {
+    std::snprintf(line, sizeof line, "%4d %7d %16.6f %18.3f %6d %s%s\n", r.k, r.k_final,
+                  r.mean_log_likelihood, r.bic, r.iterations, r.converged ? "yes" : "no",
+                  r.k == result.best_k ? "  *" : "");
+    o << line;
+  }
+  if (!result.note.empty()) o << "note: " << result.note << "\n";
+  return o.str();
+}
+
+}  // namespace learn
+}  // namespace gmmrrt
