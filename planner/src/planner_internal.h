@@ -1,0 +1,92 @@
+/*
+ * planner_internal.h - internal: the planner state that gmmrrt_planner_init lays out in the
+ * caller's block, shared by rrtstar.c (the loop), sampler.c (where samples come from),
+ * objective.c (edge costs) and path.c (output). Not a public header.
+ */
+#ifndef GMMRRT_PLANNER_INTERNAL_H
+#define GMMRRT_PLANNER_INTERNAL_H
+
+#include <stdint.h>
+
+#include "gmmrrt/rng.h"
+#include "gmmrrt/rrtstar.h"
+#include "nn.h"
+
+/* Near-set scratch: choose-parent and rewire look at no more than this many nodes; when the
+ * rewiring disc holds more, the radius is halved until they fit (rrtstar.c). */
+#define GMMRRT_NEAR_CAP 256
+/* Nodes within goal tolerance that are remembered as solution candidates; when full, a
+ * new candidate replaces the worst one if it is better. */
+#define GMMRRT_GOAL_CAP 1024
+
+/* Set by collision.c's internal hook: segment walk step. */
+void gmmrrt_world_set_edge_resolution(gmmrrt_world_t *world, double edge_resolution_m);
+
+struct gmmrrt_planner {
+    gmmrrt_planner_config_t cfg;
+    gmmrrt_rng_t rng;
+
+    /* Block layout (all inside the caller's memory). */
+    gmmrrt_node_t *nodes;          /* cfg.max_nodes */
+    gmmrrt_nn_t nn;                /* heads: gmmrrt_nn_capacity(max_nodes) */
+    void *world_mem;
+    size_t world_size;
+    gmmrrt_world_t *world;         /* NULL until set_problem succeeds */
+    int64_t *hist_iter;            /* cfg.history_capacity */
+    double *hist_cost;
+    int32_t near_idx[GMMRRT_NEAR_CAP + 1];
+    double near_edge[GMMRRT_NEAR_CAP + 1]; /* exact edge cost, NAN until needed */
+    double near_len[GMMRRT_NEAR_CAP + 1];  /* m */
+    int8_t near_free[GMMRRT_NEAR_CAP + 1];
+    int32_t goal_idx[GMMRRT_GOAL_CAP];
+    double goal_edge[GMMRRT_GOAL_CAP];
+
+    /* Problem */
+    int has_problem;
+    gmmrrt_problem_t problem;
+    double delta;                  /* task-cost delta in use */
+    int task_active;               /* task cost and mixture sampling apply */
+    int32_t num_active;            /* people the task is about */
+    int32_t active[GMMRRT_MAX_PEOPLE];
+    int32_t focus_person;          /* GMM-RRT: the person whose frame the xy model lives in */
+
+    /* GMM-RRT baseline: components in order of mean progress s, the current stage, and the
+     * inverse of each component's (x', y') marginal covariance. */
+    int32_t stage;
+    int32_t order[GMMRRT_MAX_K];
+    double xy_mean[GMMRRT_MAX_K][2];
+    double xy_inv_cov[GMMRRT_MAX_K][3]; /* a, b, c of [[a, b], [b, c]] */
+
+    /* Tree and search state */
+    int32_t num_nodes;
+    int32_t num_goal;
+    int32_t best_goal;             /* slot in goal_idx of the best solution, -1 none */
+    double best_cost;
+    int32_t hist_count;
+    int64_t iterations;
+    int64_t first_solution_iteration;
+    double first_solution_ms;
+    double time_ms;
+    double run_t0_ms;              /* monotonic ms at the start of the current run(), -1 outside */
+    double run_base_ms;            /* time_ms when that run started */
+    double conv_ref_cost;
+    int64_t conv_ref_iter;
+};
+
+/* objective.c: task cost c at a point (1 where no task applies), and the edge cost
+ * integral of (w_length + w_task c) ds by the midpoint rule at cfg.edge_resolution_m
+ * (plain length for rrt-star and gmm-rrt). */
+double gmmrrt_task_cost_at(const struct gmmrrt_planner *p, double x, double y);
+double gmmrrt_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1);
+/* A lower bound of gmmrrt_edge_cost for an edge of len_m (c > 0 is bounded below by 0), so
+ * the loop can skip the quadrature for candidates that cannot win. */
+double gmmrrt_edge_cost_lower_bound(const struct gmmrrt_planner *p, double len_m);
+
+/* sampler.c: draws one sample; returns 0 when the draw fell outside the bounds (the
+ * iteration is spent, as OMPL counts). Prepares the GMM-RRT stage tables. */
+int gmmrrt_sample(struct gmmrrt_planner *p, double *x, double *y);
+void gmmrrt_sampler_prepare(struct gmmrrt_planner *p);
+/* GMM-RRT: advances the stage when (x, y) reached the current component. */
+void gmmrrt_sampler_node_added(struct gmmrrt_planner *p, double x, double y);
+
+#endif /* GMMRRT_PLANNER_INTERNAL_H */

@@ -1,0 +1,580 @@
+/*
+ * rrtstar.c - the anytime planner of rrtstar.h: RRT* (Karaman & Frazzoli 2011, Alg. 6:
+ * extend, choose-parent, rewire) over one caller-owned block, with the paper's mixture
+ * sampling and task cost (Sect. 4) and the GMM-RRT baseline (an RRT: parent = nearest,
+ * no rewiring, length cost).
+ *
+ * Block layout (8-byte aligned pieces, in this order): planner struct, node pool
+ * (max_nodes x 40 B), bucket heads (max_nodes x 4 B), history (capacity x 16 B),
+ * collision world (gmmrrt_world_mem_size(grid_max_cells)). Nothing else is used:
+ * set_problem, run, seed_path and best_path allocate nothing (tests/unit/planner/test_alloc.c).
+ *
+ * Iterations: one sample drawn, kept or not (as OMPL counts). Near radius:
+ * r = min(step_m, rewire_gamma sqrt(log n / n)) for n nodes (the RRT* ball in 2-D),
+ * halved while more than GMMRRT_NEAR_CAP nodes fall inside it. Rewiring a node shifts
+ * the cost of its whole subtree by the same amount (walked through child/sibling links).
+ */
+#include "gmmrrt/rrtstar.h"
+
+#include <math.h>
+#include <string.h>
+#include <time.h>
+
+#include "planner_internal.h"
+
+#define GMMRRT_SAME_POINT_M 1e-9
+
+static size_t align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
+
+typedef struct {
+    size_t nodes, heads, hist_iter, hist_cost, world, total;
+} layout_t;
+
+static layout_t layout_of(const gmmrrt_planner_config_t *cfg)
+{
+    layout_t l;
+    size_t off = align8(sizeof(struct gmmrrt_planner));
+    l.nodes = off;
+    off += align8((size_t)cfg->max_nodes * sizeof(gmmrrt_node_t));
+    l.heads = off;
+    off += align8((size_t)gmmrrt_nn_capacity(cfg->max_nodes) * sizeof(int32_t));
+    l.hist_iter = off;
+    off += align8((size_t)cfg->history_capacity * sizeof(int64_t));
+    l.hist_cost = off;
+    off += align8((size_t)cfg->history_capacity * sizeof(double));
+    l.world = off;
+    off += gmmrrt_world_mem_size(cfg->grid_max_cells);
+    l.total = off;
+    return l;
+}
+
+size_t gmmrrt_planner_mem_size(const gmmrrt_planner_config_t *cfg)
+{
+    if (gmmrrt_planner_config_validate(cfg, NULL, 0) != GMMRRT_OK)
+        return 0;
+    return layout_of(cfg).total;
+}
+
+gmmrrt_status_t gmmrrt_planner_init(gmmrrt_planner_t **out, void *mem, size_t size,
+                                    const gmmrrt_planner_config_t *cfg)
+{
+    if (!out || !mem || ((uintptr_t)mem & 7u) != 0)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    gmmrrt_status_t st = gmmrrt_planner_config_validate(cfg, NULL, 0);
+    if (st != GMMRRT_OK)
+        return st;
+    const layout_t l = layout_of(cfg);
+    if (size < l.total)
+        return GMMRRT_ERR_BUFFER_TOO_SMALL;
+    uint8_t *base = mem;
+    struct gmmrrt_planner *p = mem;
+    memset(p, 0, sizeof *p);
+    p->cfg = *cfg;
+    p->nodes = (gmmrrt_node_t *)(void *)(base + l.nodes);
+    p->nn.heads = (int32_t *)(void *)(base + l.heads);
+    p->nn.capacity = gmmrrt_nn_capacity(cfg->max_nodes);
+    p->hist_iter = (int64_t *)(void *)(base + l.hist_iter);
+    p->hist_cost = (double *)(void *)(base + l.hist_cost);
+    p->world_mem = base + l.world;
+    p->world_size = l.total - l.world;
+    p->world = NULL;
+    p->has_problem = 0;
+    p->best_goal = -1;
+    p->best_cost = INFINITY;
+    *out = p;
+    return GMMRRT_OK;
+}
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static int finite2(double a, double b) { return isfinite(a) && isfinite(b); }
+
+static int inside(const gmmrrt_bounds_t *b, double x, double y)
+{
+    return x >= b->xmin && x <= b->xmax && y >= b->ymin && y <= b->ymax;
+}
+
+/* Distance from (px, py) to the segment a-b. */
+static double point_segment_distance(double px, double py, double ax, double ay, double bx, double by)
+{
+    const double vx = bx - ax, vy = by - ay, l2 = vx * vx + vy * vy;
+    double t = l2 > 0.0 ? ((px - ax) * vx + (py - ay) * vy) / l2 : 0.0;
+    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+    return hypot(px - (ax + t * vx), py - (ay + t * vy));
+}
+
+static void reset_tree(struct gmmrrt_planner *p)
+{
+    p->num_nodes = 1;
+    gmmrrt_node_t *root = &p->nodes[0];
+    root->x = p->problem.start_x;
+    root->y = p->problem.start_y;
+    root->cost = 0.0;
+    root->parent = root->first_child = root->next_sibling = -1;
+    gmmrrt_nn_reset(&p->nn, &p->problem.obstacles.bounds, 0.25 * p->cfg.step_m);
+    gmmrrt_nn_insert(&p->nn, p->nodes, 0);
+    p->num_goal = 0;
+    p->best_goal = -1;
+    p->best_cost = INFINITY;
+    p->hist_count = 0;
+    p->iterations = 0;
+    p->first_solution_iteration = -1;
+    p->first_solution_ms = -1.0;
+    p->time_ms = 0.0;
+    p->run_t0_ms = -1.0;
+    p->run_base_ms = 0.0;
+    p->conv_ref_cost = INFINITY;
+    p->conv_ref_iter = 0;
+    gmmrrt_rng_seed(&p->rng, p->cfg.seed);
+}
+
+gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_problem_t *pr)
+{
+    if (!p || !pr)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    p->has_problem = 0;
+    if (!finite2(pr->start_x, pr->start_y) || !finite2(pr->goal_x, pr->goal_y) ||
+        !isfinite(pr->goal_tolerance_m) || pr->goal_tolerance_m <= 0.0)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    if (pr->task != GMMRRT_TASK_NONE && pr->task != GMMRRT_TASK_AVOID && pr->task != GMMRRT_TASK_APPROACH)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    const gmmrrt_obstacle_set_t *o = &pr->obstacles;
+    if (o->num_people < 0 || o->num_people > GMMRRT_MAX_PEOPLE)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    if (pr->task == GMMRRT_TASK_APPROACH && (pr->target_person < 0 || pr->target_person >= o->num_people))
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+
+    /* Model kind against planner kind. */
+    const gmmrrt_model_t *m = pr->model;
+    const int wants_model = pr->task != GMMRRT_TASK_NONE && p->cfg.planner != GMMRRT_PLANNER_RRT_STAR;
+    if (wants_model) {
+        if (!m)
+            return GMMRRT_ERR_MODEL_MISMATCH;
+        if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT_STAR && (m->kind != GMMRRT_MODEL_KIND_FEATURES || m->dim != 2))
+            return GMMRRT_ERR_MODEL_MISMATCH;
+        if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT && (m->kind != GMMRRT_MODEL_KIND_XY || m->dim != 3))
+            return GMMRRT_ERR_MODEL_MISMATCH;
+        if (m->k < 1 || m->k > GMMRRT_MAX_K)
+            return GMMRRT_ERR_MODEL_MISMATCH;
+        if (p->cfg.delta == 0.0 && !(isfinite(m->delta) && m->delta > 0.0))
+            return GMMRRT_ERR_MODEL_MISMATCH;
+    }
+
+    /* Builds the world (validates every obstacle number and the bounds). */
+    gmmrrt_world_t *w = NULL;
+    gmmrrt_status_t st = gmmrrt_world_build(&w, p->world_mem, p->world_size, p->cfg.grid_max_cells,
+                                            p->cfg.grid_resolution_m, p->cfg.robot_radius_m,
+                                            p->cfg.person_radius_m, o);
+    if (st != GMMRRT_OK) {
+        p->world = NULL;
+        return st;
+    }
+    gmmrrt_world_set_edge_resolution(w, p->cfg.edge_resolution_m);
+    p->world = w;
+    if (!inside(&o->bounds, pr->start_x, pr->start_y))
+        return GMMRRT_ERR_START_OUT_OF_BOUNDS;
+    if (!inside(&o->bounds, pr->goal_x, pr->goal_y))
+        return GMMRRT_ERR_GOAL_OUT_OF_BOUNDS;
+    if (!gmmrrt_world_point_free(w, pr->start_x, pr->start_y))
+        return GMMRRT_ERR_START_IN_COLLISION;
+    if (!gmmrrt_world_point_free(w, pr->goal_x, pr->goal_y))
+        return GMMRRT_ERR_GOAL_IN_COLLISION;
+
+    p->problem = *pr;
+    p->delta = (p->cfg.delta > 0.0) ? p->cfg.delta : (m ? m->delta : GMMRRT_MODEL_DEFAULT_DELTA);
+    p->task_active = wants_model;
+    p->num_active = 0;
+    p->focus_person = -1;
+    if (wants_model) {
+        if (pr->task == GMMRRT_TASK_APPROACH) {
+            p->active[p->num_active++] = pr->target_person;
+            p->focus_person = pr->target_person;
+        } else {
+            double best = INFINITY;
+            for (int32_t i = 0; i < o->num_people; ++i) {
+                const double d = point_segment_distance(o->people[i].x, o->people[i].y, pr->start_x, pr->start_y,
+                                                        pr->goal_x, pr->goal_y);
+                if (d <= p->cfg.person_influence_m)
+                    p->active[p->num_active++] = i;
+                if (d < best) {
+                    best = d;
+                    p->focus_person = i;
+                }
+            }
+            if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT && best > p->cfg.person_influence_m)
+                p->focus_person = -1;
+        }
+        if (p->num_active == 0 || p->focus_person < 0)
+            p->task_active = 0; /* nobody the task is about: plain search */
+    }
+    gmmrrt_sampler_prepare(p);
+    reset_tree(p);
+    p->has_problem = 1;
+    return GMMRRT_OK;
+}
+
+/* ---------------------------------------------------------------- tree edits */
+
+static void attach(struct gmmrrt_planner *p, int32_t child, int32_t parent)
+{
+    gmmrrt_node_t *c = &p->nodes[child];
+    c->parent = parent;
+    c->next_sibling = p->nodes[parent].first_child;
+    p->nodes[parent].first_child = child;
+}
+
+static void detach(struct gmmrrt_planner *p, int32_t child)
+{
+    const int32_t parent = p->nodes[child].parent;
+    int32_t *link = &p->nodes[parent].first_child;
+    while (*link != child)
+        link = &p->nodes[*link].next_sibling;
+    *link = p->nodes[child].next_sibling;
+    p->nodes[child].next_sibling = -1;
+    p->nodes[child].parent = -1;
+}
+
+/* Adds delta to the cost of every descendant of `top` (not top itself). */
+static void shift_subtree(struct gmmrrt_planner *p, int32_t top, double delta)
+{
+    int32_t cur = p->nodes[top].first_child;
+    while (cur >= 0) {
+        p->nodes[cur].cost += delta;
+        if (p->nodes[cur].first_child >= 0) {
+            cur = p->nodes[cur].first_child;
+            continue;
+        }
+        while (cur != top && p->nodes[cur].next_sibling < 0)
+            cur = p->nodes[cur].parent;
+        if (cur == top)
+            break;
+        cur = p->nodes[cur].next_sibling;
+    }
+}
+
+static void reparent(struct gmmrrt_planner *p, int32_t node, int32_t new_parent, double new_cost)
+{
+    const double delta = new_cost - p->nodes[node].cost;
+    detach(p, node);
+    attach(p, node, new_parent);
+    p->nodes[node].cost = new_cost;
+    shift_subtree(p, node, delta);
+}
+
+static int32_t add_node(struct gmmrrt_planner *p, double x, double y, int32_t parent, double cost)
+{
+    const int32_t i = p->num_nodes++;
+    gmmrrt_node_t *n = &p->nodes[i];
+    n->x = x;
+    n->y = y;
+    n->cost = cost;
+    n->first_child = -1;
+    attach(p, i, parent);
+    gmmrrt_nn_insert(&p->nn, p->nodes, i);
+    gmmrrt_sampler_node_added(p, x, y);
+    return i;
+}
+
+/* Remembers node i as a solution candidate when it reaches the goal region by a free edge. */
+static void consider_goal(struct gmmrrt_planner *p, int32_t i)
+{
+    const gmmrrt_problem_t *pr = &p->problem;
+    const gmmrrt_node_t *n = &p->nodes[i];
+    const double d = hypot(n->x - pr->goal_x, n->y - pr->goal_y);
+    if (d > pr->goal_tolerance_m)
+        return;
+    if (d > GMMRRT_SAME_POINT_M && !gmmrrt_world_segment_free(p->world, n->x, n->y, pr->goal_x, pr->goal_y))
+        return;
+    const double edge = d > GMMRRT_SAME_POINT_M ? gmmrrt_edge_cost(p, n->x, n->y, pr->goal_x, pr->goal_y) : 0.0;
+    int32_t slot = p->num_goal;
+    if (slot >= GMMRRT_GOAL_CAP) {
+        int32_t worst = 0;
+        for (int32_t s = 1; s < p->num_goal; ++s)
+            if (p->nodes[p->goal_idx[s]].cost + p->goal_edge[s] >
+                p->nodes[p->goal_idx[worst]].cost + p->goal_edge[worst])
+                worst = s;
+        if (worst == p->best_goal || p->nodes[p->goal_idx[worst]].cost + p->goal_edge[worst] <= n->cost + edge)
+            return;
+        slot = worst;
+    } else {
+        ++p->num_goal;
+    }
+    p->goal_idx[slot] = i;
+    p->goal_edge[slot] = edge;
+}
+
+/* Re-evaluates the best solution; records history when it improved. */
+static void update_best(struct gmmrrt_planner *p)
+{
+    int32_t best = -1;
+    double best_cost = INFINITY;
+    for (int32_t s = 0; s < p->num_goal; ++s) {
+        const double c = p->nodes[p->goal_idx[s]].cost + p->goal_edge[s];
+        if (c < best_cost) {
+            best_cost = c;
+            best = s;
+        }
+    }
+    if (best < 0 || !(best_cost < p->best_cost))
+        return;
+    if (p->first_solution_iteration < 0) {
+        p->first_solution_iteration = p->iterations;
+        p->first_solution_ms = p->run_base_ms + (p->run_t0_ms >= 0.0 ? now_ms() - p->run_t0_ms : 0.0);
+    }
+    p->best_goal = best;
+    p->best_cost = best_cost;
+    const int32_t cap = p->cfg.history_capacity;
+    const int32_t h = p->hist_count < cap ? p->hist_count++ : cap - 1; /* full: keep the latest last */
+    p->hist_iter[h] = p->iterations;
+    p->hist_cost[h] = best_cost;
+}
+
+/* ---------------------------------------------------------------- one iteration */
+
+static int edge_free_cached(struct gmmrrt_planner *p, int32_t k, double x, double y)
+{
+    if (p->near_free[k] < 0) {
+        const gmmrrt_node_t *n = &p->nodes[p->near_idx[k]];
+        p->near_free[k] = (int8_t)gmmrrt_world_segment_free(p->world, n->x, n->y, x, y);
+    }
+    return p->near_free[k];
+}
+
+static void near_exact(struct gmmrrt_planner *p, int32_t k, double x, double y)
+{
+    const gmmrrt_node_t *n = &p->nodes[p->near_idx[k]];
+    p->near_edge[k] = gmmrrt_edge_cost(p, n->x, n->y, x, y);
+}
+
+static int32_t near_set(struct gmmrrt_planner *p, double x, double y, int32_t nearest)
+{
+    double r = p->cfg.step_m;
+    const double n = (double)p->num_nodes;
+    if (n > 1.0) {
+        const double ball = p->cfg.rewire_gamma * sqrt(log(n) / n);
+        if (ball < r)
+            r = ball;
+    }
+    int32_t count;
+    while ((count = gmmrrt_nn_near(&p->nn, p->nodes, x, y, r, p->near_idx, GMMRRT_NEAR_CAP)) < 0)
+        r *= 0.5;
+    int found = 0;
+    for (int32_t k = 0; k < count; ++k)
+        found |= (p->near_idx[k] == nearest);
+    if (!found)
+        p->near_idx[count++] = nearest; /* the extend step's parent is always a candidate */
+    return count;
+}
+
+static void iterate(struct gmmrrt_planner *p)
+{
+    double sx, sy;
+    ++p->iterations;
+    if (!gmmrrt_sample(p, &sx, &sy))
+        return;
+    const int32_t nearest = gmmrrt_nn_nearest(&p->nn, p->nodes, sx, sy);
+    const gmmrrt_node_t *nn = &p->nodes[nearest];
+    double dx = sx - nn->x, dy = sy - nn->y;
+    const double dist = hypot(dx, dy);
+    if (dist <= GMMRRT_SAME_POINT_M)
+        return;
+    double x = sx, y = sy;
+    if (dist > p->cfg.step_m) {
+        x = nn->x + dx * (p->cfg.step_m / dist);
+        y = nn->y + dy * (p->cfg.step_m / dist);
+    }
+    if (!gmmrrt_world_point_free(p->world, x, y))
+        return;
+
+    if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT) {
+        if (!gmmrrt_world_segment_free(p->world, nn->x, nn->y, x, y))
+            return;
+        const double c = nn->cost + gmmrrt_edge_cost(p, nn->x, nn->y, x, y);
+        const int32_t i = add_node(p, x, y, nearest, c);
+        consider_goal(p, i);
+        update_best(p);
+        return;
+    }
+
+    /* Choose parent: cheapest candidate by cost-to-come + edge cost whose edge is free.
+     * Candidates are ranked by a lower bound until their exact cost is needed (lazy, so
+     * the quadrature runs only for candidates that can still win). */
+    const int32_t count = near_set(p, x, y, nearest);
+    for (int32_t k = 0; k < count; ++k) {
+        const gmmrrt_node_t *c = &p->nodes[p->near_idx[k]];
+        p->near_len[k] = hypot(c->x - x, c->y - y);
+        p->near_edge[k] = NAN;
+        p->near_free[k] = -1;
+    }
+    int32_t parent_k = -1;
+    for (;;) {
+        int32_t pick = -1;
+        double pick_cost = INFINITY;
+        for (int32_t k = 0; k < count; ++k) {
+            if (p->near_free[k] == 0)
+                continue;
+            const double edge = isnan(p->near_edge[k]) ? gmmrrt_edge_cost_lower_bound(p, p->near_len[k])
+                                                       : p->near_edge[k];
+            const double c = p->nodes[p->near_idx[k]].cost + edge;
+            if (c < pick_cost) {
+                pick_cost = c;
+                pick = k;
+            }
+        }
+        if (pick < 0)
+            return; /* no free edge to the new point */
+        if (isnan(p->near_edge[pick])) {
+            near_exact(p, pick, x, y);
+            continue; /* re-rank with the exact cost */
+        }
+        if (edge_free_cached(p, pick, x, y)) {
+            parent_k = pick;
+            break;
+        }
+    }
+    const int32_t parent = p->near_idx[parent_k];
+    const int32_t added = add_node(p, x, y, parent, p->nodes[parent].cost + p->near_edge[parent_k]);
+
+    /* Rewire: near nodes that get cheaper through the new node. */
+    for (int32_t k = 0; k < count; ++k) {
+        const int32_t m = p->near_idx[k];
+        if (m == parent)
+            continue;
+        const double base = p->nodes[added].cost;
+        if (!(base + gmmrrt_edge_cost_lower_bound(p, p->near_len[k]) < p->nodes[m].cost))
+            continue;
+        if (isnan(p->near_edge[k]))
+            near_exact(p, k, x, y);
+        const double c = base + p->near_edge[k];
+        if (c < p->nodes[m].cost && edge_free_cached(p, k, x, y))
+            reparent(p, m, added, c);
+    }
+    consider_goal(p, added);
+    update_best(p);
+}
+
+gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *budget, gmmrrt_plan_stats_t *stats)
+{
+    if (!p || !budget || !p->has_problem)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    if (isnan(budget->time_ms) || !isfinite(budget->converge_rel) || budget->converge_rel < 0.0 ||
+        (budget->converge_rel > 0.0 && budget->converge_window <= 0))
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    const int timed = budget->time_ms > 0.0 && isfinite(budget->time_ms);
+    if (!timed && budget->max_iterations <= 0 && budget->converge_rel <= 0.0)
+        return GMMRRT_ERR_INVALID_ARGUMENT; /* no way to stop */
+
+    const double t0 = now_ms();
+    const double base_ms = p->time_ms;
+    p->run_t0_ms = t0;
+    p->run_base_ms = base_ms;
+    const int64_t it0 = p->iterations;
+    gmmrrt_status_t st = GMMRRT_OK;
+    int timed_out = 0;
+    for (;;) {
+        const int64_t done = p->iterations - it0;
+        if (budget->max_iterations > 0 && done >= budget->max_iterations)
+            break;
+        if (timed && (done & 7) == 0) {
+            if (now_ms() - t0 >= budget->time_ms) {
+                timed_out = 1;
+                break;
+            }
+        }
+        if (budget->converge_rel > 0.0 && p->iterations - p->conv_ref_iter >= budget->converge_window) {
+            const int converged = isfinite(p->best_cost) && isfinite(p->conv_ref_cost) &&
+                                  p->conv_ref_cost - p->best_cost <= budget->converge_rel * p->best_cost;
+            p->conv_ref_cost = p->best_cost;
+            p->conv_ref_iter = p->iterations;
+            if (converged)
+                break;
+        }
+        if (p->num_nodes >= p->cfg.max_nodes) {
+            st = GMMRRT_POOL_FULL;
+            break;
+        }
+        iterate(p);
+    }
+    p->time_ms = base_ms + (now_ms() - t0);
+    p->run_t0_ms = -1.0; /* outside run() (seed_path): time counts as before the run */
+    p->run_base_ms = p->time_ms;
+    if (st == GMMRRT_OK) {
+        if (isfinite(p->best_cost))
+            st = GMMRRT_OK;
+        else if (timed_out && p->iterations == it0)
+            st = GMMRRT_TIMEOUT;
+        else
+            st = GMMRRT_NO_PATH_YET;
+    }
+    if (stats) {
+        stats->iterations = p->iterations;
+        stats->nodes = p->num_nodes;
+        stats->first_solution_iteration = p->first_solution_iteration;
+        stats->first_solution_ms = p->first_solution_ms;
+        stats->best_cost = p->best_cost;
+        stats->time_ms = p->time_ms;
+    }
+    return st;
+}
+
+gmmrrt_status_t gmmrrt_planner_seed_path(gmmrrt_planner_t *p, const double *x, const double *y, int32_t n)
+{
+    if (!p || !p->has_problem || n < 0 || (n > 0 && (!x || !y)))
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    for (int32_t i = 0; i < n; ++i)
+        if (!finite2(x[i], y[i]))
+            return GMMRRT_ERR_INVALID_ARGUMENT;
+    int32_t prev = 0;
+    for (int32_t i = 0; i < n; ++i) {
+        const gmmrrt_node_t *pn = &p->nodes[prev];
+        if (hypot(x[i] - pn->x, y[i] - pn->y) <= GMMRRT_SAME_POINT_M)
+            continue;
+        if (p->num_nodes >= p->cfg.max_nodes)
+            return GMMRRT_POOL_FULL;
+        if (!gmmrrt_world_segment_free(p->world, pn->x, pn->y, x[i], y[i]))
+            break; /* the rest of the old path starts from a blocked edge */
+        const double c = pn->cost + gmmrrt_edge_cost(p, pn->x, pn->y, x[i], y[i]);
+        prev = add_node(p, x[i], y[i], prev, c);
+        consider_goal(p, prev);
+    }
+    update_best(p);
+    return GMMRRT_OK;
+}
+
+int32_t gmmrrt_planner_cost_history(const gmmrrt_planner_t *p, int64_t *iterations, double *costs, int32_t cap)
+{
+    if (!p || cap <= 0 || !iterations || !costs)
+        return 0;
+    const int32_t n = p->hist_count < cap ? p->hist_count : cap;
+    for (int32_t i = 0; i < n; ++i) {
+        iterations[i] = p->hist_iter[i];
+        costs[i] = p->hist_cost[i];
+    }
+    return n;
+}
+
+int32_t gmmrrt_planner_node_count(const gmmrrt_planner_t *p) { return p && p->has_problem ? p->num_nodes : 0; }
+
+gmmrrt_status_t gmmrrt_planner_node(const gmmrrt_planner_t *p, int32_t i, double *x, double *y, int32_t *parent,
+                                    double *cost)
+{
+    if (!p || !p->has_problem || i < 0 || i >= p->num_nodes)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    const gmmrrt_node_t *n = &p->nodes[i];
+    if (x)
+        *x = n->x;
+    if (y)
+        *y = n->y;
+    if (parent)
+        *parent = n->parent;
+    if (cost)
+        *cost = n->cost;
+    return GMMRRT_OK;
+}
+
+const gmmrrt_world_t *gmmrrt_planner_world(const gmmrrt_planner_t *p) { return p ? p->world : NULL; }

@@ -1,0 +1,122 @@
+/*
+ * sampler.c - where the planner's samples come from (paper Sect. 4, item 2; Sect. 5.3).
+ *
+ * Every planner: with probability goal_bias the goal itself.
+ * gmm-rrt-star: otherwise, with probability gmm_bias, a feature sample f = (d, theta) from
+ *   the FEATURES mixture mapped to x-y around one person (gmmrrt_features_to_xy): in AVOID
+ *   a person drawn uniformly among those near the start-goal segment, in APPROACH the
+ *   target person; else uniform in the bounds. gmm_bias = 0 is plain RRT*.
+ * rrt-star: uniform in the bounds.
+ * gmm-rrt (Claassens 2010, as read in docs/planner.md): the XY mixture's components are
+ *   walked in order of mean progress s; with probability gmm_bias the sample is drawn from
+ *   the current component's (x', y') in the focus person's frame; the stage moves on when
+ *   a node lands inside the component's 90 % ellipse (Mahalanobis^2 <= 4.605); after the
+ *   last component those draws go to the goal.
+ * A mixture sample outside the bounds is discarded: the iteration is spent.
+ */
+#include <math.h>
+
+#include "gmmrrt/features.h"
+#include "gmmrrt/gmm.h"
+#include "planner_internal.h"
+
+#define GMMRRT_STAGE_REACHED_MAHAL2 4.605 /* chi-square, 2 dof, 90 % */
+
+static int in_bounds(const struct gmmrrt_planner *p, double x, double y)
+{
+    const gmmrrt_bounds_t *b = &p->problem.obstacles.bounds;
+    return x >= b->xmin && x <= b->xmax && y >= b->ymin && y <= b->ymax;
+}
+
+static void uniform(struct gmmrrt_planner *p, double *x, double *y)
+{
+    const gmmrrt_bounds_t *b = &p->problem.obstacles.bounds;
+    *x = b->xmin + gmmrrt_rng_uniform(&p->rng) * (b->xmax - b->xmin);
+    *y = b->ymin + gmmrrt_rng_uniform(&p->rng) * (b->ymax - b->ymin);
+}
+
+void gmmrrt_sampler_prepare(struct gmmrrt_planner *p)
+{
+    p->stage = 0;
+    if (p->cfg.planner != GMMRRT_PLANNER_GMM_RRT || !p->problem.model)
+        return;
+    const gmmrrt_model_t *m = p->problem.model;
+    /* Insertion sort of component indices by mean s (the file promises this order; the
+     * planner does not rely on it). */
+    for (int32_t i = 0; i < m->k; ++i) {
+        int32_t j = i;
+        while (j > 0 && m->mean[p->order[j - 1]][0] > m->mean[i][0]) {
+            p->order[j] = p->order[j - 1];
+            --j;
+        }
+        p->order[j] = i;
+    }
+    for (int32_t i = 0; i < m->k; ++i) {
+        /* Sigma = L L^T; L packed row-major lower: row r starts at r (r + 1) / 2. */
+        const double *L = m->chol[i];
+        const double *r1 = L + 1, *r2 = L + 3; /* rows 1 and 2 */
+        const double s11 = r1[0] * r1[0] + r1[1] * r1[1];
+        const double s12 = r1[0] * r2[0] + r1[1] * r2[1];
+        const double s22 = r2[0] * r2[0] + r2[1] * r2[1] + r2[2] * r2[2];
+        const double det = s11 * s22 - s12 * s12;
+        p->xy_mean[i][0] = m->mean[i][1];
+        p->xy_mean[i][1] = m->mean[i][2];
+        p->xy_inv_cov[i][0] = s22 / det;
+        p->xy_inv_cov[i][1] = -s12 / det;
+        p->xy_inv_cov[i][2] = s11 / det;
+    }
+}
+
+void gmmrrt_sampler_node_added(struct gmmrrt_planner *p, double x, double y)
+{
+    if (p->cfg.planner != GMMRRT_PLANNER_GMM_RRT || !p->problem.model || p->focus_person < 0)
+        return;
+    const gmmrrt_model_t *m = p->problem.model;
+    double xp, yp;
+    gmmrrt_world_to_person(&p->problem.obstacles.people[p->focus_person], x, y, &xp, &yp);
+    while (p->stage < m->k) {
+        const int32_t c = p->order[p->stage];
+        const double dx = xp - p->xy_mean[c][0], dy = yp - p->xy_mean[c][1];
+        const double *ic = p->xy_inv_cov[c];
+        const double m2 = ic[0] * dx * dx + 2.0 * ic[1] * dx * dy + ic[2] * dy * dy;
+        if (m2 > GMMRRT_STAGE_REACHED_MAHAL2)
+            break;
+        ++p->stage;
+    }
+}
+
+int gmmrrt_sample(struct gmmrrt_planner *p, double *x, double *y)
+{
+    const gmmrrt_problem_t *pr = &p->problem;
+    if (p->cfg.goal_bias > 0.0 && gmmrrt_rng_uniform(&p->rng) < p->cfg.goal_bias) {
+        *x = pr->goal_x;
+        *y = pr->goal_y;
+        return 1;
+    }
+    const int use_model = p->task_active && p->cfg.gmm_bias > 0.0 &&
+                          (p->cfg.gmm_bias >= 1.0 || gmmrrt_rng_uniform(&p->rng) < p->cfg.gmm_bias);
+    if (!use_model) {
+        uniform(p, x, y);
+        return 1;
+    }
+    double f[GMMRRT_MAX_DIM];
+    if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT) {
+        if (p->stage >= pr->model->k) {
+            *x = pr->goal_x;
+            *y = pr->goal_y;
+            return 1;
+        }
+        gmmrrt_gmm_sample_component(pr->model, p->order[p->stage], &p->rng, f);
+        gmmrrt_person_to_world(&pr->obstacles.people[p->focus_person], f[1], f[2], x, y);
+    } else {
+        int32_t who = 0;
+        if (p->num_active > 1) {
+            who = (int32_t)(gmmrrt_rng_uniform(&p->rng) * (double)p->num_active);
+            if (who >= p->num_active)
+                who = p->num_active - 1;
+        }
+        gmmrrt_gmm_sample(pr->model, &p->rng, f);
+        gmmrrt_features_to_xy(&pr->obstacles.people[p->active[who]], f[0], f[1], x, y);
+    }
+    return in_bounds(p, *x, *y);
+}

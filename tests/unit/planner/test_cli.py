@@ -1,0 +1,143 @@
+"""planner.cli: gmmrrt-plan end to end (issue 5, "Output and CLI").
+
+Runs the installed-layout binary from GMMRRT_BIN_DIR on the disc problem, with a
+hand-written model file (layout of docs/model-format.md, written here independently of
+the C encoder), and checks the CSV and JSON outputs, determinism, and that bad input
+gets a clear error and a non-zero exit with nothing on stdout.
+"""
+import json
+import math
+import os
+import struct
+import subprocess
+import zlib
+from pathlib import Path
+
+import pytest
+
+BIN = Path(os.environ.get("GMMRRT_BIN_DIR", "build/bin")) / "gmmrrt-plan"
+DISC = ["--start", "-5,0", "--goal", "5,0", "--obstacle", "circle:0,0,2", "--robot-radius", "0",
+        "--bounds", "-7,-5,7,5"]
+
+
+def run(*args):
+    if not BIN.exists():
+        pytest.fail(f"{BIN} is missing: build the project first (tools/run build)")
+    return subprocess.run([str(BIN), *args], capture_output=True, text=True, timeout=120)
+
+
+def write_features_model(path, thetas, d=1.2, sd=0.2, st=0.25, task=1):
+    """kind 1 (features), D = 2, angle_mask 0x2; components (d, theta_i), equal weights."""
+    k = len(thetas)
+    head = b"GMMRRTMD" + struct.pack("<HHBBBBHHId", 1, 0xFEFF, 1, task, 0, 2, k, 0, 0x2, 0.001)
+    weights = [1.0 / k] * (k - 1) + [1.0 - (k - 1) * (1.0 / k)]
+    body = b"".join(struct.pack("<d", w) for w in weights)           # all weights,
+    body += b"".join(struct.pack("<dd", d, th) for th in thetas)     # then all means,
+    body += b"".join(struct.pack("<ddd", sd, 0.0, st) for _ in thetas)  # then all factors
+    data = head + body
+    path.write_bytes(data + struct.pack("<I", zlib.crc32(data) & 0xFFFFFFFF))
+    return path
+
+
+def test_help_lists_every_option():
+    r = run("--help")
+    assert r.returncode == 0
+    for opt in ["--model", "--start", "--goal", "--person", "--obstacle", "--planner", "--bias",
+                "--budget-ms", "--iterations", "--seed", "--robot-radius", "--bounds", "--json"]:
+        assert opt in r.stdout
+
+
+def test_json_disc_detour_is_near_the_closed_form():
+    r = run(*DISC, "--iterations", "20000", "--json")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert out["status"] == "ok"
+    path = out["path"]
+    assert path[0] == [-5.0, 0.0] and path[-1] == [5.0, 0.0]
+    optimum = 2 * math.sqrt(21) + 2 * (math.pi - 2 * math.acos(0.4))
+    length = sum(math.dist(a, b) for a, b in zip(path, path[1:]))
+    assert optimum - 1e-6 <= length <= optimum * 1.02
+    assert all(math.hypot(x, y) >= 2.0 - 1e-6 for x, y in path)
+    stats = out["stats"]
+    assert stats["iterations"] == 20000
+    assert stats["nodes"] > 1000
+    assert stats["first_solution_ms"] is not None and stats["first_solution_ms"] >= 0
+    assert optimum - 1e-6 <= stats["best_cost"] <= optimum * 1.02
+    assert stats["time_ms"] > 0
+
+
+def test_csv_output_and_same_seed_same_path():
+    a = run(*DISC, "--iterations", "3000", "--seed", "5")
+    b = run(*DISC, "--iterations", "3000", "--seed", "5")
+    c = run(*DISC, "--iterations", "3000", "--seed", "6")
+    assert a.returncode == 0 and b.returncode == 0 and c.returncode == 0
+    lines = a.stdout.strip().splitlines()
+    assert lines[0] == "x,y"
+    pts = [tuple(map(float, ln.split(","))) for ln in lines[1:]]
+    assert pts[0] == (-5.0, 0.0) and pts[-1] == (5.0, 0.0)
+    assert a.stdout == b.stdout
+    assert a.stdout != c.stdout
+
+
+def test_model_run_passes_on_the_models_side(tmp_path):
+    model = write_features_model(tmp_path / "left.gmm", [math.pi * i / 6 for i in range(1, 6)])
+    r = run("--model", str(model), "--start", "-4,0", "--goal", "4,0", "--person", "0,0,3.141592653589793",
+            "--iterations", "8000", "--json")
+    assert r.returncode == 0, r.stderr
+    path = json.loads(r.stdout)["path"]
+    # person faces -x, so their left (theta > 0) is world y < 0
+    cross = [y for (x0, y), (x1, _) in zip(path, path[1:]) if x0 < 0 <= x1]
+    assert cross and cross[0] < -0.5
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--start", "nan,0", "--goal", "1,1"], "--start"),
+    (["--start", "0,0", "--goal", "1,inf"], "--goal"),
+    (["--start", "0,0", "--goal", "1,1", "--planner", "rrt"], "unknown planner"),
+    (["--start", "0,0", "--goal", "3,3", "--obstacle", "circle:0,0,1"], "start in collision"),
+    (["--start", "-3,0", "--goal", "0,0", "--obstacle", "circle:0,0,1"], "goal in collision"),
+    (["--start", "0,0", "--goal", "1,1", "--obstacle", "triangle:0,0,1"], "--obstacle"),
+    (["--start", "0,0", "--goal", "1,1", "--bias", "1.5"], "--bias"),
+    (["--start", "0,0", "--goal", "1,1", "--iterations", "ten"], "--iterations"),
+    (["--start", "0,0", "--goal", "1,1", "--bounds", "1,0,0,1"], "--bounds"),
+    (["--start", "0,0", "--goal", "1,1", "--planner", "gmm-rrt-star"], "needs --model"),
+    (["--model", "/nonexistent/model.gmm", "--start", "0,0", "--goal", "1,1"], "/nonexistent/model.gmm"),
+    (["--start", "0,0"], "--goal"),
+    (["--start"], "needs a value"),
+    (["--start", "0,0", "--goal", "1,1", "--frobnicate"], "unknown option"),
+])
+def test_bad_input_is_refused_with_a_clear_error(args, message):
+    r = run(*args)
+    assert r.returncode == 1
+    assert r.stdout == ""
+    assert message in r.stderr
+    assert "error" in r.stderr
+
+
+def test_corrupt_model_is_refused(tmp_path):
+    model = write_features_model(tmp_path / "m.gmm", [1.0, 2.0])
+    data = bytearray(model.read_bytes())
+    data[40] ^= 0x10
+    model.write_bytes(bytes(data))
+    r = run("--model", str(model), "--start", "-4,0", "--goal", "4,0", "--person", "0,0,0")
+    assert r.returncode == 1 and r.stdout == ""
+    assert "CRC" in r.stderr or "checksum" in r.stderr
+
+
+def test_xy_planner_with_features_model_is_a_mismatch(tmp_path):
+    model = write_features_model(tmp_path / "m.gmm", [1.0])
+    r = run("--model", str(model), "--planner", "gmm-rrt", "--start", "-4,0", "--goal", "4,0",
+            "--person", "0,0,0")
+    assert r.returncode == 1
+    assert "model" in r.stderr
+
+
+def test_no_path_exits_3():
+    # the goal is walled in: a ring of boxes around it
+    walls = ["--obstacle", "box:3,1,2.2,0.2,0", "--obstacle", "box:3,-1,2.2,0.2,0",
+             "--obstacle", "box:2,0,0.2,2.2,0", "--obstacle", "box:4,0,0.2,2.2,0"]
+    r = run("--start", "-3,0", "--goal", "3,0", "--robot-radius", "0", *walls, "--iterations", "2000", "--json")
+    assert r.returncode == 3
+    out = json.loads(r.stdout)
+    assert out["status"] != "ok" and out["path"] == [] and out["stats"]["best_cost"] is None
+    assert "no path" in r.stderr

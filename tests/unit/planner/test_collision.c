@@ -1,0 +1,180 @@
+/*
+ * test_collision.c - planner.collision: the world of collision.h against FCL's exact
+ * clearance (the oracle): the grid test never calls a colliding point free and calls
+ * every point with more than two cells of clearance free; segments through obstacles
+ * are blocked whichever way they are walked; boxes rotate; people are discs; bad input
+ * gets its status.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "gmmrrt/collision.h"
+#include "gmmrrt/rng.h"
+
+static gmmrrt_obstacle_set_t scene(void)
+{
+    gmmrrt_obstacle_set_t o;
+    memset(&o, 0, sizeof o);
+    o.bounds = (gmmrrt_bounds_t){-5.0, -4.0, 5.0, 4.0};
+    o.num_circles = 2;
+    o.circles[0] = (gmmrrt_circle_t){0.0, 0.0, 1.0};
+    o.circles[1] = (gmmrrt_circle_t){3.0, 2.0, 0.4};
+    o.num_boxes = 2;
+    o.boxes[0] = (gmmrrt_box_t){-3.0, 1.0, 2.0, 0.5, 0.6};
+    o.boxes[1] = (gmmrrt_box_t){2.5, -2.5, 1.0, 1.0, 0.0};
+    o.num_people = 1;
+    o.people[0] = (gmmrrt_pose_t){-2.0, -2.0, 1.0};
+    return o;
+}
+
+typedef struct {
+    void *mem;
+    gmmrrt_world_t *w;
+} world_t;
+
+static gmmrrt_status_t build(world_t *t, double res, double robot_r, const gmmrrt_obstacle_set_t *o)
+{
+    const int32_t cells = 1 << 20;
+    const size_t size = gmmrrt_world_mem_size(cells);
+    t->mem = aligned_alloc(8, size);
+    return gmmrrt_world_build(&t->w, t->mem, size, cells, res, robot_r, 0.3, o);
+}
+
+static void test_grid_is_conservative_against_fcl(void **state)
+{
+    (void)state;
+    const double radii[] = {0.0, 0.3};
+    for (int r = 0; r < 2; ++r) {
+        gmmrrt_obstacle_set_t o = scene();
+        world_t t;
+        const double res = 0.05;
+        assert_int_equal(build(&t, res, radii[r], &o), GMMRRT_OK);
+        gmmrrt_rng_t rng;
+        gmmrrt_rng_seed(&rng, 11);
+        int free_n = 0, blocked_n = 0;
+        for (int i = 0; i < 200000; ++i) {
+            const double x = -5.0 + 10.0 * gmmrrt_rng_uniform(&rng), y = -4.0 + 8.0 * gmmrrt_rng_uniform(&rng);
+            const double exact = gmmrrt_world_exact_clearance(t.w, x, y);
+            const int f = gmmrrt_world_point_free(t.w, x, y);
+            if (exact <= 0.0)
+                assert_int_equal(f, 0);
+            if (exact > 2.0 * res)
+                assert_int_equal(f, 1);
+            free_n += f;
+            blocked_n += !f;
+        }
+        assert_true(free_n > 1000 && blocked_n > 1000);
+        free(t.mem);
+    }
+}
+
+static void test_exact_clearance_matches_geometry(void **state)
+{
+    (void)state;
+    gmmrrt_obstacle_set_t o;
+    memset(&o, 0, sizeof o);
+    o.bounds = (gmmrrt_bounds_t){-5.0, -5.0, 5.0, 5.0};
+    o.num_circles = 1;
+    o.circles[0] = (gmmrrt_circle_t){0.0, 0.0, 1.0};
+    o.num_boxes = 1;
+    o.boxes[0] = (gmmrrt_box_t){3.0, 0.0, 2.0, 1.0, M_PI / 2.0}; /* rotated: 1 wide in x, 2 tall in y */
+    world_t t;
+    assert_int_equal(build(&t, 0.05, 0.25, &o), GMMRRT_OK);
+    assert_true(fabs(gmmrrt_world_exact_clearance(t.w, 0.0, -2.0) - 0.75) < 1e-9);
+    /* box spans x in [2.5, 3.5], y in [-1, 1] once rotated */
+    assert_true(fabs(gmmrrt_world_exact_clearance(t.w, 3.0, 2.0) - 0.75) < 1e-9);
+    assert_true(fabs(gmmrrt_world_exact_clearance(t.w, 2.0, 0.0) - 0.25) < 1e-9);
+    /* penetration is negative */
+    assert_true(gmmrrt_world_exact_clearance(t.w, 0.0, 0.5) < 0.0);
+    assert_true(gmmrrt_world_exact_clearance(t.w, 3.0, 0.9) < 0.0);
+    free(t.mem);
+}
+
+static void test_segments_through_obstacles_are_blocked_both_ways(void **state)
+{
+    (void)state;
+    gmmrrt_obstacle_set_t o = scene();
+    world_t t;
+    assert_int_equal(build(&t, 0.05, 0.0, &o), GMMRRT_OK);
+    assert_false(gmmrrt_world_segment_free(t.w, -1.5, 0.0, 1.5, 0.0));
+    assert_false(gmmrrt_world_segment_free(t.w, 1.5, 0.0, -1.5, 0.0));
+    assert_true(gmmrrt_world_segment_free(t.w, -1.5, 3.5, 1.5, 3.5));
+    assert_false(gmmrrt_world_segment_free(t.w, -4.9, 3.9, 4.9, -3.9)); /* the big disc */
+    /* thin: a 0.1 m box across a 4 m segment is found with 5 cm steps */
+    gmmrrt_obstacle_set_t thin;
+    memset(&thin, 0, sizeof thin);
+    thin.bounds = o.bounds;
+    thin.num_boxes = 1;
+    thin.boxes[0] = (gmmrrt_box_t){0.0, 0.0, 0.1, 3.0, 0.0};
+    free(t.mem);
+    assert_int_equal(build(&t, 0.05, 0.0, &thin), GMMRRT_OK);
+    assert_false(gmmrrt_world_segment_free(t.w, -2.0, 0.3, 2.0, -0.2));
+    assert_true(gmmrrt_world_segment_free(t.w, -2.0, 2.0, 2.0, 2.0));
+    /* out of bounds */
+    assert_false(gmmrrt_world_point_free(t.w, 5.5, 0.0));
+    assert_false(gmmrrt_world_segment_free(t.w, 0.5, 0.0, 6.0, 0.0));
+    assert_false(gmmrrt_world_point_free(t.w, NAN, 0.0));
+    free(t.mem);
+}
+
+static void test_people_are_discs_of_person_radius(void **state)
+{
+    (void)state;
+    gmmrrt_obstacle_set_t o;
+    memset(&o, 0, sizeof o);
+    o.bounds = (gmmrrt_bounds_t){-3.0, -3.0, 3.0, 3.0};
+    o.num_people = 1;
+    o.people[0] = (gmmrrt_pose_t){0.0, 0.0, 0.7};
+    world_t t;
+    assert_int_equal(build(&t, 0.02, 0.2, &o), GMMRRT_OK); /* person radius 0.3 */
+    assert_false(gmmrrt_world_point_free(t.w, 0.45, 0.0));
+    assert_true(gmmrrt_world_point_free(t.w, 0.6, 0.0));
+    assert_true(fabs(gmmrrt_world_exact_clearance(t.w, 1.0, 0.0) - 0.5) < 1e-9);
+    free(t.mem);
+}
+
+static void test_bad_worlds_get_their_status(void **state)
+{
+    (void)state;
+    gmmrrt_obstacle_set_t o = scene();
+    const size_t size = gmmrrt_world_mem_size(1000);
+    void *mem = aligned_alloc(8, size);
+    gmmrrt_world_t *w;
+    /* 10 x 8 m at 5 cm is 32000 cells > 1000 */
+    assert_int_equal(gmmrrt_world_build(&w, mem, size, 1000, 0.05, 0.0, 0.3, &o), GMMRRT_ERR_BUFFER_TOO_SMALL);
+    assert_int_equal(gmmrrt_world_build(&w, mem, size - 8, 1000, 0.5, 0.0, 0.3, &o), GMMRRT_ERR_BUFFER_TOO_SMALL);
+    assert_int_equal(gmmrrt_world_build(&w, mem, size, 1000, 0.5, 0.0, 0.3, &o), GMMRRT_OK);
+    assert_int_equal(gmmrrt_world_build(&w, mem, size, 1000, 0.5, -0.1, 0.3, &o), GMMRRT_ERR_INVALID_ARGUMENT);
+    assert_int_equal(gmmrrt_world_build(&w, mem, size, 1000, NAN, 0.0, 0.3, &o), GMMRRT_ERR_INVALID_ARGUMENT);
+    o.boxes[1].width_m = 0.0;
+    assert_int_equal(gmmrrt_world_build(&w, mem, size, 1000, 0.5, 0.0, 0.3, &o), GMMRRT_ERR_INVALID_ARGUMENT);
+    o = scene();
+    o.num_circles = GMMRRT_MAX_CIRCLES + 1;
+    assert_int_equal(gmmrrt_world_build(&w, mem, size, 1000, 0.5, 0.0, 0.3, &o), GMMRRT_ERR_INVALID_ARGUMENT);
+    o = scene();
+    o.people[0].yaw = INFINITY;
+    assert_int_equal(gmmrrt_world_build(&w, mem, size, 1000, 0.5, 0.0, 0.3, &o), GMMRRT_ERR_INVALID_ARGUMENT);
+    o = scene();
+    o.bounds.xmin = o.bounds.xmax;
+    assert_int_equal(gmmrrt_world_build(&w, mem, size, 1000, 0.5, 0.0, 0.3, &o), GMMRRT_ERR_INVALID_ARGUMENT);
+    free(mem);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_grid_is_conservative_against_fcl),
+        cmocka_unit_test(test_exact_clearance_matches_geometry),
+        cmocka_unit_test(test_segments_through_obstacles_are_blocked_both_ways),
+        cmocka_unit_test(test_people_are_discs_of_person_radius),
+        cmocka_unit_test(test_bad_worlds_get_their_status),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,187 @@
+/*
+ * test_social.c - planner.social: GMM-RRT* with hand-built (d, theta) mixtures (paper
+ * Sect. 4): a 'left' avoid model makes the path pass on the person's left (theta > 0) and
+ * keep clear of them; a two-side model with an obstacle blocking one side takes the other
+ * side (the paper's Fig. 5); the task cost alone (gmm_bias = 0) still picks the model's
+ * side; a larger delta pulls the path towards the model's distance.
+ * Tests with models learned from the demonstrations come with the learner's models.
+ *
+ * Scene: the person stands at the origin facing the robot's start (yaw = pi), the robot
+ * goes from (-4, 0) to (4, 0). In that person's frame y' = -y, so their left is world y < 0.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include <cmocka.h>
+
+#include "gmmrrt/features.h"
+#include "planner_fixtures.h"
+
+static const gmmrrt_pose_t person = {0.0, 0.0, M_PI};
+
+/* Signed side of the path where it crosses the person's x' = 0 line (world x = 0), and
+ * the smallest distance of any waypoint to the person. */
+static void path_side(const gmmrrt_path_t *path, double *y_at_cross, double *min_dist)
+{
+    *min_dist = INFINITY;
+    *y_at_cross = NAN;
+    for (int32_t i = 0; i < path->num_points; ++i) {
+        const double d = hypot(path->x[i] - person.x, path->y[i] - person.y);
+        if (d < *min_dist)
+            *min_dist = d;
+        if (i > 0 && path->x[i - 1] < 0.0 && path->x[i] >= 0.0) {
+            const double u = -path->x[i - 1] / (path->x[i] - path->x[i - 1]);
+            *y_at_cross = path->y[i - 1] + u * (path->y[i] - path->y[i - 1]);
+        }
+    }
+}
+
+static double delta_override = 0.0; /* 0: the model's delta */
+
+static gmmrrt_status_t plan(const gmmrrt_model_t *m, uint64_t seed, double gmm_bias, double w_task, int block_left,
+                            gmmrrt_path_t *path)
+{
+    gmmrrt_planner_config_t cfg;
+    gmmrrt_planner_config_default(&cfg);
+    cfg.seed = seed;
+    cfg.gmm_bias = gmm_bias;
+    cfg.w_task = w_task;
+    cfg.max_nodes = 20000;
+    cfg.delta = delta_override;
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
+    pr.goal_tolerance_m = 0.1;
+    pr.task = GMMRRT_TASK_AVOID;
+    pr.model = m;
+    pr.obstacles.num_people = 1;
+    pr.obstacles.people[0] = person;
+    if (block_left) { /* a wall from just left of the person to the bounds (Fig. 5's shadow) */
+        pr.obstacles.num_boxes = 1;
+        pr.obstacles.boxes[0] = (gmmrrt_box_t){0.0, -2.9, 0.4, 4.2, 0.0};
+    }
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    gmmrrt_budget_t b = {0.0, 15000, 0.0, 0};
+    gmmrrt_plan_stats_t st;
+    const gmmrrt_status_t s = gmmrrt_planner_run(t.p, &b, &st);
+    gmmrrt_planner_best_path(t.p, path);
+    test_planner_free(&t);
+    return s;
+}
+
+static void left_model(gmmrrt_model_t *m)
+{
+    const double theta[] = {M_PI / 6, M_PI / 3, M_PI / 2, 2 * M_PI / 3, 5 * M_PI / 6};
+    assert_int_equal(make_features_model(m, theta, 5, 1.2, 0.2, 0.25), GMMRRT_OK);
+}
+
+static void two_side_model(gmmrrt_model_t *m)
+{
+    const double theta[] = {M_PI / 6,  M_PI / 3,  M_PI / 2,  2 * M_PI / 3,  5 * M_PI / 6,
+                            -M_PI / 6, -M_PI / 3, -M_PI / 2, -2 * M_PI / 3, -5 * M_PI / 6};
+    assert_int_equal(make_features_model(m, theta, 10, 1.2, 0.2, 0.25), GMMRRT_OK);
+}
+
+static void test_left_model_passes_on_the_left_and_keeps_clear(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    left_model(&m);
+    /* the model's left really is world y < 0 here */
+    double x, y;
+    gmmrrt_features_to_xy(&person, 1.2, M_PI / 2, &x, &y);
+    assert_true(y < -1.0);
+    for (uint64_t seed = 1; seed <= 3; ++seed) {
+        gmmrrt_path_t path;
+        assert_int_equal(plan(&m, seed, 0.95, 2.0, 0, &path), GMMRRT_OK);
+        double cross, dmin;
+        path_side(&path, &cross, &dmin);
+        printf("left model, seed %d: crosses x = 0 at y = %.2f, closest %.2f m\n", (int)seed, cross, dmin);
+        /* left of the person, and never within collision distance (0.25 + 0.3 m) plus 0.1 m */
+        assert_true(cross < -0.65);
+        assert_true(dmin > 0.65);
+    }
+}
+
+/* With the paper's delta = 0.001 the cost is flat wherever p >> delta, so the path runs
+ * along the inner edge of the model's support; a larger delta grades the support and pulls
+ * the path towards the model's distance (1.2 m here). */
+static void test_larger_delta_pulls_the_path_to_the_model_distance(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    left_model(&m);
+    const double deltas[] = {0.001, 0.05, 0.2};
+    double closest[3];
+    for (int i = 0; i < 3; ++i) {
+        delta_override = deltas[i];
+        gmmrrt_path_t path;
+        assert_int_equal(plan(&m, 1, 0.95, 2.0, 0, &path), GMMRRT_OK);
+        double cross;
+        path_side(&path, &cross, &closest[i]);
+        printf("left model, delta %.3f: crosses x = 0 at y = %.2f, closest %.2f m\n", deltas[i], cross, closest[i]);
+        assert_true(cross < 0.0);
+    }
+    delta_override = 0.0;
+    assert_true(closest[1] > closest[0] + 0.1);
+    assert_true(closest[2] >= closest[1] - 0.02);
+    assert_true(closest[2] > 1.0 && closest[2] < 1.4);
+}
+
+static void test_task_cost_alone_picks_the_model_side(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    left_model(&m);
+    gmmrrt_path_t path;
+    assert_int_equal(plan(&m, 4, 0.0, 2.0, 0, &path), GMMRRT_OK);
+    double cross, dmin;
+    path_side(&path, &cross, &dmin);
+    printf("left model, uniform sampling: crosses at y = %.2f\n", cross);
+    assert_true(cross < 0.0);
+}
+
+static void test_mirrored_model_passes_on_the_right(void **state)
+{
+    (void)state;
+    const double theta[] = {-M_PI / 6, -M_PI / 3, -M_PI / 2, -2 * M_PI / 3, -5 * M_PI / 6};
+    gmmrrt_model_t m;
+    assert_int_equal(make_features_model(&m, theta, 5, 1.2, 0.2, 0.25), GMMRRT_OK);
+    gmmrrt_path_t path;
+    assert_int_equal(plan(&m, 2, 0.95, 2.0, 0, &path), GMMRRT_OK);
+    double cross, dmin;
+    path_side(&path, &cross, &dmin);
+    assert_true(cross > 0.7);
+}
+
+static void test_two_side_model_takes_the_free_side_when_one_is_blocked(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    two_side_model(&m);
+    for (uint64_t seed = 1; seed <= 3; ++seed) {
+        gmmrrt_path_t path;
+        assert_int_equal(plan(&m, seed, 0.95, 2.0, 1, &path), GMMRRT_OK);
+        double cross, dmin;
+        path_side(&path, &cross, &dmin);
+        printf("two-side model, left blocked, seed %d: crosses at y = %.2f, closest %.2f m\n", (int)seed, cross,
+               dmin);
+        assert_true(cross > 0.7);
+        assert_true(dmin > 0.7);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_left_model_passes_on_the_left_and_keeps_clear),
+        cmocka_unit_test(test_larger_delta_pulls_the_path_to_the_model_distance),
+        cmocka_unit_test(test_task_cost_alone_picks_the_model_side),
+        cmocka_unit_test(test_mirrored_model_passes_on_the_right),
+        cmocka_unit_test(test_two_side_model_takes_the_free_side_when_one_is_blocked),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
