@@ -1,0 +1,210 @@
+// cmd_fit.cpp - `gmmrrt-learn fit`: learns a mixture (paper Sect. 3, eq. 1) from demonstrations
+// or a features CSV by k-means++-seeded EM (em.hpp), K given or chosen by a BIC sweep
+// (bic.hpp), and writes it atomically as a model file (model.h, docs/model-format.md).
+#include <getopt.h>
+
+#include <cstdio>
+#include <string>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "gmmrrt_learner/bic.hpp"
+#include "gmmrrt_learner/em.hpp"
+#include "gmmrrt_learner/episode_features.hpp"
+#include "gmmrrt_learner/features_csv.hpp"
+
+namespace gmmrrt {
+namespace learn {
+namespace cli {
+
+namespace {
+
+const char kFitHelp[] =
+    "usage: gmmrrt-learn fit (--input FILE... --task avoid|approach | --features-csv FILE)\n"
+    "                        -o MODEL [options]\n"
+    "\n"
+    "Fits a Gaussian mixture by EM (k-means++ seeding) and writes it atomically to MODEL.\n"
+    "\n"
+    "data:\n"
+    "  -i, --input FILE        episode CSV or LCM demonstration log (repeatable; further\n"
+    "                          non-option arguments are inputs too)\n"
+    "  -t, --task T            avoid | approach (required with --input)\n"
+    "  -H, --homotopy H        all | left | right | frontal (default all)\n"
+    "  -x, --index FILE        index CSV with a split column (repeatable)\n"
+    "  -s, --split S           train | test: only episodes of that split (needs --index)\n"
+    "  -K, --kind KIND         features: (d [m], theta [rad]) (default) | xy: (s, x', y')\n"
+    "  -f, --features-csv FILE rows of D = 1..8 numbers (model kind generic)\n"
+    "  -a, --angle-dims LIST   with --features-csv: 1-based wrapped angle dimensions, e.g. 2\n"
+    "model:\n"
+    "  -k, --k N|auto          components (default 19, the paper's); auto = BIC sweep\n"
+    "  -r, --k-range A..B      range of the BIC sweep (default 1..30; implies --k auto)\n"
+    "  -S, --seed S            random seed (default 1); same seed, same model\n"
+    "  -R, --restarts N        k-means++ restarts, best kept (default 4)\n"
+    "  -m, --max-iter N        EM iteration cap (default 500)\n"
+    "  -T, --tol X             stop when the mean log-likelihood per point changes < X\n"
+    "                          (default 1e-6)\n"
+    "  -d, --delta X           default delta of the task cost stored in the model (default 0.001)\n"
+    "  -o, --output MODEL      model file to write (required)\n"
+    "  -q, --quiet             no progress on stderr\n"
+    "  -h, --help              this text\n"
+    "\n"
+    "Exit status: 0 model written; 1 bad data or failed fit (no file written); 2 usage error.\n";
+
+bool ParseKRange(const std::string& text, int* a, int* b) {
+  const size_t dots = text.find("..");
+  if (dots == std::string::npos) return false;
+  long lo = 0, hi = 0;
+  if (!ParseInt(text.substr(0, dots), 1, GMMRRT_MAX_K, &lo) ||
+      !ParseInt(text.substr(dots + 2), 1, GMMRRT_MAX_K, &hi) || hi < lo)
+    return false;
+  *a = static_cast<int>(lo);
+  *b = static_cast<int>(hi);
+  return true;
+}
+
+}  // namespace
+
+int RunFit(int argc, char** argv) {
+  const char* cmd = "fit";
+  static const struct option kLong[] = {
+      {"input", required_argument, nullptr, 'i'},    {"task", required_argument, nullptr, 't'},
+      {"homotopy", required_argument, nullptr, 'H'}, {"index", required_argument, nullptr, 'x'},
+      {"split", required_argument, nullptr, 's'},    {"kind", required_argument, nullptr, 'K'},
+      {"features-csv", required_argument, nullptr, 'f'}, {"angle-dims", required_argument, nullptr, 'a'},
+      {"k", required_argument, nullptr, 'k'},        {"k-range", required_argument, nullptr, 'r'},
+      {"seed", required_argument, nullptr, 'S'},     {"restarts", required_argument, nullptr, 'R'},
+      {"max-iter", required_argument, nullptr, 'm'}, {"tol", required_argument, nullptr, 'T'},
+      {"delta", required_argument, nullptr, 'd'},    {"output", required_argument, nullptr, 'o'},
+      {"quiet", no_argument, nullptr, 'q'},          {"help", no_argument, nullptr, 'h'},
+      {nullptr, 0, nullptr, 0}};
+  DataSpec spec;
+  FitOptions options;
+  std::string output, task_name, homotopy_name = "all", kind_name, angle_dims, k_text;
+  int k_min = 1, k_max = 30;
+  bool auto_k = false, k_range_given = false;
+  double delta = GMMRRT_MODEL_DEFAULT_DELTA;
+  optind = 1;
+  int c;
+  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:S:R:m:T:d:o:qh", kLong, nullptr)) != -1) {
+    const std::string arg = optarg ? optarg : "";
+    long v = 0;
+    switch (c) {
+      case 'i': spec.inputs.push_back(arg); break;
+      case 't': task_name = arg; break;
+      case 'H': homotopy_name = arg; break;
+      case 'x': spec.indexes.push_back(arg); break;
+      case 's':
+        if (arg != "train" && arg != "test") return UsageError(cmd, "--split must be train or test, not '" + arg + "'");
+        spec.split = arg;
+        break;
+      case 'K': kind_name = arg; break;
+      case 'f':
+        if (!spec.features_csv.empty()) return UsageError(cmd, "--features-csv given twice");
+        spec.features_csv = arg;
+        break;
+      case 'a': angle_dims = arg; break;
+      case 'k': k_text = arg; break;
+      case 'r':
+        if (!ParseKRange(arg, &k_min, &k_max))
+          return UsageError(cmd, "--k-range '" + arg + "' is not A..B with 1 <= A <= B <= " +
+                                     std::to_string(GMMRRT_MAX_K));
+        k_range_given = true;
+        break;
+      case 'S':
+        if (!ParseUint64(arg, &options.seed)) return UsageError(cmd, "--seed '" + arg + "' is not an unsigned integer");
+        break;
+      case 'R':
+        if (!ParseInt(arg, 1, 1000, &v)) return UsageError(cmd, "--restarts '" + arg + "' is not in 1..1000");
+        options.restarts = static_cast<int>(v);
+        break;
+      case 'm':
+        if (!ParseInt(arg, 0, 1000000, &v)) return UsageError(cmd, "--max-iter '" + arg + "' is not in 0..1000000");
+        options.max_iterations = static_cast<int>(v);
+        break;
+      case 'T':
+        if (!ParseDouble(arg, &options.tolerance) || options.tolerance <= 0.0)
+          return UsageError(cmd, "--tol '" + arg + "' is not a positive number");
+        break;
+      case 'd':
+        if (!ParseDouble(arg, &delta) || delta <= 0.0) return UsageError(cmd, "--delta '" + arg + "' is not a positive number");
+        break;
+      case 'o': output = arg; break;
+      case 'q': spec.quiet = true; break;
+      case 'h': std::fputs(kFitHelp, stdout); return kExitOk;
+      default: return UsageError(cmd, "unknown option or missing argument");
+    }
+  }
+  for (int a = optind; a < argc; ++a) spec.inputs.push_back(argv[a]);
+
+  if (output.empty()) return UsageError(cmd, "no output model (-o MODEL)");
+  if (spec.inputs.empty() == spec.features_csv.empty())
+    return UsageError(cmd, "give either --input FILE... or --features-csv FILE (exactly one kind of data)");
+  if (!spec.split.empty() && spec.indexes.empty()) return UsageError(cmd, "--split needs --index FILE");
+  if (spec.split.empty() && !spec.indexes.empty()) return UsageError(cmd, "--index needs --split train|test");
+  int kind = GMMRRT_MODEL_KIND_GENERIC;
+  if (!spec.inputs.empty()) {
+    if (task_name.empty()) return UsageError(cmd, "--task avoid|approach is required with --input");
+    if (!angle_dims.empty()) return UsageError(cmd, "--angle-dims applies to --features-csv only");
+    if (kind_name.empty() || kind_name == "features") kind = GMMRRT_MODEL_KIND_FEATURES;
+    else if (kind_name == "xy") kind = GMMRRT_MODEL_KIND_XY;
+    else return UsageError(cmd, "unknown --kind '" + kind_name + "' (known: features, xy)");
+  } else {
+    if (!kind_name.empty() && kind_name != "generic")
+      return UsageError(cmd, "--kind " + kind_name + " needs episodes (--input); --features-csv gives kind generic");
+    if (!spec.indexes.empty()) return UsageError(cmd, "--index/--split apply to --input episodes only");
+  }
+  Status s;
+  if (!task_name.empty() && !(s = ParseTask(task_name, &spec.task)).ok()) return UsageError(cmd, s.message);
+  if (!(s = ParseHomotopy(homotopy_name, &spec.homotopy)).ok()) return UsageError(cmd, s.message);
+  spec.kind = kind;
+  if (k_text == "auto" || (k_text.empty() && k_range_given)) {
+    auto_k = true;
+  } else if (!k_text.empty()) {
+    long v = 0;
+    if (!ParseInt(k_text, 1, GMMRRT_MAX_K, &v))
+      return UsageError(cmd, "--k '" + k_text + "' is not auto or a number in 1.." + std::to_string(GMMRRT_MAX_K));
+    if (k_range_given) return UsageError(cmd, "--k-range goes with --k auto, not --k " + k_text);
+    options.k = static_cast<int>(v);
+  }
+
+  Eigen::MatrixXd points;
+  uint32_t mask = 0;
+  if (!spec.features_csv.empty() && !angle_dims.empty()) {
+    // The dimension is known only after reading; parse against the maximum, check after.
+    if (!(s = ParseAngleDims(angle_dims, GMMRRT_MAX_DIM, &spec.angle_mask)).ok()) return UsageError(cmd, s.message);
+  }
+  if (!(s = LoadPoints(cmd, spec, &points, &mask)).ok()) return Fail(cmd, s.message);
+
+  if (!spec.quiet) {
+    options.progress = [&](int it, double ll) {
+      std::fprintf(stderr, "iteration %4d  mean log-likelihood %.10f\n", it, ll);
+    };
+  }
+  options.warn = [](const std::string& w) { std::fprintf(stderr, "warning: %s\n", w.c_str()); };
+
+  Mixture mixture;
+  FitSummary summary;
+  if (auto_k) {
+    BicSweepResult sweep;
+    if (!spec.quiet) options.progress = nullptr;  // one table line per K is progress enough
+    if (!(s = SweepBic(points, mask, options, k_min, k_max, &sweep)).ok()) return Fail(cmd, s.message);
+    std::fputs(FormatBicTable(sweep).c_str(), stdout);
+    std::printf("chosen K = %d (lowest BIC)\n", sweep.best_k);
+    mixture = sweep.best;
+    summary = sweep.best_summary;
+  } else {
+    if (!(s = FitMixture(points, mask, options, &mixture, &summary)).ok()) return Fail(cmd, s.message);
+  }
+  if (kind == GMMRRT_MODEL_KIND_XY) SortComponentsByProgress(&mixture);
+  if (!spec.quiet) std::fprintf(stderr, "gmmrrt-learn fit: %s\n", summary.BriefReport().c_str());
+
+  gmmrrt_model_t model;
+  if (!(s = MixtureToModel(mixture, kind, spec.task, spec.homotopy, delta, &model)).ok()) return Fail(cmd, s.message);
+  if (!(s = SaveModel(output, model)).ok()) return Fail(cmd, s.message);
+  if (!spec.quiet) std::fprintf(stderr, "gmmrrt-learn fit: wrote %s\n", output.c_str());
+  return kExitOk;
+}
+
+}  // namespace cli
+}  // namespace learn
+}  // namespace gmmrrt

@@ -1,0 +1,37 @@
+// main.cpp - gmmrrt-learn, the offline model export tool of the design (learner issue):
+// fit / score / inspect / import. Each subcommand lives in its own cmd_*.cpp.
+#include <cstdio>
+#include <cstring>
+
+#include "commands.hpp"
+
+namespace {
+const char kHelp[] =
+    "usage: gmmrrt-learn COMMAND [options]   (gmmrrt-learn COMMAND --help for each)\n"
+    "\n"
+    "  fit      learn a Gaussian mixture from demonstrations or a features CSV (EM) -> MODEL\n"
+    "  score    mean log-likelihood per point of data under a MODEL\n"
+    "  inspect  validate and print a MODEL\n"
+    "  import   convert a JSON mixture (priors, means, covariances) -> MODEL\n"
+    "\n"
+    "Model format: docs/model-format.md. Guide: docs/learner.md.\n";
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fputs(kHelp, stderr);
+    return 2;
+  }
+  const char* cmd = argv[1];
+  if (!std::strcmp(cmd, "-h") || !std::strcmp(cmd, "--help") || !std::strcmp(cmd, "help")) {
+    std::fputs(kHelp, stdout);
+    return 0;
+  }
+  using namespace gmmrrt::learn::cli;
+  if (!std::strcmp(cmd, "fit")) return RunFit(argc - 1, argv + 1);
+  if (!std::strcmp(cmd, "score")) return RunScore(argc - 1, argv + 1);
+  if (!std::strcmp(cmd, "inspect")) return RunInspect(argc - 1, argv + 1);
+  if (!std::strcmp(cmd, "import")) return RunImport(argc - 1, argv + 1);
+  std::fprintf(stderr, "gmmrrt-learn: unknown command '%s'\n\n%s", cmd, kHelp);
+  return 2;
+}

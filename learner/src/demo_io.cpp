@@ -1,0 +1,591 @@
+// demo_io.cpp - demonstration readers for the learner: LCM demonstration logs and
+// episode CSVs -> Episode lists (paper Sect. 4, learning from demonstrations).
+// Log layout, pairing rule and error policy: docs/demonstrations.md.
+//
+// The log is read with LCM's C eventlog API. Before each event its 28-byte header is
+// checked against the file size, so a truncated or corrupted file is reported as such
+// (LCM itself would silently resynchronise or stop) and nothing sized by the file is
+// allocated beyond what the file holds. Payloads go through the validating decoders of
+// gmmrrt_lcmtypes_c (lcmtypes/include/gmmrrt/msg_decode.h): counts and NaN are checked
+// there, once for all readers.
+#include "gmmrrt_learner/demo_io.hpp"
+
+#include <lcm/eventlog.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "gmmrrt/model.h"
+#include "gmmrrt/msg_decode.h"
+
+namespace gmmrrt {
+namespace learn {
+namespace {
+
+constexpr uint32_t kLcmSyncWord = 0xEDA1DA01u;
+constexpr long kEventHeaderBytes = 28;  // sync, eventnum, timestamp, channel len, data len
+constexpr int32_t kMaxChannelLen = 255;  // longer names are not written by lcm-logger
+const char* const kChannelDemoInfo = "DEMO_INFO";
+const char* const kChannelRobotPose = "ROBOT_POSE";
+const char* const kChannelPeople = "PEOPLE";
+const char* const kCsvHeader[] = {"episode_id", "task",    "homotopy", "t",         "robot_x",
+                                  "robot_y",    "person_x", "person_y", "person_yaw"};
+constexpr size_t kCsvColumns = sizeof(kCsvHeader) / sizeof(kCsvHeader[0]);
+
+// Collects warnings up to kMaxWarnings, then counts the rest.
+class Warnings {
+  public:
+    explicit Warnings(std::vector<std::string>* out) : out_(out) {}
+    void Add(const std::string& w) {
+        if (out_->size() < kMaxWarnings)
+            out_->push_back(w);
+        else
+            ++dropped_;
+    }
+    void Finish() {
+        if (dropped_ > 0)
+            out_->push_back("... and " + std::to_string(dropped_) + " more warnings");
+    }
+
+  private:
+    std::vector<std::string>* out_;
+    size_t dropped_ = 0;
+};
+
+ReadResult Fail(const std::string& msg) {
+    ReadResult r;
+    r.ok = false;
+    r.error = msg;
+    return r;
+}
+
+uint32_t BigEndian32(const unsigned char* p) {
+    return (uint32_t(p[0]) << 24) | (uint32_t(p[1]) << 16) | (uint32_t(p[2]) << 8) | uint32_t(p[3]);
+}
+
+std::string Stem(const std::string& path) {
+    size_t slash = path.find_last_of('/');
+    std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
+    size_t dot = base.find('.');
+    return dot == std::string::npos || dot == 0 ? base : base.substr(0, dot);
+}
+
+std::string EpisodeId(const std::string& stem, int32_t episode) {
+    char num[16];
+    std::snprintf(num, sizeof num, "%04d", static_cast<int>(episode));
+    return stem + "_" + num;
+}
+
+// ---------------------------------------------------------------- log reader
+
+struct PersonEntry {
+    bool valid = false;
+    int64_t utime = 0;
+    double x = 0, y = 0, yaw = 0;
+};
+
+// The episode being assembled from the events after one DEMO_INFO.
+struct OpenEpisode {
+    bool active = false;   // a DEMO_INFO was decoded and its events are being collected
+    bool labelled = true;  // false after a DEMO_INFO that could not be decoded
+    Episode episode;
+    int32_t number = 0;
+    int64_t info_event = 0;
+    int64_t start_utime = 0;
+    int32_t person_id = -1;
+    int64_t last_pose_utime = INT64_MIN;
+    int64_t last_people_utime = INT64_MIN;
+    PersonEntry person;
+    size_t unpaired_poses = 0;
+};
+
+class LogReader {
+  public:
+    LogReader(const std::string& path, ReadResult* result)
+        : path_(path), stem_(Stem(path)), result_(result), warn_(&result->warnings) {}
+
+    // Returns false with result_->error set on a structural error.
+    bool Run(std::vector<Episode>* episodes) {
+        struct stat st;
+        if (stat(path_.c_str(), &st) != 0)
+            return Error(path_ + ": cannot open: " + std::strerror(errno));
+        const long file_size = static_cast<long>(st.st_size);
+        lcm_eventlog_t* log = lcm_eventlog_create(path_.c_str(), "r");
+        if (log == nullptr)
+            return Error(path_ + ": cannot open as an LCM log: " + std::strerror(errno));
+        bool ok = Loop(log, file_size, episodes);
+        lcm_eventlog_destroy(log);
+        warn_.Finish();
+        return ok;
+    }
+
+  private:
+    bool Error(const std::string& msg) {
+        result_->ok = false;
+        result_->error = msg;
+        return false;
+    }
+
+    std::string Where(int64_t event_no, long offset, const char* channel) const {
+        std::ostringstream s;
+        s << path_ << ": event " << event_no << " (byte " << offset;
+        if (channel != nullptr)
+            s << ", channel " << channel;
+        s << ")";
+        return s.str();
+    }
+
+    // Checks the header of the event at `offset` against the bytes left in the file.
+    bool CheckHeader(FILE* f, long offset, long file_size, int64_t event_no, long* next_offset) {
+        unsigned char h[kEventHeaderBytes];
+        size_t got = std::fread(h, 1, sizeof h, f);
+        if (got < sizeof h)
+            return Error(Where(event_no, offset, nullptr) + ": log truncated inside an event header (" +
+                         std::to_string(file_size - offset) + " bytes left)");
+        if (BigEndian32(h) != kLcmSyncWord)
+            return Error(Where(event_no, offset, nullptr) +
+                         (event_no == 1 ? ": not an LCM log (no sync word at the start)"
+                                        : ": corrupted log (no LCM sync word where an event starts)"));
+        const int32_t channel_len = static_cast<int32_t>(BigEndian32(h + 20));
+        const int32_t data_len = static_cast<int32_t>(BigEndian32(h + 24));
+        if (channel_len <= 0 || channel_len > kMaxChannelLen)
+            return Error(Where(event_no, offset, nullptr) + ": corrupted log (channel name length " +
+                         std::to_string(channel_len) + ")");
+        if (data_len < 0)
+            return Error(Where(event_no, offset, nullptr) + ": corrupted log (data length " +
+                         std::to_string(data_len) + ")");
+        const long need = kEventHeaderBytes + channel_len + static_cast<long>(data_len);
+        if (need > file_size - offset)
+            return Error(Where(event_no, offset, nullptr) + ": log truncated or corrupted (event needs " +
+                         std::to_string(need) + " bytes, " + std::to_string(file_size - offset) + " left)");
+        // LCM looks past the event for the next sync word and fails the event when it is
+        // not there; check it here so the error names the event that is broken.
+        const long next = offset + need;
+        if (next < file_size) {
+            unsigned char sync[4];
+            if (file_size - next < 4)
+                return Error(Where(event_no + 1, next, nullptr) + ": log truncated inside an event header (" +
+                             std::to_string(file_size - next) + " bytes left)");
+            if (std::fseek(f, next, SEEK_SET) != 0 || std::fread(sync, 1, 4, f) != 4)
+                return Error(Where(event_no + 1, next, nullptr) + ": read failed");
+            if (BigEndian32(sync) != kLcmSyncWord)
+                return Error(Where(event_no + 1, next, nullptr) +
+                             ": corrupted log (no LCM sync word where an event starts)");
+        }
+        if (std::fseek(f, offset, SEEK_SET) != 0)
+            return Error(Where(event_no, offset, nullptr) + ": seek failed");
+        *next_offset = next;
+        return true;
+    }
+
+    bool Loop(lcm_eventlog_t* log, long file_size, std::vector<Episode>* episodes) {
+        int64_t event_no = 0;
+        bool seen_info = false, seen_pose = false, seen_people = false;
+        size_t orphans = 0;
+        std::map<int32_t, int64_t> info_event_by_number;
+        OpenEpisode ep;
+        long next_offset = 0;
+        for (;;) {
+            // Each event is read from the offset its predecessor's header announced
+            // (LCM's own read position may be past a look-ahead).
+            const long offset = next_offset;
+            if (offset >= file_size)
+                break;
+            ++event_no;
+            if (!CheckHeader(log->f, offset, file_size, event_no, &next_offset))
+                return false;
+            lcm_eventlog_event_t* ev = lcm_eventlog_read_next_event(log);
+            if (ev == nullptr)
+                return Error(Where(event_no, offset, nullptr) + ": LCM could not read the event");
+            const std::string channel(ev->channel, static_cast<size_t>(ev->channellen));
+            const size_t len = static_cast<size_t>(ev->datalen);
+            char err[160] = "";
+            if (channel == kChannelDemoInfo) {
+                seen_info = true;
+                Close(&ep, episodes);
+                ep = OpenEpisode();
+                ep.active = true;
+                gmmrrt_demo_info_t info;
+                if (gmmrrt_msg_decode_demo_info(ev->data, len, &info, err, sizeof err) != GMMRRT_MSG_OK) {
+                    ep.labelled = false;
+                    warn_.Add(Where(event_no, offset, kChannelDemoInfo) + ": " + err +
+                              "; its episode is skipped");
+                } else {
+                    auto dup = info_event_by_number.find(info.episode);
+                    if (dup != info_event_by_number.end()) {
+                        lcm_eventlog_free_event(ev);
+                        return Error(Where(event_no, offset, kChannelDemoInfo) + ": episode " +
+                                     std::to_string(info.episode) + " was already started at event " +
+                                     std::to_string(dup->second));
+                    }
+                    info_event_by_number[info.episode] = event_no;
+                    ep.number = info.episode;
+                    ep.info_event = event_no;
+                    ep.start_utime = info.utime;
+                    ep.person_id = info.person_id;
+                    ep.episode.id = EpisodeId(stem_, info.episode);
+                    ep.episode.task = info.task;
+                    ep.episode.homotopy = info.homotopy;
+                }
+            } else if (channel == kChannelRobotPose) {
+                seen_pose = true;
+                OnPose(&ep, ev, len, event_no, offset, &orphans);
+            } else if (channel == kChannelPeople) {
+                seen_people = true;
+                OnPeople(&ep, ev, len, event_no, offset, &orphans);
+            }
+            lcm_eventlog_free_event(ev);
+        }
+        Close(&ep, episodes);
+        if (orphans > 0)
+            warn_.Add(path_ + ": " + std::to_string(orphans) +
+                      " ROBOT_POSE/PEOPLE events before the first DEMO_INFO were ignored");
+        if (event_no == 0)
+            return Error(path_ + ": empty log (no events)");
+        if (!seen_info)
+            return Error(path_ + ": no DEMO_INFO event: the episodes have no task/homotopy labels");
+        if (!seen_pose)
+            return Error(path_ + ": no ROBOT_POSE event");
+        if (!seen_people)
+            return Error(path_ + ": no PEOPLE event");
+        if (episodes->empty())
+            return Error(path_ + ": no episode has a ROBOT_POSE paired with its person (see warnings)");
+        return true;
+    }
+
+    void OnPose(OpenEpisode* ep, const lcm_eventlog_event_t* ev, size_t len, int64_t event_no, long offset,
+                size_t* orphans) {
+        if (!ep->active) {
+            ++*orphans;
+            return;
+        }
+        if (!ep->labelled)
+            return;
+        gmmrrt_pose2d_t pose;
+        char err[160] = "";
+        if (gmmrrt_msg_decode_pose2d(ev->data, len, &pose, err, sizeof err) != GMMRRT_MSG_OK) {
+            warn_.Add(Where(event_no, offset, kChannelRobotPose) + ": " + err + "; skipped");
+            return;
+        }
+        if (pose.utime <= ep->last_pose_utime || pose.utime < ep->start_utime) {
+            warn_.Add(Where(event_no, offset, kChannelRobotPose) + ": time does not advance (utime " +
+                      std::to_string(pose.utime) + " not after " +
+                      std::to_string(std::max(ep->last_pose_utime, ep->start_utime)) + "); skipped");
+            return;
+        }
+        ep->last_pose_utime = pose.utime;
+        const double age_s = std::fabs(static_cast<double>(pose.utime - ep->person.utime)) * 1e-6;
+        if (!ep->person.valid || age_s > kMaxPersonAgeS) {
+            ++ep->unpaired_poses;
+            return;
+        }
+        PoseSample s;
+        s.t_s = static_cast<double>(pose.utime - ep->start_utime) * 1e-6;
+        s.robot_x = pose.x;
+        s.robot_y = pose.y;
+        s.robot_yaw = pose.yaw;
+        s.person_x = ep->person.x;
+        s.person_y = ep->person.y;
+        s.person_yaw = ep->person.yaw;
+        ep->episode.samples.push_back(s);
+    }
+
+    void OnPeople(OpenEpisode* ep, const lcm_eventlog_event_t* ev, size_t len, int64_t event_no, long offset,
+                  size_t* orphans) {
+        if (!ep->active) {
+            ++*orphans;
+            return;
+        }
+        if (!ep->labelled)
+            return;
+        gmmrrt_people_t people;
+        char err[160] = "";
+        if (gmmrrt_msg_decode_people(ev->data, len, &people, err, sizeof err) != GMMRRT_MSG_OK) {
+            warn_.Add(Where(event_no, offset, kChannelPeople) + ": " + err + "; skipped");
+            return;
+        }
+        if (people.utime < ep->last_people_utime) {
+            warn_.Add(Where(event_no, offset, kChannelPeople) + ": time goes backwards (utime " +
+                      std::to_string(people.utime) + " after " + std::to_string(ep->last_people_utime) +
+                      "); skipped");
+            return;
+        }
+        ep->last_people_utime = people.utime;
+        for (int32_t i = 0; i < people.num_people; ++i) {
+            const gmmrrt_person_t& p = people.people[i];
+            if (p.id != ep->person_id)
+                continue;
+            ep->person.valid = true;
+            ep->person.utime = p.utime;
+            ep->person.x = p.x;
+            ep->person.y = p.y;
+            ep->person.yaw = p.yaw;
+            break;
+        }
+    }
+
+    void Close(OpenEpisode* ep, std::vector<Episode>* episodes) {
+        if (!ep->active || !ep->labelled)
+            return;
+        if (ep->unpaired_poses > 0)
+            warn_.Add(path_ + ": episode " + std::to_string(ep->number) + " (DEMO_INFO at event " +
+                      std::to_string(ep->info_event) + "): " + std::to_string(ep->unpaired_poses) +
+                      " ROBOT_POSE events had no PEOPLE entry of person " + std::to_string(ep->person_id) +
+                      " within " + std::to_string(kMaxPersonAgeS) + " s; skipped");
+        if (ep->episode.samples.empty()) {
+            warn_.Add(path_ + ": episode " + std::to_string(ep->number) + " (DEMO_INFO at event " +
+                      std::to_string(ep->info_event) + ") has no samples; dropped");
+        } else {
+            episodes->push_back(std::move(ep->episode));
+        }
+        ep->active = false;
+    }
+
+    std::string path_;
+    std::string stem_;
+    ReadResult* result_;
+    Warnings warn_;
+};
+
+// ---------------------------------------------------------------- CSV reader
+
+std::vector<std::string> SplitCsvLine(const std::string& line) {
+    std::vector<std::string> fields;
+    size_t start = 0;
+    for (;;) {
+        size_t comma = line.find(',', start);
+        if (comma == std::string::npos) {
+            fields.push_back(line.substr(start));
+            return fields;
+        }
+        fields.push_back(line.substr(start, comma - start));
+        start = comma + 1;
+    }
+}
+
+bool ParseFiniteDouble(const std::string& s, double* out) {
+    if (s.empty() || std::isspace(static_cast<unsigned char>(s[0])))
+        return false;
+    char* end = nullptr;
+    errno = 0;
+    double v = std::strtod(s.c_str(), &end);
+    if (end != s.c_str() + s.size() || errno == ERANGE || !std::isfinite(v))
+        return false;
+    *out = v;
+    return true;
+}
+
+bool ParseTask(const std::string& s, int* out) {
+    if (s == "avoid")
+        *out = GMMRRT_TASK_AVOID;
+    else if (s == "approach")
+        *out = GMMRRT_TASK_APPROACH;
+    else
+        return false;
+    return true;
+}
+
+bool ParseHomotopy(const std::string& s, int* out) {
+    if (s == "left")
+        *out = GMMRRT_HOMOTOPY_LEFT;
+    else if (s == "right")
+        *out = GMMRRT_HOMOTOPY_RIGHT;
+    else if (s == "frontal")
+        *out = GMMRRT_HOMOTOPY_FRONTAL;
+    else
+        return false;
+    return true;
+}
+
+void StripCr(std::string* line) {
+    if (!line->empty() && line->back() == '\r')
+        line->pop_back();
+}
+
+}  // namespace
+
+void EstimateHeadingsFromMotion(std::vector<PoseSample>* samples, double min_step_m) {
+    const size_t n = samples->size();
+    auto far_enough = [&](size_t a, size_t b) {
+        const PoseSample& p = (*samples)[a];
+        const PoseSample& q = (*samples)[b];
+        return std::hypot(q.robot_x - p.robot_x, q.robot_y - p.robot_y) >= min_step_m;
+    };
+    for (size_t i = 0; i < n; ++i) {
+        size_t back = i, fwd = i;
+        bool has_back = false, has_fwd = false;
+        for (size_t j = i; j-- > 0;) {
+            if (far_enough(j, i)) {
+                back = j;
+                has_back = true;
+                break;
+            }
+        }
+        for (size_t k = i + 1; k < n; ++k) {
+            if (far_enough(i, k)) {
+                fwd = k;
+                has_fwd = true;
+                break;
+            }
+        }
+        const PoseSample& a = (*samples)[has_back ? back : i];
+        const PoseSample& b = (*samples)[has_fwd ? fwd : i];
+        (*samples)[i].robot_yaw =
+            (has_back || has_fwd) ? std::atan2(b.robot_y - a.robot_y, b.robot_x - a.robot_x) : std::nan("");
+    }
+}
+
+ReadResult ReadEpisodeCsv(const std::string& path, std::vector<Episode>* out) {
+    std::ifstream in(path);
+    if (!in)
+        return Fail(path + ": cannot open: " + std::strerror(errno));
+    ReadResult result;
+    std::string line;
+    if (!std::getline(in, line))
+        return Fail(path + ": line 1: empty file (expected the header)");
+    StripCr(&line);
+    {
+        std::vector<std::string> header = SplitCsvLine(line);
+        bool good = header.size() == kCsvColumns;
+        for (size_t i = 0; good && i < kCsvColumns; ++i)
+            good = header[i] == kCsvHeader[i];
+        if (!good)
+            return Fail(path + ": line 1: header must be "
+                               "episode_id,task,homotopy,t,robot_x,robot_y,person_x,person_y,person_yaw");
+    }
+    std::vector<Episode> episodes;
+    std::set<std::string> finished;
+    size_t line_no = 1;
+    while (std::getline(in, line)) {
+        ++line_no;
+        StripCr(&line);
+        if (line.empty())
+            continue;
+        const std::string where = path + ": line " + std::to_string(line_no);
+        std::vector<std::string> f = SplitCsvLine(line);
+        if (f.size() != kCsvColumns)
+            return Fail(where + ": " + std::to_string(f.size()) + " columns, expected " +
+                        std::to_string(kCsvColumns));
+        if (f[0].empty())
+            return Fail(where + ": empty episode_id");
+        int task = 0, homotopy = 0;
+        if (!ParseTask(f[1], &task))
+            return Fail(where + ": unknown task '" + f[1] + "' (expected avoid or approach)");
+        if (!ParseHomotopy(f[2], &homotopy))
+            return Fail(where + ": unknown homotopy '" + f[2] + "' (expected left, right or frontal)");
+        double v[6];
+        for (size_t c = 3; c < kCsvColumns; ++c) {
+            if (!ParseFiniteDouble(f[c], &v[c - 3]))
+                return Fail(where + ": column " + kCsvHeader[c] + " = '" + f[c] + "' is not a finite number");
+        }
+        if (episodes.empty() || episodes.back().id != f[0]) {
+            if (!episodes.empty())
+                finished.insert(episodes.back().id);
+            if (finished.count(f[0]) != 0)
+                return Fail(where + ": episode '" + f[0] + "' appears again after other episodes");
+            Episode e;
+            e.id = f[0];
+            e.task = task;
+            e.homotopy = homotopy;
+            episodes.push_back(std::move(e));
+        }
+        Episode& e = episodes.back();
+        if (e.task != task || e.homotopy != homotopy)
+            return Fail(where + ": episode '" + e.id + "' changes its task or homotopy");
+        if (!e.samples.empty() && !(v[0] > e.samples.back().t_s))
+            return Fail(where + ": time does not increase in episode '" + e.id + "' (t = " + f[3] + ")");
+        PoseSample s;
+        s.t_s = v[0];
+        s.robot_x = v[1];
+        s.robot_y = v[2];
+        s.robot_yaw = std::nan("");
+        s.person_x = v[3];
+        s.person_y = v[4];
+        s.person_yaw = v[5];
+        e.samples.push_back(s);
+    }
+    if (in.bad())
+        return Fail(path + ": read error after line " + std::to_string(line_no));
+    if (episodes.empty())
+        return Fail(path + ": no episodes (only a header)");
+    for (Episode& e : episodes)
+        EstimateHeadingsFromMotion(&e.samples);
+    for (Episode& e : episodes)
+        out->push_back(std::move(e));
+    return result;
+}
+
+ReadResult ReadDemoLog(const std::string& path, std::vector<Episode>* out) {
+    ReadResult result;
+    std::vector<Episode> episodes;
+    LogReader reader(path, &result);
+    if (!reader.Run(&episodes))
+        return result;
+    for (Episode& e : episodes)
+        out->push_back(std::move(e));
+    return result;
+}
+
+ReadResult ReadEpisodes(const std::string& path, std::vector<Episode>* out) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        return Fail(path + ": cannot open: " + std::strerror(errno));
+    unsigned char magic[4] = {0, 0, 0, 0};
+    in.read(reinterpret_cast<char*>(magic), sizeof magic);
+    const bool is_log = in.gcount() == 4 && BigEndian32(magic) == kLcmSyncWord;
+    in.close();
+    return is_log ? ReadDemoLog(path, out) : ReadEpisodeCsv(path, out);
+}
+
+ReadResult ReadSplitIndex(const std::string& path, std::map<std::string, std::string>* split_by_episode) {
+    std::ifstream in(path);
+    if (!in)
+        return Fail(path + ": cannot open: " + std::strerror(errno));
+    std::string line;
+    if (!std::getline(in, line))
+        return Fail(path + ": line 1: empty file (expected a header with episode_id and split)");
+    StripCr(&line);
+    const std::vector<std::string> header = SplitCsvLine(line);
+    size_t id_col = header.size(), split_col = header.size();
+    for (size_t i = 0; i < header.size(); ++i) {
+        if (header[i] == "episode_id")
+            id_col = i;
+        else if (header[i] == "split")
+            split_col = i;
+    }
+    if (id_col == header.size() || split_col == header.size())
+        return Fail(path + ": line 1: header has no episode_id or no split column");
+    std::map<std::string, std::string> splits;
+    size_t line_no = 1;
+    while (std::getline(in, line)) {
+        ++line_no;
+        StripCr(&line);
+        if (line.empty())
+            continue;
+        const std::string where = path + ": line " + std::to_string(line_no);
+        const std::vector<std::string> f = SplitCsvLine(line);
+        if (f.size() != header.size())
+            return Fail(where + ": " + std::to_string(f.size()) + " columns, the header has " +
+                        std::to_string(header.size()));
+        if (f[id_col].empty() || f[split_col].empty())
+            return Fail(where + ": empty episode_id or split");
+        if (!splits.emplace(f[id_col], f[split_col]).second)
+            return Fail(where + ": episode '" + f[id_col] + "' is listed twice");
+    }
+    if (in.bad())
+        return Fail(path + ": read error after line " + std::to_string(line_no));
+    *split_by_episode = std::move(splits);
+    return ReadResult();
+}
+
+}  // namespace learn
+}  // namespace gmmrrt
