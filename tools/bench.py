@@ -123,6 +123,8 @@ def main(argv=None) -> int:
     ap.add_argument("--no-doc", action="store_true", help="do not write the Markdown report")
     ap.add_argument("--real-data", type=Path, default=os.environ.get("GMMRRT_REAL_DATA"),
                     help="real demonstrations for the task models (default $GMMRRT_REAL_DATA)")
+    ap.add_argument("--hand-built-models", action="store_true",
+                    help="use the hand-built task models even when the real data is there (fast: the smoke test)")
     args = ap.parse_args(argv)
 
     only = [s.strip() for s in args.only.split(",") if s.strip()]
@@ -135,8 +137,8 @@ def main(argv=None) -> int:
         ap.error("--time-ms must be in (0, 600000]")
     trials = args.trials or (3 if args.quick else 20)
     time_ms = args.time_ms or (200.0 if args.quick else 1000.0)
-    results_path = args.results or (build / "bench-results-quick.json" if args.quick else ROOT / "bench" / "results.json")
     build = args.build_dir.resolve()
+    results_path = args.results or (build / "bench-results-quick.json" if args.quick else ROOT / "bench" / "results.json")
     doc_path = None if args.no_doc else (args.doc or (None if args.quick else ROOT / "docs" / "benchmarks.md"))
     bin_dir = build / "bin"
     if not bin_dir.is_dir():
@@ -145,7 +147,9 @@ def main(argv=None) -> int:
     raw = build / "bench-raw"
     raw.mkdir(parents=True, exist_ok=True)
     real = args.real_data if args.real_data and Path(args.real_data).is_dir() else None
-    if args.real_data and real is None:
+    if args.hand_built_models:
+        real = None
+    elif args.real_data and real is None:
         print(f"bench: real data folder {args.real_data} not found: hand-built task models are used",
               file=sys.stderr)
 
