@@ -4,13 +4,16 @@
  *
  * Angle dimensions (model->angle_mask) use the wrapped normal of gmm.h: the difference
  * f_j - mu_j is first wrapped into (-pi, pi], then the images n in {-1, 0, 1} (times 2 pi)
- * of every angle dimension are summed. All component-image terms go through one
- * streaming log-sum-exp, so nothing underflows before the sum; a term more than
- * LSE_CUTOFF below the running maximum adds less than e^-40 (4e-18) relative and its
- * exp() is skipped, which is what makes the hot path cheap for far-away components.
+ * of every angle dimension are summed. All component-image terms are combined by
+ * log-sum-exp, so nothing underflows before the sum (far from the data log p stays
+ * finite); a term more than LSE_CUTOFF below the maximum adds less than e^-40 (4e-18)
+ * relative and its exp() is skipped, which is what makes the hot path cheap.
  *
- * D = 2 (the paper's (d, theta) features) has its own unrolled path. Nothing here
- * allocates or does I/O; the model must have been prepared (gmmrrt_model_prepare).
+ * D = 2 (the paper's (d, theta) features) has its own path: all 3K exponents first
+ * (plain arithmetic, no libm calls), then exp() only for the terms near the maximum;
+ * tests/bench/gmm measures it. Other D use a streaming log-sum-exp per component and
+ * image. Nothing here allocates or does I/O; the model must be prepared
+ * (gmmrrt_model_prepare). NaN features give a NaN log-density (task cost 1).
  */
 #include "gmmrrt/gmm.h"
 
@@ -22,7 +25,7 @@
 #define TWO_PI (2.0 * M_PI)
 #define LSE_CUTOFF 40.0
 
-/* Streaming log-sum-exp: value = max + log(sum). */
+/* Streaming log-sum-exp: value = max + log(sum). Callers keep NaN out. */
 typedef struct {
     double max;
     double sum;
@@ -44,6 +47,12 @@ static inline double lse_value(const lse_t *acc)
     return (acc->max == -INFINITY) ? -INFINITY : acc->max + log(acc->sum);
 }
 
+/* max without fmax(): a libm call unless fast-math; inputs here are never NaN. */
+static inline double max2(double a, double b)
+{
+    return a > b ? a : b;
+}
+
 /* f_j - mu_j into (-pi, pi] for f_j already in (-pi, pi] and mu_j in [-pi, pi]. */
 static inline double wrap_diff(double d)
 {
@@ -56,30 +65,77 @@ static inline double wrap_diff(double d)
 
 /* ------------------------------------------------------------------ D = 2 */
 
-static inline void add_component_2d(const gmmrrt_model_t *m, int32_t i, double f0, double f1,
-                                    unsigned a0, unsigned a1, lse_t *acc)
+/* Exponents log w_i - q/2 of every component and image at f = (f0, f1) (angles already
+ * wrapped into (-pi, pi]) into x[], returning their count; *max_out gets the largest.
+ * Branch-light arithmetic only: the exp() calls happen in one later pass, and only for
+ * terms within LSE_CUTOFF of the final maximum. */
+static int terms_2d(const gmmrrt_model_t *m, double f0, double f1, double *x, double *max_out)
 {
-    const double *inv = m->inv_chol[i];
-    const double c = m->log_coef[i];
-    double d0 = f0 - m->mean[i][0], d1 = f1 - m->mean[i][1];
-    if (a0)
-        d0 = wrap_diff(d0);
-    if (a1)
-        d1 = wrap_diff(d1);
-    if (!a0 && !a1) {
-        const double z0 = inv[0] * d0, z1 = inv[1] * d0 + inv[2] * d1;
-        lse_add(acc, c - 0.5 * (z0 * z0 + z1 * z1));
-        return;
+    const unsigned a0 = m->angle_mask & 1u, a1 = (m->angle_mask >> 1) & 1u;
+    const int32_t k = m->k;
+    double mx = -INFINITY;
+    int n = 0;
+    if (!a0 && a1) { /* the paper's features: d linear, theta an angle */
+        for (int32_t i = 0; i < k; ++i) {
+            const double *inv = m->inv_chol[i];
+            const double c = m->log_coef[i];
+            const double d0 = f0 - m->mean[i][0];
+            const double d1 = wrap_diff(f1 - m->mean[i][1]);
+            const double z0 = inv[0] * d0;
+            const double z1 = inv[1] * d0 + inv[2] * d1, step = inv[2] * TWO_PI;
+            const double base = c - 0.5 * z0 * z0;
+            const double zm = z1 - step, zp = z1 + step;
+            const double x0 = base - 0.5 * z1 * z1, xm = base - 0.5 * zm * zm, xp = base - 0.5 * zp * zp;
+            x[n] = x0;
+            x[n + 1] = xm;
+            x[n + 2] = xp;
+            n += 3;
+            mx = max2(mx, max2(x0, max2(xm, xp)));
+        }
+        *max_out = mx;
+        return n;
     }
     const int n0 = a0 ? 1 : 0, n1 = a1 ? 1 : 0;
-    for (int k0 = -n0; k0 <= n0; ++k0) {
-        const double x0 = d0 + TWO_PI * k0;
-        const double z0 = inv[0] * x0, part = inv[1] * x0;
-        for (int k1 = -n1; k1 <= n1; ++k1) {
-            const double z1 = part + inv[2] * (d1 + TWO_PI * k1);
-            lse_add(acc, c - 0.5 * (z0 * z0 + z1 * z1));
+    for (int32_t i = 0; i < k; ++i) {
+        const double *inv = m->inv_chol[i];
+        const double c = m->log_coef[i];
+        double d0 = f0 - m->mean[i][0], d1 = f1 - m->mean[i][1];
+        if (a0)
+            d0 = wrap_diff(d0);
+        if (a1)
+            d1 = wrap_diff(d1);
+        for (int k0 = -n0; k0 <= n0; ++k0) {
+            const double y0 = d0 + TWO_PI * k0;
+            const double z0 = inv[0] * y0, part = inv[1] * y0;
+            for (int k1 = -n1; k1 <= n1; ++k1) {
+                const double z1 = part + inv[2] * (d1 + TWO_PI * k1);
+                const double t = c - 0.5 * (z0 * z0 + z1 * z1);
+                x[n++] = t;
+                mx = max2(mx, t);
+            }
         }
     }
+    *max_out = mx;
+    return n;
+}
+
+static double log_density_2d(const gmmrrt_model_t *m, const double *f)
+{
+    double x[GMMRRT_MAX_K * 9];
+    const double f0 = (m->angle_mask & 1u) ? gmmrrt_wrap_angle(f[0]) : f[0];
+    const double f1 = (m->angle_mask & 2u) ? gmmrrt_wrap_angle(f[1]) : f[1];
+    if (isnan(f0) || isnan(f1))
+        return NAN; /* max2() below would drop NaN terms silently */
+    double mx;
+    const int n = terms_2d(m, f0, f1, x, &mx);
+    if (!(mx > -INFINITY))
+        return -INFINITY; /* every term underflowed (or infinite input) */
+    const double cut = mx - LSE_CUTOFF;
+    double s = 0.0;
+    for (int t = 0; t < n; ++t)
+        if (x[t] > cut)
+            s += exp(x[t] - mx);
+    return mx + log(s);
 }
 
 /* ------------------------------------------------------------------ any D */
@@ -128,10 +184,16 @@ static void add_component_nd(const gmmrrt_model_t *m, int32_t i, const double *f
     }
 }
 
-static void wrap_angles(const gmmrrt_model_t *m, const double *f, double *fw)
+/* fw = f with angle entries wrapped into (-pi, pi]; returns 0 when f holds a NaN (the
+ * streaming log-sum-exp would not carry a NaN term through to the result). */
+static int wrap_angles(const gmmrrt_model_t *m, const double *f, double *fw)
 {
-    for (int32_t j = 0; j < m->dim; ++j)
+    int ok = 1;
+    for (int32_t j = 0; j < m->dim; ++j) {
         fw[j] = ((m->angle_mask >> j) & 1u) ? gmmrrt_wrap_angle(f[j]) : f[j];
+        ok &= !isnan(fw[j]);
+    }
+    return ok;
 }
 
 /* ------------------------------------------------------------------ public */
@@ -139,18 +201,13 @@ static void wrap_angles(const gmmrrt_model_t *m, const double *f, double *fw)
 double gmmrrt_gmm_log_density(const gmmrrt_model_t *model, const double *f)
 {
     assert(model != NULL && f != NULL);
+    if (model->dim == 2)
+        return log_density_2d(model, f);
     lse_t acc = {-INFINITY, 0.0};
     const int32_t k = model->k;
-    if (model->dim == 2) {
-        const unsigned a0 = model->angle_mask & 1u, a1 = (model->angle_mask >> 1) & 1u;
-        const double f0 = a0 ? gmmrrt_wrap_angle(f[0]) : f[0];
-        const double f1 = a1 ? gmmrrt_wrap_angle(f[1]) : f[1];
-        for (int32_t i = 0; i < k; ++i)
-            add_component_2d(model, i, f0, f1, a0, a1, &acc);
-        return lse_value(&acc);
-    }
     double fw[GMMRRT_MAX_DIM];
-    wrap_angles(model, f, fw);
+    if (!wrap_angles(model, f, fw))
+        return NAN;
     for (int32_t i = 0; i < k; ++i)
         add_component_nd(model, i, fw, &acc);
     return lse_value(&acc);
@@ -168,7 +225,8 @@ double gmmrrt_gmm_component_log_density(const gmmrrt_model_t *model, int32_t i, 
         return NAN;
     lse_t acc = {-INFINITY, 0.0};
     double fw[GMMRRT_MAX_DIM];
-    wrap_angles(model, f, fw);
+    if (!wrap_angles(model, f, fw))
+        return NAN;
     add_component_nd(model, i, fw, &acc);
     return lse_value(&acc);
 }

@@ -22,7 +22,8 @@
 extern "C" {
 #endif
 
-/* log p(f); -INFINITY only where every component underflows. */
+/* log p(f); -INFINITY only where every component underflows. A NaN in f gives NaN
+ * (and gmmrrt_gmm_task_cost gives 1 there). */
 double gmmrrt_gmm_log_density(const gmmrrt_model_t *model, const double *f);
 
 /* p(f) = exp(log p(f)). */

@@ -12,6 +12,7 @@
 #include <cmocka.h>
 
 #include "gmmrrt/model.h"
+#include "gmmrrt/rng.h"
 #include "model_fixture.h"
 
 /* Byte offsets in the fixture features file (D = 2, K = 3). */
@@ -417,6 +418,67 @@ static void test_rules_are_checked_in_the_documented_order(void **state)
     f = fresh(); f.b[OFF_KIND] = 9; expect_status(f.b, sizeof f.b, GMMRRT_ERR_MODEL_BAD_CHECKSUM, NULL);
 }
 
+/* Random multi-field mutations with the CRC recomputed, so they reach the field and number
+ * checks behind the checksum: decode must never crash (the sanitizer build watches reads),
+ * and whatever it accepts must be a valid, prepared model that re-encodes to the same bytes. */
+static void test_random_mutations_with_valid_crc_are_rejected_or_valid(void **state)
+{
+    (void)state;
+    static const double specials[] = {0.0, -0.0, 1.0, -1.0, 0.5, 2.0, 1e-300, 1e300, 4.9e-324,
+                                      3.1415926535897931, 3.2, -3.2, 1e9, NAN, INFINITY, -INFINITY};
+    const size_t n_specials = sizeof specials / sizeof specials[0];
+    gmmrrt_model_t fixtures[2];
+    fixture_features_model(&fixtures[0]);
+    fixture_generic_d4_model(&fixtures[1]);
+    gmmrrt_rng_t rng;
+    gmmrrt_rng_seed(&rng, 8675309);
+    long seen[64] = {0};
+    for (int iter = 0; iter < 200000; ++iter) {
+        uint8_t buf[1024], again[1024];
+        size_t len = 0, len2 = 0;
+        char err[256];
+        assert_int_equal(gmmrrt_model_encode(&fixtures[iter & 1], buf, sizeof buf, &len, err, sizeof err), GMMRRT_OK);
+        const int n_mut = 1 + (int)(gmmrrt_rng_next_u64(&rng) % 3);
+        for (int k = 0; k < n_mut; ++k) {
+            const uint64_t r = gmmrrt_rng_next_u64(&rng);
+            if (r % 3 == 0) { /* one header byte (12..23) to a random value */
+                buf[12 + (r >> 8) % 12] = (uint8_t)(r >> 40);
+            } else { /* one f64 slot (delta or any number) to a special value */
+                const size_t slots = (len - 4 - 24) / 8;
+                le_put_f64(buf + 24 + 8 * ((r >> 8) % slots), specials[(r >> 40) % n_specials]);
+            }
+        }
+        refresh_crc(buf, len);
+        static gmmrrt_model_t m;
+        const gmmrrt_status_t st = decode_exact(buf, len, &m, err, sizeof err);
+        assert_true(st >= 0 && st < 64);
+        ++seen[st];
+        if (st != GMMRRT_OK) {
+            if (err[0] == '\0')
+                fail_msg("status %d without a message", st);
+            continue;
+        }
+        double sum = 0.0;
+        for (int i = 0; i < m.k; ++i) {
+            sum += m.weight[i];
+            assert_true(isfinite(m.log_coef[i]));
+            for (int t = 0; t < GMMRRT_TRI(m.dim); ++t)
+                assert_true(isfinite(m.inv_chol[i][t]));
+        }
+        assert_true(fabs(sum - 1.0) <= 1e-9 && m.cum_weight[m.k - 1] == 1.0 && m.delta > 0.0);
+        assert_int_equal(gmmrrt_model_encode(&m, again, sizeof again, &len2, err, sizeof err), GMMRRT_OK);
+        assert_int_equal(len2, len);
+        assert_memory_equal(again, buf, len);
+    }
+    /* The mutations reached every check behind the CRC. */
+    const gmmrrt_status_t deep[] = {GMMRRT_OK, GMMRRT_ERR_MODEL_BAD_SIZE, GMMRRT_ERR_MODEL_BAD_FIELD,
+                                    GMMRRT_ERR_MODEL_NOT_FINITE, GMMRRT_ERR_MODEL_BAD_WEIGHTS,
+                                    GMMRRT_ERR_MODEL_NOT_POSITIVE_DEFINITE, GMMRRT_ERR_MODEL_TRUNCATED};
+    for (size_t i = 0; i < sizeof deep / sizeof deep[0]; ++i)
+        if (seen[deep[i]] == 0)
+            fail_msg("no mutation gave status %d (%s)", deep[i], gmmrrt_status_str(deep[i]));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -434,6 +496,7 @@ int main(void)
         cmocka_unit_test(test_field_rules_each_give_their_status),
         cmocka_unit_test(test_number_rules_each_give_their_status),
         cmocka_unit_test(test_rules_are_checked_in_the_documented_order),
+        cmocka_unit_test(test_random_mutations_with_valid_crc_are_rejected_or_valid),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,519 @@
+/* planner.gmm: density, log-density, task cost and sampling of the mixture (gmm.h).
+ * Oracles: a closed form; a brute-force wrapped normal written here (forward substitution
+ * with L, images n in -3..3 of the raw difference); the shared test vectors of
+ * tests/data/model_vectors/ made with numpy/scipy; numerical quadrature (the density
+ * integrates to 1); and sample moments against the model (five standard errors). */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "gmmrrt/features.h"
+#include "gmmrrt/gmm.h"
+#include "../model/model_fixture.h"
+
+static void prepare_or_fail(gmmrrt_model_t *m)
+{
+    char err[256];
+    if (gmmrrt_model_prepare(m, err, sizeof err) != GMMRRT_OK)
+        fail_msg("prepare: %s", err);
+}
+
+static void assert_rel(double got, double want, double rel, const char *what)
+{
+    if (!(fabs(got - want) <= rel * fmax(1.0, fabs(want))))
+        fail_msg("%s: got %.17g, want %.17g (tolerance %g relative)", what, got, want, rel);
+}
+
+/* log sum_i w_i sum_n N(x_i + 2 pi n; 0, L L^T), by direct forward substitution on L (not
+ * the prepared inverse), accumulated in log space. `images` = 3: x_i = f - mu_i and
+ * n in -3..3 per angle dimension (closer to the exact wrapped normal than gmm.h);
+ * `images` = 1: gmm.h's truncation, x_i wrapped into (-pi, pi] and n in -1..1. */
+static double brute_log_density_images(const gmmrrt_model_t *m, const double *f, int images)
+{
+    const int d = m->dim;
+    int angle[GMMRRT_MAX_DIM], na = 0;
+    for (int j = 0; j < d; ++j)
+        if ((m->angle_mask >> j) & 1u)
+            angle[na++] = j;
+    const int span = 2 * images + 1;
+    int combos = 1;
+    for (int a = 0; a < na; ++a)
+        combos *= span;
+    double terms[4096];
+    int nt = 0;
+    for (int i = 0; i < m->k; ++i) {
+        double log_det_half = 0.0;
+        for (int j = 0; j < d; ++j)
+            log_det_half += log(m->chol[i][GMMRRT_TRI(j) + j]);
+        for (int c = 0; c < combos; ++c) {
+            double x[GMMRRT_MAX_DIM], z[GMMRRT_MAX_DIM];
+            for (int j = 0; j < d; ++j)
+                x[j] = f[j] - m->mean[i][j];
+            int rest = c;
+            for (int a = 0; a < na; ++a) {
+                if (images == 1)
+                    x[angle[a]] = gmmrrt_wrap_angle(x[angle[a]]);
+                x[angle[a]] += 2.0 * M_PI * (rest % span - images);
+                rest /= span;
+            }
+            double q = 0.0;
+            for (int r = 0; r < d; ++r) {
+                double acc = x[r];
+                for (int s = 0; s < r; ++s)
+                    acc -= m->chol[i][GMMRRT_TRI(r) + s] * z[s];
+                z[r] = acc / m->chol[i][GMMRRT_TRI(r) + r];
+                q += z[r] * z[r];
+            }
+            assert_true(nt < 4096);
+            terms[nt++] = log(m->weight[i]) - 0.5 * d * log(2.0 * M_PI) - log_det_half - 0.5 * q;
+        }
+    }
+    double mx = -INFINITY, s = 0.0;
+    for (int t = 0; t < nt; ++t)
+        mx = fmax(mx, terms[t]);
+    for (int t = 0; t < nt; ++t)
+        s += exp(terms[t] - mx);
+    return mx + log(s);
+}
+
+static double brute_log_density(const gmmrrt_model_t *m, const double *f)
+{
+    return brute_log_density_images(m, f, 3);
+}
+
+/* ------------------------------------------------------------------ density */
+
+static void test_single_gaussian_matches_closed_form(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    memset(&m, 0, sizeof m);
+    m.kind = GMMRRT_MODEL_KIND_GENERIC;
+    m.dim = 1;
+    m.k = 1;
+    m.delta = 1e-3;
+    m.weight[0] = 1.0;
+    m.mean[0][0] = 0.5;
+    m.chol[0][0] = 2.0;
+    prepare_or_fail(&m);
+    for (double x = -10.0; x <= 10.0; x += 0.37) {
+        const double want = -0.5 * ((x - 0.5) / 2.0) * ((x - 0.5) / 2.0) - log(2.0) - 0.5 * log(2.0 * M_PI);
+        assert_rel(gmmrrt_gmm_log_density(&m, &x), want, 1e-14, "log N");
+        assert_rel(gmmrrt_gmm_density(&m, &x), exp(want), 1e-14, "N");
+        assert_rel(gmmrrt_gmm_component_log_density(&m, 0, &x), want, 1e-14, "component");
+    }
+}
+
+static void test_features_log_density_matches_brute_force_wrapped_sum(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_features_model(&m);
+    prepare_or_fail(&m);
+    for (double d = 0.0; d <= 5.0; d += 0.25)
+        for (double th = -M_PI + 1e-9; th <= M_PI; th += 0.13) {
+            const double f[2] = {d, th};
+            assert_rel(gmmrrt_gmm_log_density(&m, f), brute_log_density(&m, f), 1e-11, "log p(d, theta)");
+        }
+}
+
+static void test_generic_d4_log_density_matches_brute_force(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_generic_d4_model(&m);
+    prepare_or_fail(&m);
+    gmmrrt_rng_t rng;
+    gmmrrt_rng_seed(&rng, 11);
+    for (int t = 0; t < 2000; ++t) {
+        double f[4];
+        for (int j = 0; j < 4; ++j)
+            f[j] = 3.0 * gmmrrt_rng_normal(&rng);
+        f[2] = gmmrrt_wrap_angle(f[2]);
+        assert_rel(gmmrrt_gmm_log_density(&m, f), brute_log_density(&m, f), 1e-11, "log p(f), D = 4");
+    }
+}
+
+/* The unrolled D = 2 path against the general path (component by component). */
+static void test_2d_fast_path_agrees_with_general_path_for_every_angle_mask(void **state)
+{
+    (void)state;
+    for (uint32_t mask = 0; mask < 4; ++mask) {
+        gmmrrt_model_t m;
+        fixture_features_model(&m);
+        m.kind = GMMRRT_MODEL_KIND_GENERIC;
+        m.angle_mask = mask;
+        m.mean[0][0] = 0.5; /* an angle too when bit 0 is set */
+        prepare_or_fail(&m);
+        gmmrrt_rng_t rng;
+        gmmrrt_rng_seed(&rng, 100 + mask);
+        for (int t = 0; t < 500; ++t) {
+            const double f[2] = {4.0 * gmmrrt_rng_uniform(&rng) - 1.0, 7.0 * gmmrrt_rng_uniform(&rng) - 3.5};
+            double mx = -INFINITY, s = 0.0, c[3];
+            for (int i = 0; i < 3; ++i) {
+                c[i] = gmmrrt_gmm_component_log_density(&m, i, f);
+                mx = fmax(mx, c[i]);
+            }
+            for (int i = 0; i < 3; ++i)
+                s += exp(c[i] - mx);
+            assert_rel(gmmrrt_gmm_log_density(&m, f), mx + log(s), 1e-12, "2-D path vs general");
+            assert_rel(gmmrrt_gmm_log_density(&m, f), brute_log_density(&m, f), 1e-11, "2-D path vs brute");
+        }
+    }
+}
+
+static void test_density_is_continuous_across_the_seam(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_features_model(&m);
+    prepare_or_fail(&m);
+    for (double d = 0.2; d < 5.0; d += 0.1) {
+        const double at_pi[2] = {d, M_PI}, just_below[2] = {d, M_PI - 1e-10},
+                     just_above[2] = {d, -M_PI + 1e-10}, at_minus_pi[2] = {d, -M_PI},
+                     three_pi[2] = {d, 3.0 * M_PI}, near_seam[2] = {d, M_PI - 0.01};
+        const double p = gmmrrt_gmm_density(&m, at_pi);
+        assert_true(p > 0.0);
+        assert_rel(gmmrrt_gmm_density(&m, just_below) / p, 1.0, 1e-8, "theta -> pi from below");
+        assert_rel(gmmrrt_gmm_density(&m, just_above) / p, 1.0, 1e-8, "theta -> -pi from above");
+        assert_rel(gmmrrt_gmm_density(&m, at_minus_pi) / p, 1.0, 1e-12, "theta = -pi");
+        assert_rel(gmmrrt_gmm_density(&m, three_pi) / p, 1.0, 1e-12, "theta = 3 pi");
+        /* Component 1 straddles the seam: the density there is not small. */
+        assert_true(gmmrrt_gmm_density(&m, near_seam) > 0.0);
+    }
+    const double f[2] = {2.5, M_PI};
+    assert_true(gmmrrt_gmm_density(&m, f) > 0.05);
+}
+
+/* Quadrature over d in [0, 9] (Simpson) x theta in (-pi, pi] (rectangle rule, exact to
+ * spectral accuracy for a periodic integrand). */
+static double integrate_features_density(const gmmrrt_model_t *m)
+{
+    const int nd = 900, nt = 720;
+    const double d_max = 9.0, hd = d_max / nd, ht = 2.0 * M_PI / nt;
+    double total = 0.0;
+    for (int a = 0; a <= nd; ++a) {
+        const double w = (a == 0 || a == nd) ? 1.0 : (a % 2 ? 4.0 : 2.0);
+        double row = 0.0;
+        for (int b = 0; b < nt; ++b) {
+            const double f[2] = {a * hd, -M_PI + (b + 1) * ht};
+            row += gmmrrt_gmm_density(m, f);
+        }
+        total += w * row * ht;
+    }
+    return total * hd / 3.0;
+}
+
+static void test_density_integrates_to_one(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_features_model(&m);
+    prepare_or_fail(&m);
+    /* Mass below d = 0 is below 1e-6 for the fixture (means >= 5 sigma_d from 0). */
+    assert_rel(integrate_features_density(&m), 1.0, 2e-6, "integral of p over d >= 0, theta");
+    /* The widest angle gmm.h allows (sigma_theta = pi/2), centred on the seam. */
+    fixture_features_model(&m);
+    m.mean[1][1] = M_PI;
+    m.chol[1][1] = 0.0;
+    m.chol[1][2] = M_PI / 2;
+    prepare_or_fail(&m);
+    assert_rel(integrate_features_density(&m), 1.0, 1e-6, "integral with sigma_theta = pi/2");
+}
+
+static void test_far_points_keep_a_finite_log_density(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_features_model(&m);
+    prepare_or_fail(&m);
+    const double f[2] = {300.0, 0.3};
+    const double lp = gmmrrt_gmm_log_density(&m, f);
+    assert_true(isfinite(lp) && lp < -1e5);
+    /* So far out, d and theta's correlation makes images beyond n = +-1 dominate: compare
+     * with the truncation gmm.h documents, not with the exact wrapped normal. */
+    assert_rel(lp, brute_log_density_images(&m, f, 1), 1e-12, "far log-density");
+    assert_true(gmmrrt_gmm_density(&m, f) == 0.0);
+    assert_true(gmmrrt_gmm_task_cost(&m, f, m.delta) == 1.0);
+    assert_true(isnan(gmmrrt_gmm_component_log_density(&m, 3, f)));
+}
+
+static void test_task_cost_is_delta_over_max_p_delta(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_features_model(&m);
+    prepare_or_fail(&m);
+    int below = 0, above = 0;
+    for (double d = 0.0; d <= 6.0; d += 0.1)
+        for (double th = -M_PI + 0.05; th <= M_PI; th += 0.1) {
+            const double f[2] = {d, th};
+            const double p = gmmrrt_gmm_density(&m, f);
+            for (int t = 0; t < 3; ++t) {
+                const double delta = (t == 0) ? m.delta : (t == 1 ? 1e-6 : 0.05);
+                const double c = gmmrrt_gmm_task_cost(&m, f, delta);
+                assert_true(c > 0.0 && c <= 1.0);
+                assert_rel(c, delta / fmax(p, delta), 1e-14, "c = delta / max(p, delta)");
+                below += (p < delta);
+                above += (p > delta);
+            }
+        }
+    assert_true(below > 0 && above > 0); /* both branches were exercised */
+    const double nan_f[2] = {NAN, 0.0};
+    assert_true(gmmrrt_gmm_task_cost(&m, nan_f, m.delta) == 1.0);
+}
+
+static void test_nan_features_give_nan_log_density_in_every_path(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_features_model(&m);
+    prepare_or_fail(&m);
+    const double nan_d[2] = {NAN, 0.5}, nan_theta[2] = {1.0, NAN};
+    assert_true(isnan(gmmrrt_gmm_log_density(&m, nan_d)));
+    assert_true(isnan(gmmrrt_gmm_log_density(&m, nan_theta)));
+    assert_true(isnan(gmmrrt_gmm_component_log_density(&m, 1, nan_theta)));
+    fixture_generic_d4_model(&m);
+    prepare_or_fail(&m);
+    for (int j = 0; j < 4; ++j) {
+        double f[4] = {0.0, 1.0, 3.0, 2.0};
+        f[j] = NAN;
+        assert_true(isnan(gmmrrt_gmm_log_density(&m, f)));
+        assert_true(gmmrrt_gmm_task_cost(&m, f, m.delta) == 1.0);
+    }
+}
+
+/* ------------------------------------------------------------------ shared vectors */
+
+static void check_vector_file(const char *name)
+{
+    const char *dir = getenv("GMMRRT_TEST_DATA_DIR");
+    if (dir == NULL)
+        fail_msg("GMMRRT_TEST_DATA_DIR is not set (run through ctest)");
+    char path[1024];
+    snprintf(path, sizeof path, "%s/model_vectors/%s.gmm", dir, name);
+    FILE *fp = fopen(path, "rb");
+    if (fp == NULL)
+        fail_msg("cannot open %s", path);
+    static uint8_t buf[1 << 16];
+    const size_t len = fread(buf, 1, sizeof buf, fp);
+    fclose(fp);
+    static gmmrrt_model_t m;
+    char err[256];
+    if (gmmrrt_model_decode(buf, len, &m, err, sizeof err) != GMMRRT_OK)
+        fail_msg("%s: %s", path, err);
+
+    snprintf(path, sizeof path, "%s/model_vectors/%s.csv", dir, name);
+    fp = fopen(path, "r");
+    if (fp == NULL)
+        fail_msg("cannot open %s", path);
+    char line[4096];
+    assert_non_null(fgets(line, sizeof line, fp)); /* header */
+    int rows = 0, seam_rows = 0;
+    double worst = 0.0;
+    while (fgets(line, sizeof line, fp) != NULL) {
+        double v[GMMRRT_MAX_DIM + 1];
+        char *p = line, *end;
+        for (int j = 0; j <= m.dim; ++j) {
+            v[j] = strtod(p, &end);
+            if (end == p)
+                fail_msg("%s:%d: bad number", path, rows + 2);
+            p = end + 1;
+        }
+        const double got = gmmrrt_gmm_log_density(&m, v), want = v[m.dim];
+        const double rel = fabs(got - want) / fmax(1.0, fabs(want));
+        worst = fmax(worst, rel);
+        if (!(rel <= 1e-9))
+            fail_msg("%s:%d: log p = %.17g, expected %.17g", path, rows + 2, got, want);
+        for (int j = 0; j < m.dim; ++j)
+            seam_rows += ((m.angle_mask >> j) & 1u) && fabs(v[j]) > M_PI - 1e-6;
+        ++rows;
+    }
+    fclose(fp);
+    assert_true(rows >= 100);
+    if (m.angle_mask != 0)
+        assert_true(seam_rows > 0);
+    print_message("%s: %d points, worst relative error %.2g\n", name, rows, worst);
+}
+
+static void test_shared_vectors_features_seam(void **state)
+{
+    (void)state;
+    check_vector_file("features_seam");
+}
+
+static void test_shared_vectors_xy(void **state)
+{
+    (void)state;
+    check_vector_file("xy");
+}
+
+static void test_shared_vectors_generic_d4(void **state)
+{
+    (void)state;
+    check_vector_file("generic_d4");
+}
+
+/* ------------------------------------------------------------------ sampling */
+
+#define N_SAMPLES 200000
+
+/* Mean and covariance of component i's samples (angle coordinates as wrapped differences
+ * from the mean) against mu_i and L L^T, within five standard errors. */
+static void check_component_moments(const gmmrrt_model_t *m, int i, uint64_t seed)
+{
+    const int d = m->dim;
+    double sigma[GMMRRT_MAX_DIM][GMMRRT_MAX_DIM] = {{0}};
+    for (int r = 0; r < d; ++r)
+        for (int c = 0; c < d; ++c)
+            for (int s = 0; s <= (r < c ? r : c); ++s)
+                sigma[r][c] += m->chol[i][GMMRRT_TRI(r) + s] * m->chol[i][GMMRRT_TRI(c) + s];
+    double s1[GMMRRT_MAX_DIM] = {0}, s2[GMMRRT_MAX_DIM][GMMRRT_MAX_DIM] = {{0}};
+    gmmrrt_rng_t rng;
+    gmmrrt_rng_seed(&rng, seed);
+    for (int n = 0; n < N_SAMPLES; ++n) {
+        double f[GMMRRT_MAX_DIM], e[GMMRRT_MAX_DIM];
+        gmmrrt_gmm_sample_component(m, i, &rng, f);
+        for (int j = 0; j < d; ++j) {
+            const int is_angle = (m->angle_mask >> j) & 1u;
+            if (is_angle && !(f[j] > -M_PI && f[j] <= M_PI))
+                fail_msg("sample angle %g outside (-pi, pi]", f[j]);
+            e[j] = is_angle ? gmmrrt_wrap_angle(f[j] - m->mean[i][j]) : f[j] - m->mean[i][j];
+            s1[j] += e[j];
+        }
+        for (int r = 0; r < d; ++r)
+            for (int c = 0; c < d; ++c)
+                s2[r][c] += e[r] * e[c];
+    }
+    for (int r = 0; r < d; ++r) {
+        const double mean = s1[r] / N_SAMPLES;
+        if (!(fabs(mean) <= 5.0 * sqrt(sigma[r][r] / N_SAMPLES)))
+            fail_msg("component %d: mean[%d] off by %g", i, r, mean);
+        for (int c = 0; c < d; ++c) {
+            const double cov = s2[r][c] / N_SAMPLES - mean * s1[c] / N_SAMPLES;
+            const double se = sqrt((sigma[r][r] * sigma[c][c] + sigma[r][c] * sigma[r][c]) / N_SAMPLES);
+            if (!(fabs(cov - sigma[r][c]) <= 5.0 * se))
+                fail_msg("component %d: cov[%d][%d] = %g, model %g", i, r, c, cov, sigma[r][c]);
+        }
+    }
+}
+
+static void test_component_samples_match_mean_and_covariance(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_features_model(&m);
+    prepare_or_fail(&m);
+    for (int i = 0; i < m.k; ++i)
+        check_component_moments(&m, i, 500 + (uint64_t)i);
+    fixture_generic_d4_model(&m);
+    prepare_or_fail(&m);
+    for (int i = 0; i < m.k; ++i)
+        check_component_moments(&m, i, 600 + (uint64_t)i);
+}
+
+/* A wide component on the seam: circular moments of the wrapped normal,
+ * E[cos theta] = cos(mu) exp(-sigma^2 / 2), E[sin theta] = sin(mu) exp(-sigma^2 / 2). */
+static void test_seam_samples_are_wrapped_with_circular_moments(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_features_model(&m);
+    m.mean[1][1] = M_PI - 0.1;
+    m.chol[1][1] = 0.0;
+    m.chol[1][2] = 1.0; /* sigma_theta = 1 */
+    prepare_or_fail(&m);
+    gmmrrt_rng_t rng;
+    gmmrrt_rng_seed(&rng, 99);
+    double sc = 0.0, ss = 0.0;
+    long pos = 0, neg = 0;
+    for (int n = 0; n < N_SAMPLES; ++n) {
+        double f[2];
+        gmmrrt_gmm_sample_component(&m, 1, &rng, f);
+        assert_true(f[1] > -M_PI && f[1] <= M_PI);
+        sc += cos(f[1]);
+        ss += sin(f[1]);
+        pos += f[1] > 2.0;
+        neg += f[1] < -2.0;
+    }
+    const double shrink = exp(-0.5);
+    const double tol = 5.0 * sqrt(0.5 / N_SAMPLES); /* var(cos), var(sin) <= 1/2 here */
+    if (!(fabs(sc / N_SAMPLES - cos(m.mean[1][1]) * shrink) <= tol))
+        fail_msg("E[cos theta] = %g, want %g", sc / N_SAMPLES, cos(m.mean[1][1]) * shrink);
+    if (!(fabs(ss / N_SAMPLES - sin(m.mean[1][1]) * shrink) <= tol))
+        fail_msg("E[sin theta] = %g, want %g", ss / N_SAMPLES, sin(m.mean[1][1]) * shrink);
+    assert_true(pos > N_SAMPLES / 10 && neg > N_SAMPLES / 10); /* both sides of the seam */
+}
+
+static void test_mixture_samples_pick_components_by_weight(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_features_model(&m);
+    prepare_or_fail(&m);
+    gmmrrt_rng_t rng;
+    gmmrrt_rng_seed(&rng, 5);
+    long count[3] = {0};
+    for (int n = 0; n < N_SAMPLES; ++n) {
+        double f[2];
+        const int32_t i = gmmrrt_gmm_sample(&m, &rng, f);
+        assert_true(i >= 0 && i < 3);
+        ++count[i];
+        assert_true(isfinite(f[0]) && f[1] > -M_PI && f[1] <= M_PI);
+    }
+    for (int i = 0; i < 3; ++i) {
+        const double w = m.weight[i], frac = (double)count[i] / N_SAMPLES;
+        if (!(fabs(frac - w) <= 5.0 * sqrt(w * (1.0 - w) / N_SAMPLES)))
+            fail_msg("component %d drawn %.4f of the time, weight %.4f", i, frac, w);
+    }
+}
+
+static void test_same_seed_same_samples(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_generic_d4_model(&m);
+    prepare_or_fail(&m);
+    gmmrrt_rng_t a, b, c;
+    gmmrrt_rng_seed(&a, 31337);
+    gmmrrt_rng_seed(&b, 31337);
+    gmmrrt_rng_seed(&c, 31338);
+    int differ = 0;
+    for (int n = 0; n < 1000; ++n) {
+        double fa[4], fb[4], fc[4];
+        const int32_t ia = gmmrrt_gmm_sample(&m, &a, fa), ib = gmmrrt_gmm_sample(&m, &b, fb);
+        (void)gmmrrt_gmm_sample(&m, &c, fc);
+        assert_int_equal(ia, ib);
+        assert_memory_equal(fa, fb, sizeof fa);
+        differ += memcmp(fa, fc, sizeof fa) != 0;
+    }
+    assert_true(differ > 990);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_single_gaussian_matches_closed_form),
+        cmocka_unit_test(test_features_log_density_matches_brute_force_wrapped_sum),
+        cmocka_unit_test(test_generic_d4_log_density_matches_brute_force),
+        cmocka_unit_test(test_2d_fast_path_agrees_with_general_path_for_every_angle_mask),
+        cmocka_unit_test(test_density_is_continuous_across_the_seam),
+        cmocka_unit_test(test_density_integrates_to_one),
+        cmocka_unit_test(test_far_points_keep_a_finite_log_density),
+        cmocka_unit_test(test_task_cost_is_delta_over_max_p_delta),
+        cmocka_unit_test(test_nan_features_give_nan_log_density_in_every_path),
+        cmocka_unit_test(test_shared_vectors_features_seam),
+        cmocka_unit_test(test_shared_vectors_xy),
+        cmocka_unit_test(test_shared_vectors_generic_d4),
+        cmocka_unit_test(test_component_samples_match_mean_and_covariance),
+        cmocka_unit_test(test_seam_samples_are_wrapped_with_circular_moments),
+        cmocka_unit_test(test_mixture_samples_pick_components_by_weight),
+        cmocka_unit_test(test_same_seed_same_samples),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
