@@ -39,7 +39,8 @@ const char kFitHelp[] =
     "  -k, --k N|auto          components (default 19, the paper's); auto = BIC sweep\n"
     "  -r, --k-range A..B      range of the BIC sweep (default 1..30; implies --k auto)\n"
     "  -S, --seed S            random seed (default 1); same seed, same model\n"
-    "  -R, --restarts N        k-means++ restarts, best kept (default 4)\n"
+    "  -R, --restarts N        candidate starts (k-means++ + Lloyd + 20 EM steps each); the\n"
+    "                          best log-likelihood is run to convergence (default 4)\n"
     "  -m, --max-iter N        EM iteration cap (default 500)\n"
     "  -T, --tol X             stop when the mean log-likelihood per point changes < X\n"
     "                          (default 1e-6)\n"
@@ -176,8 +177,8 @@ int RunFit(int argc, char** argv) {
   if (!(s = LoadPoints(cmd, spec, &points, &mask)).ok()) return Fail(cmd, s.message);
 
   if (!spec.quiet) {
-    options.progress = [&](int it, double ll) {
-      std::fprintf(stderr, "iteration %4d  mean log-likelihood %.10f\n", it, ll);
+    options.progress = [](int restart, int it, double ll) {
+      std::fprintf(stderr, "restart %d iteration %4d  mean log-likelihood %.10f\n", restart, it, ll);
     };
   }
   options.warn = [](const std::string& w) { std::fprintf(stderr, "warning: %s\n", w.c_str()); };

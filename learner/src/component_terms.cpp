@@ -33,37 +33,75 @@ void Prepare(const Mixture& m, PreparedMixture* p) {
 
 void ComponentDelta(const Mixture& m, int i, const Eigen::Ref<const Eigen::MatrixXd>& block,
                     Eigen::MatrixXd* delta) {
-  *delta = block.colwise() - m.means.col(i);
-  WrapAngleRows(m.angle_mask, delta);
+  delta->resize(block.rows(), block.cols());
+  for (Eigen::Index c = 0; c < block.cols(); ++c) {
+    delta->col(c) = block.col(c).array() - m.means(c, i);
+    if (c < 32 && ((m.angle_mask >> c) & 1u)) {
+      double* v = delta->col(c).data();
+      for (Eigen::Index r = 0; r < block.rows(); ++r) v[r] = gmmrrt_wrap_angle(v[r]);
+    }
+  }
 }
 
 void LogTerms(const Mixture& m, const PreparedMixture& p,
-              const Eigen::Ref<const Eigen::MatrixXd>& block, Eigen::MatrixXd* terms) {
-  const Eigen::Index b = block.cols();
+              const Eigen::Ref<const Eigen::MatrixXd>& block, Eigen::MatrixXd* terms,
+              std::vector<Eigen::MatrixXd>* deltas) {
+  const Eigen::Index b = block.rows();
+  const int d = p.dim;
   terms->resize(b, static_cast<Eigen::Index>(p.k) * p.images);
-  Eigen::MatrixXd delta, z;
+  if (deltas) deltas->resize(p.k);
+  Eigen::MatrixXd local_delta;
+  Eigen::ArrayXXd z(b, d);
+  Eigen::ArrayXd maha(b);
   for (int i = 0; i < p.k; ++i) {
+    Eigen::MatrixXd& delta = deltas ? (*deltas)[i] : local_delta;
     ComponentDelta(m, i, block, &delta);
-    z.noalias() = p.inv_chol[i].triangularView<Eigen::Lower>() * delta;
+    const Eigen::MatrixXd& li = p.inv_chol[i];
+    for (int r = 0; r < d; ++r) {  // z = delta L^-T, row by row of L^-1 (lower triangular)
+      z.col(r) = li(r, 0) * delta.col(0).array();
+      for (int c = 1; c <= r; ++c) z.col(r) += li(r, c) * delta.col(c).array();
+    }
     for (int j = 0; j < p.images; ++j) {
       const Eigen::Index col = static_cast<Eigen::Index>(i) * p.images + j;
-      if (p.images == 1) {
-        terms->col(col) = (p.log_coef[i] - 0.5 * z.colwise().squaredNorm().array()).transpose();
+      if (j == 0) {  // image 0 has a zero offset
+        maha = z.col(0).square();
+        for (int r = 1; r < d; ++r) maha += z.col(r).square();
       } else {
-        terms->col(col) =
-            (p.log_coef[i] -
-             0.5 * (z.colwise() + p.inv_chol_offsets[i].col(j)).colwise().squaredNorm().array())
-                .transpose();
+        const Eigen::MatrixXd& zo = p.inv_chol_offsets[i];
+        maha = (z.col(0) + zo(0, j)).square();
+        for (int r = 1; r < d; ++r) maha += (z.col(r) + zo(r, j)).square();
       }
+      terms->col(col) = (p.log_coef[i] - 0.5 * maha).matrix();
     }
   }
 }
 
 void LogSumExpRows(const Eigen::MatrixXd& terms, Eigen::VectorXd* lse) {
-  const Eigen::VectorXd row_max = terms.rowwise().maxCoeff();
-  const Eigen::VectorXd sums = (terms.colwise() - row_max).array().exp().rowwise().sum();
-  lse->resize(terms.rows());
-  for (Eigen::Index r = 0; r < terms.rows(); ++r) {
+  const Eigen::Index b = terms.rows();
+  Eigen::ArrayXd row_max = terms.col(0).array();
+  for (Eigen::Index c = 1; c < terms.cols(); ++c) row_max = row_max.max(terms.col(c).array());
+  Eigen::ArrayXd sums = Eigen::ArrayXd::Zero(b);
+  for (Eigen::Index c = 0; c < terms.cols(); ++c) sums += (terms.col(c).array() - row_max).exp();
+  lse->resize(b);
+  for (Eigen::Index r = 0; r < b; ++r) {
+    const double mx = row_max[r];
+    (*lse)[r] = std::isfinite(mx) ? mx + std::log(sums[r]) : mx;
+  }
+}
+
+void LogSumExpToResponsibilities(Eigen::MatrixXd* terms, Eigen::VectorXd* lse) {
+  const Eigen::Index b = terms->rows();
+  Eigen::ArrayXd row_max = terms->col(0).array();
+  for (Eigen::Index c = 1; c < terms->cols(); ++c) row_max = row_max.max(terms->col(c).array());
+  Eigen::ArrayXd sums = Eigen::ArrayXd::Zero(b);
+  for (Eigen::Index c = 0; c < terms->cols(); ++c) {
+    terms->col(c) = (terms->col(c).array() - row_max).exp().matrix();
+    sums += terms->col(c).array();
+  }
+  const Eigen::ArrayXd inv = sums.inverse();
+  for (Eigen::Index c = 0; c < terms->cols(); ++c) terms->col(c).array() *= inv;
+  lse->resize(b);
+  for (Eigen::Index r = 0; r < b; ++r) {
     const double mx = row_max[r];
     (*lse)[r] = std::isfinite(mx) ? mx + std::log(sums[r]) : mx;
   }

@@ -30,16 +30,26 @@ struct PreparedMixture {
 // The mixture must be valid.
 void Prepare(const Mixture& m, PreparedMixture* p);
 
-// delta = block - mu_i with angle rows wrapped into (-pi, pi] (D x B).
+// Blocks hold points as ROWS (B x D, one contiguous column per dimension): every operation
+// below is then a vector operation over B points, which Eigen vectorises; with points as
+// columns of a 2 x B matrix the inner loops would run over D = 2 entries only.
+
+// delta = block - mu_i^T with angle columns wrapped into (-pi, pi] (B x D).
 void ComponentDelta(const Mixture& m, int i, const Eigen::Ref<const Eigen::MatrixXd>& block,
                     Eigen::MatrixXd* delta);
 
 // terms (B x K*M): column i*M + j is log w_i + log N(delta_i + offset_j; 0, Sigma_i).
+// When deltas is non-null it receives the K deltas (B x D each) for reuse by the M-step.
 void LogTerms(const Mixture& m, const PreparedMixture& p,
-              const Eigen::Ref<const Eigen::MatrixXd>& block, Eigen::MatrixXd* terms);
+              const Eigen::Ref<const Eigen::MatrixXd>& block, Eigen::MatrixXd* terms,
+              std::vector<Eigen::MatrixXd>* deltas = nullptr);
 
 // Row-wise log-sum-exp of terms into *lse (B); -inf rows stay -inf.
 void LogSumExpRows(const Eigen::MatrixXd& terms, Eigen::VectorXd* lse);
+
+// The same, and turns terms into the responsibilities exp(terms - lse) in place, with one
+// exponential per term (exp is the E-step's cost).
+void LogSumExpToResponsibilities(Eigen::MatrixXd* terms, Eigen::VectorXd* lse);
 
 }  // namespace detail
 }  // namespace learn

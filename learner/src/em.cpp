@@ -27,6 +27,7 @@ bool FitOptions::IsValid(std::string* error) const {
   if (k < 1 || k > GMMRRT_MAX_K)
     return fail("k = " + std::to_string(k) + " outside 1.." + std::to_string(GMMRRT_MAX_K));
   if (restarts < 1) return fail("restarts must be >= 1");
+  if (screen_iterations < 0) return fail("screen_iterations must be >= 0");
   if (kmeans_max_iterations < 1) return fail("kmeans_max_iterations must be >= 1");
   if (max_iterations < 0) return fail("max_iterations must be >= 0");
   if (!(tolerance > 0.0) || !std::isfinite(tolerance)) return fail("tolerance must be finite and > 0");
@@ -68,54 +69,65 @@ struct DataInfo {
   double reg = 0.0;           // added to each covariance diagonal
 };
 
-void ComputeDataInfo(const Eigen::MatrixXd& x, uint32_t mask, const FitOptions& o, DataInfo* info) {
-  const Eigen::Index d = x.rows();
-  info->mean = x.rowwise().mean();
+void ComputeDataInfo(const Eigen::MatrixXd& xt, uint32_t mask, const FitOptions& o, DataInfo* info) {
+  const Eigen::Index d = xt.cols();
+  info->mean = xt.colwise().mean().transpose();
   for (Eigen::Index j = 0; j < d; ++j) {
     if (!((mask >> j) & 1u)) continue;
-    const double s = x.row(j).array().sin().mean(), c = x.row(j).array().cos().mean();
+    const double s = xt.col(j).array().sin().mean(), c = xt.col(j).array().cos().mean();
     info->mean[j] = std::atan2(s, c);
   }
-  Eigen::MatrixXd delta = x.colwise() - info->mean;
+  Eigen::MatrixXd delta = xt.transpose().colwise() - info->mean;
+  const Eigen::Index n = xt.rows();
   WrapAngleRows(mask, &delta);
   const Eigen::VectorXd dmean = delta.rowwise().mean();
   delta.colwise() -= dmean;
-  info->cov = delta * delta.transpose() / static_cast<double>(x.cols());
+  info->cov = delta * delta.transpose() / static_cast<double>(n);
   info->reg = std::max(o.reg_relative * info->cov.diagonal().mean(), o.reg_floor);
 }
 
-// One E-step: mean log-likelihood per point; statistics and per-point log-likelihood out.
-double EStep(const Mixture& m, const Eigen::MatrixXd& x, Stats* st, Eigen::VectorXd* point_ll) {
+// One E-step over xt (points as rows, N x D): mean log-likelihood per point; statistics and
+// per-point log-likelihood out.
+double EStep(const Mixture& m, const Eigen::MatrixXd& xt, Stats* st, Eigen::VectorXd* point_ll) {
   detail::PreparedMixture p;
   detail::Prepare(m, &p);
-  const Eigen::Index n = x.cols();
-  st->Reset(m.dim, m.k());
+  const Eigen::Index n = xt.rows();
+  const int d = m.dim;
+  st->Reset(d, m.k());
   point_ll->resize(n);
-  Eigen::MatrixXd terms, resp, delta;
-  Eigen::VectorXd lse, rsum;
+  Eigen::MatrixXd terms;
+  std::vector<Eigen::MatrixXd> deltas;
+  Eigen::VectorXd lse;
+  Eigen::ArrayXd rsum, r, weighted;
   for (Eigen::Index start = 0; start < n; start += detail::kBlockPoints) {
     const Eigen::Index b = std::min<Eigen::Index>(detail::kBlockPoints, n - start);
-    const auto block = x.middleCols(start, b);
-    detail::LogTerms(m, p, block, &terms);
-    detail::LogSumExpRows(terms, &lse);
+    detail::LogTerms(m, p, xt.middleRows(start, b), &terms, &deltas);
+    detail::LogSumExpToResponsibilities(&terms, &lse);  // terms now hold responsibilities
     point_ll->segment(start, b) = lse;
-    resp = (terms.colwise() - lse).array().exp().matrix();
     for (int i = 0; i < p.k; ++i) {
-      detail::ComponentDelta(m, i, block, &delta);
-      rsum = resp.middleCols(static_cast<Eigen::Index>(i) * p.images, p.images).rowwise().sum();
-      st->nk[i] += rsum.sum();
-      const Eigen::VectorXd dr = delta * rsum;
-      st->s1.col(i) += dr;
-      st->s2[i].noalias() += (delta.array().rowwise() * rsum.transpose().array()).matrix() *
-                             delta.transpose();
-      for (int j = 1; j < p.images; ++j) {  // image 0 has a zero offset
-        const Eigen::VectorXd r = resp.col(static_cast<Eigen::Index>(i) * p.images + j);
+      const Eigen::MatrixXd& delta = deltas[i];
+      const Eigen::Index first = static_cast<Eigen::Index>(i) * p.images;
+      rsum = terms.col(first).array();
+      for (int j = 1; j < p.images; ++j) {  // image 0 has a zero offset; the others add o_j terms
+        r = terms.col(first + j).array();
+        rsum += r;
         const double sr = r.sum();
         if (sr == 0.0) continue;
         const Eigen::VectorXd o = p.offsets.col(j);
-        const Eigen::VectorXd drj = delta * r;
+        Eigen::VectorXd drj(d);
+        for (int c = 0; c < d; ++c) drj[c] = (delta.col(c).array() * r).sum();
         st->s1.col(i) += o * sr;
         st->s2[i] += o * drj.transpose() + drj * o.transpose() + (o * o.transpose()) * sr;
+      }
+      st->nk[i] += rsum.sum();
+      for (int c = 0; c < d; ++c) {
+        weighted = delta.col(c).array() * rsum;
+        st->s1(c, i) += weighted.sum();
+        for (int c2 = 0; c2 <= c; ++c2) {
+          const double v = (weighted * delta.col(c2).array()).sum();
+          st->s2[i](c, c2) += v;
+          if (c2 != c) st->s2[i](c2, c) += v;
+        }
       }
     }
   }
@@ -135,7 +147,7 @@ std::vector<Eigen::Index> WorstPoints(const Eigen::VectorXd& score, int count) {
 }
 
 struct FitState {
-  const Eigen::MatrixXd* x = nullptr;
+  const Eigen::MatrixXd* xt = nullptr;  // points as rows (N x D)
   uint32_t mask = 0;
   const FitOptions* options = nullptr;
   DataInfo info;
@@ -155,7 +167,7 @@ bool MStep(const FitState& s, const Stats& st, const Eigen::MatrixXd& old_means,
            const Eigen::VectorXd& score, int iteration, Mixture* m) {
   const int d = m->dim;
   const int k = static_cast<int>(st.nk.size());
-  const double n = static_cast<double>(s.x->cols());
+  const double n = static_cast<double>(s.xt->rows());
   Mixture next;
   next.dim = d;
   next.angle_mask = s.mask;
@@ -195,7 +207,7 @@ bool MStep(const FitState& s, const Stats& st, const Eigen::MatrixXd& old_means,
         const Eigen::Index p = worst[next_worst++];
         ++s.summary->reseeds;
         w.push_back(1.0 / k);
-        mu.push_back(s.x->col(p));
+        mu.push_back(s.xt->row(p).transpose());
         chol.push_back(s.reseed_chol);
         msg << ": re-seeded at point " << p;
       } else {
@@ -217,6 +229,49 @@ bool MStep(const FitState& s, const Stats& st, const Eigen::MatrixXd& old_means,
   WrapAngleRows(s.mask, &next.means);
   *m = std::move(next);
   return changed;
+}
+
+// One candidate fit: the mixture and where its EM stands. pending: the last E-step's statistics
+// (stats, score) have not been used by an M-step yet.
+struct EmRun {
+  int restart = 0;
+  double kmeans_inertia = 0.0;
+  Mixture m;
+  Stats stats;
+  Eigen::VectorXd score;
+  std::vector<double> ll;
+  double previous = 0.0;
+  bool last_changed = true;
+  bool pending = false;
+  bool converged = false;
+  int iterations = 0;
+};
+
+// Runs EM steps until converged, until the E-step index reaches `until`, or max_iterations.
+// Leaves the run E-stepped: run->m is the mixture whose mean log-likelihood is run->ll.back().
+void Advance(const FitState& s, EmRun* run, int until) {
+  const FitOptions& o = *s.options;
+  while (!run->converged) {
+    if (run->pending) {
+      run->previous = run->ll.back();
+      const Eigen::MatrixXd old_means = run->m.means;
+      run->last_changed = MStep(s, run->stats, old_means, run->score, run->iterations + 1, &run->m);
+      ++run->iterations;
+      run->pending = false;
+      if (run->m.k() == 0) return;
+    }
+    const int t = static_cast<int>(run->ll.size());
+    const double ll = EStep(run->m, *s.xt, &run->stats, &run->score);
+    run->ll.push_back(ll);
+    run->pending = true;
+    if (o.progress && (o.restarts == 1 || until > o.screen_iterations)) o.progress(run->restart, t, ll);
+    if (t >= 1 && !run->last_changed && std::fabs(ll - run->previous) < o.tolerance) {
+      run->converged = true;
+      run->pending = false;
+      return;
+    }
+    if (t >= o.max_iterations || t >= until) return;
+  }
 }
 
 }  // namespace
@@ -254,14 +309,15 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   summary->k_requested = options.k;
   Eigen::MatrixXd x = points;
   WrapAngleRows(angle_mask, &x);
+  const Eigen::MatrixXd xt = x.transpose();  // points as rows: see component_terms.hpp
 
   FitState s;
-  s.x = &x;
+  s.xt = &xt;
   s.mask = angle_mask;
   s.options = &options;
   s.summary = summary;
   s.max_reseeds = options.max_reseeds < 0 ? 3 * options.k : options.max_reseeds;
-  ComputeDataInfo(x, angle_mask, options, &s.info);
+  ComputeDataInfo(xt, angle_mask, options, &s.info);
   for (int j = 0; j < d; ++j)
     if (!(s.info.cov(j, j) > options.reg_floor))
       return Status::Error(StatusCode::kBadInput,
@@ -276,61 +332,58 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     s.reseed_chol = llt.matrixL().toDenseMatrix();
   }
 
-  // Seed: k-means++ with restarts, then one M-step from the hard assignment.
+  // Candidates: each restart is k-means++ + Lloyd, one M-step from the hard assignment, then
+  // screen_iterations EM steps; the best mean log-likelihood continues to convergence.
   std::mt19937_64 rng(options.seed);
   KMeansOptions ko;
   ko.k = options.k;
-  ko.restarts = options.restarts;
+  ko.restarts = 1;
   ko.max_iterations = options.kmeans_max_iterations;
-  KMeansResult km;
-  Status st = KMeans(x, angle_mask, ko, &rng, &km);
-  if (!st.ok()) return st;
-  summary->kmeans_inertia = km.inertia;
-
-  Mixture m;
-  m.dim = d;
-  m.angle_mask = angle_mask;
-  Stats stats;
-  stats.Reset(d, options.k);
-  Eigen::VectorXd score(n);
-  {
+  std::vector<EmRun> runs(options.restarts);
+  int best = -1;
+  for (int r = 0; r < options.restarts; ++r) {
+    KMeansResult km;
+    Status st = KMeans(xt, angle_mask, ko, &rng, &km);
+    if (!st.ok()) return st;
+    EmRun& run = runs[r];
+    run.restart = r;
+    run.kmeans_inertia = km.inertia;
+    run.m.dim = d;
+    run.m.angle_mask = angle_mask;
+    run.stats.Reset(d, options.k);
+    run.score.resize(n);
     Eigen::VectorXd delta(d);
     for (Eigen::Index c = 0; c < n; ++c) {
       const int l = km.labels[c];
       delta = x.col(c) - km.centers.col(l);
       for (int j = 0; j < d; ++j)
         if ((angle_mask >> j) & 1u) delta[j] = gmmrrt_wrap_angle(delta[j]);
-      stats.nk[l] += 1.0;
-      stats.s1.col(l) += delta;
-      stats.s2[l] += delta * delta.transpose();
-      score[c] = -delta.squaredNorm();
+      run.stats.nk[l] += 1.0;
+      run.stats.s1.col(l) += delta;
+      run.stats.s2[l] += delta * delta.transpose();
+      run.score[c] = -delta.squaredNorm();
     }
+    MStep(s, run.stats, km.centers, run.score, 0, &run.m);
+    if (run.m.k() > 0) Advance(s, &run, options.screen_iterations);
+    if (run.m.k() > 0 && (best < 0 || run.ll.back() > runs[best].ll.back())) best = r;
+    if (options.restarts > 1 && options.progress && run.m.k() > 0)
+      options.progress(r, static_cast<int>(run.ll.size()) - 1, run.ll.back());
   }
-  MStep(s, stats, km.centers, score, 0, &m);
-  if (m.k() == 0) return Status::Error(StatusCode::kNumericalFailure, "every component degenerate at the seed");
-
-  double previous = 0.0;
-  bool last_changed = true;
-  for (int t = 0;; ++t) {
-    const double ll = EStep(m, x, &stats, &score);
-    summary->log_likelihood.push_back(ll);
-    if (options.progress) options.progress(t, ll);
-    if (t >= 1 && !last_changed && std::fabs(ll - previous) < options.tolerance) {
-      summary->converged = true;
-      break;
-    }
-    if (t == options.max_iterations) break;
-    previous = ll;
-    const Eigen::MatrixXd old_means = m.means;
-    last_changed = MStep(s, stats, old_means, score, t + 1, &m);
-    summary->iterations = t + 1;
-    if (m.k() == 0)
-      return Status::Error(StatusCode::kNumericalFailure, "every component degenerate (all dropped)");
-  }
+  if (best < 0) return Status::Error(StatusCode::kNumericalFailure, "every component degenerate in every restart");
+  EmRun& run = runs[best];
+  Advance(s, &run, options.max_iterations);
+  if (run.m.k() == 0)
+    return Status::Error(StatusCode::kNumericalFailure, "every component degenerate (all dropped)");
+  Mixture m = std::move(run.m);
+  summary->log_likelihood = run.ll;
+  summary->iterations = run.iterations;
+  summary->converged = run.converged;
+  summary->kmeans_inertia = run.kmeans_inertia;
+  summary->restart_kept = best;
   summary->k_final = m.k();
   summary->final_mean_log_likelihood = summary->log_likelihood.back();
   summary->bic = Bic(summary->final_mean_log_likelihood, n, m.k(), d);
-  st = ValidateMixture(m);
+  Status st = ValidateMixture(m);
   if (!st.ok()) return Status::Error(StatusCode::kNumericalFailure, "fit produced an invalid mixture: " + st.message);
   *mixture = std::move(m);
   return Status::Ok();

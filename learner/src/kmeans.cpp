@@ -1,11 +1,12 @@
 // kmeans.cpp - greedy k-means++ seeding and Lloyd iterations with restarts, seam-safe for angle
 // dimensions (the update moves a center by the mean wrapped difference, then wraps it).
-// Seeds EM (em.cpp); see kmeans.hpp.
+// Seeds EM (em.cpp); see kmeans.hpp. Points are rows (N x D) so distances are vector ops.
 #include "gmmrrt_learner/kmeans.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "gmmrrt/features.h"
 #include "gmmrrt_learner/mixture.hpp"
@@ -25,16 +26,26 @@ double Uniform01(std::mt19937_64* rng) {
 }
 
 void SquaredDistances(const Eigen::MatrixXd& points, const Eigen::VectorXd& center,
-                      uint32_t angle_mask, Eigen::VectorXd* d2) {
-  Eigen::MatrixXd diff = points.colwise() - center;
-  WrapAngleRows(angle_mask, &diff);
-  *d2 = diff.colwise().squaredNorm().transpose();
+                      uint32_t angle_mask, Eigen::ArrayXd* d2) {
+  const Eigen::Index n = points.rows();
+  d2->setZero(n);
+  Eigen::ArrayXd diff(n);
+  for (Eigen::Index c = 0; c < points.cols(); ++c) {
+    diff = points.col(c).array() - center[c];
+    if (c < 32 && ((angle_mask >> c) & 1u))
+      for (Eigen::Index p = 0; p < n; ++p) diff[p] = gmmrrt_wrap_angle(diff[p]);
+    *d2 += diff.square();
+  }
 }
 
 namespace {
 
+Eigen::Index UniformIndex(Eigen::Index n, std::mt19937_64* rng) {
+  return std::min<Eigen::Index>(static_cast<Eigen::Index>(Uniform01(rng) * static_cast<double>(n)), n - 1);
+}
+
 // Index drawn with probability proportional to weight (cumulative sums in cum, total > 0).
-Eigen::Index DrawProportional(const Eigen::VectorXd& cum, std::mt19937_64* rng) {
+Eigen::Index DrawProportional(const Eigen::ArrayXd& cum, std::mt19937_64* rng) {
   const double u = Uniform01(rng) * cum[cum.size() - 1];
   const double* first = cum.data();
   const double* it = std::upper_bound(first, first + cum.size(), u);
@@ -43,12 +54,10 @@ Eigen::Index DrawProportional(const Eigen::VectorXd& cum, std::mt19937_64* rng) 
 
 void SeedPlusPlus(const Eigen::MatrixXd& x, uint32_t mask, int k, std::mt19937_64* rng,
                   Eigen::MatrixXd* centers) {
-  const Eigen::Index n = x.cols();
-  centers->resize(x.rows(), k);
-  const Eigen::Index first = std::min<Eigen::Index>(
-      static_cast<Eigen::Index>(Uniform01(rng) * static_cast<double>(n)), n - 1);
-  centers->col(0) = x.col(first);
-  Eigen::VectorXd closest, d2, best_d2, cum(n);
+  const Eigen::Index n = x.rows();
+  centers->resize(x.cols(), k);
+  centers->col(0) = x.row(UniformIndex(n, rng)).transpose();
+  Eigen::ArrayXd closest, d2, best_d2, cum(n);
   SquaredDistances(x, centers->col(0), mask, &closest);
   const int trials = 2 + static_cast<int>(std::log(static_cast<double>(k)));
   for (int c = 1; c < k; ++c) {
@@ -56,57 +65,53 @@ void SeedPlusPlus(const Eigen::MatrixXd& x, uint32_t mask, int k, std::mt19937_6
     double best_potential = std::numeric_limits<double>::infinity();
     Eigen::Index best = 0;
     for (int t = 0; t < trials; ++t) {
-      const Eigen::Index cand =
-          cum[n - 1] > 0.0 ? DrawProportional(cum, rng)
-                           : std::min<Eigen::Index>(
-                                 static_cast<Eigen::Index>(Uniform01(rng) * static_cast<double>(n)), n - 1);
-      SquaredDistances(x, x.col(cand), mask, &d2);
-      const double potential = closest.cwiseMin(d2).sum();
+      const Eigen::Index cand = cum[n - 1] > 0.0 ? DrawProportional(cum, rng) : UniformIndex(n, rng);
+      SquaredDistances(x, x.row(cand).transpose(), mask, &d2);
+      const double potential = closest.min(d2).sum();
       if (potential < best_potential) {
         best_potential = potential;
         best = cand;
         best_d2 = d2;
       }
     }
-    centers->col(c) = x.col(best);
-    closest = closest.cwiseMin(best_d2);
+    centers->col(c) = x.row(best).transpose();
+    closest = closest.min(best_d2);
   }
 }
 
-// Assigns every point to its nearest center; returns the inertia.
+// Assigns every point to its nearest center (ties: the lower index); returns the inertia.
 double Assign(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::MatrixXd& centers,
-              std::vector<int>* labels, Eigen::VectorXd* best) {
-  const Eigen::Index n = x.cols();
-  best->setConstant(n, std::numeric_limits<double>::infinity());
-  labels->assign(n, 0);
-  Eigen::VectorXd d2;
-  for (Eigen::Index c = 0; c < centers.cols(); ++c) {
+              Eigen::ArrayXi* labels, Eigen::ArrayXd* best) {
+  const Eigen::Index n = x.rows();
+  Eigen::ArrayXd d2;
+  SquaredDistances(x, centers.col(0), mask, best);
+  labels->setZero(n);
+  for (Eigen::Index c = 1; c < centers.cols(); ++c) {
     SquaredDistances(x, centers.col(c), mask, &d2);
-    for (Eigen::Index p = 0; p < n; ++p) {
-      if (d2[p] < (*best)[p]) {
-        (*best)[p] = d2[p];
-        (*labels)[p] = static_cast<int>(c);
-      }
-    }
+    const auto closer = d2 < *best;
+    *labels = closer.select(static_cast<int>(c), *labels);
+    *best = closer.select(d2, *best);
   }
   return best->sum();
 }
 
-void Update(const Eigen::MatrixXd& x, uint32_t mask, const std::vector<int>& labels,
-            const Eigen::VectorXd& best, Eigen::MatrixXd* centers) {
-  const Eigen::Index k = centers->cols();
-  Eigen::MatrixXd shift = Eigen::MatrixXd::Zero(x.rows(), k);
+// Moves the centers to their clusters' means; returns the summed squared center shift.
+double Update(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::ArrayXi& labels,
+              const Eigen::ArrayXd& best, Eigen::MatrixXd* centers) {
+  const Eigen::Index k = centers->cols(), n = x.rows();
+  Eigen::MatrixXd shift = Eigen::MatrixXd::Zero(x.cols(), k);
   Eigen::VectorXd count = Eigen::VectorXd::Zero(k);
-  Eigen::VectorXd diff(x.rows());
-  for (Eigen::Index p = 0; p < x.cols(); ++p) {
-    const int c = labels[p];
-    diff = x.col(p) - centers->col(c);
-    for (Eigen::Index j = 0; j < x.rows(); ++j)
-      if ((mask >> j) & 1u) diff[j] = gmmrrt_wrap_angle(diff[j]);
-    shift.col(c) += diff;
-    count[c] += 1.0;
+  for (Eigen::Index p = 0; p < n; ++p) count[labels[p]] += 1.0;
+  for (Eigen::Index c = 0; c < x.cols(); ++c) {
+    const bool angle = c < 32 && ((mask >> c) & 1u);
+    for (Eigen::Index p = 0; p < n; ++p) {
+      const int l = labels[p];
+      const double diff = x(p, c) - (*centers)(c, l);
+      shift(c, l) += angle ? gmmrrt_wrap_angle(diff) : diff;
+    }
   }
-  std::vector<bool> taken(x.cols(), false);
+  std::vector<bool> taken(n, false);
+  Eigen::MatrixXd previous = *centers;
   for (Eigen::Index c = 0; c < k; ++c) {
     if (count[c] > 0.0) {
       centers->col(c) += shift.col(c) / count[c];
@@ -114,15 +119,16 @@ void Update(const Eigen::MatrixXd& x, uint32_t mask, const std::vector<int>& lab
       // An empty cluster takes the point farthest from its center (deterministic).
       Eigen::Index far = 0;
       double far_d2 = -1.0;
-      for (Eigen::Index p = 0; p < x.cols(); ++p)
+      for (Eigen::Index p = 0; p < n; ++p)
         if (!taken[p] && best[p] > far_d2) { far_d2 = best[p]; far = p; }
       taken[far] = true;
-      centers->col(c) = x.col(far);
+      centers->col(c) = x.row(far).transpose();
     }
   }
-  Eigen::MatrixXd wrapped = *centers;
-  WrapAngleRows(mask, &wrapped);
-  *centers = wrapped;
+  WrapAngleRows(mask, centers);
+  Eigen::MatrixXd moved = *centers - previous;
+  WrapAngleRows(mask, &moved);
+  return moved.squaredNorm();
 }
 
 }  // namespace
@@ -131,29 +137,32 @@ Status KMeans(const Eigen::MatrixXd& points, uint32_t angle_mask, const KMeansOp
               std::mt19937_64* rng, KMeansResult* result) {
   std::string why;
   if (!options.IsValid(&why)) return Status::Error(StatusCode::kInvalidArgument, "k-means: " + why);
-  if (points.cols() < options.k)
+  if (points.rows() < options.k)
     return Status::Error(StatusCode::kNotEnoughData,
-                         "k-means: " + std::to_string(points.cols()) + " points for " +
+                         "k-means: " + std::to_string(points.rows()) + " points for " +
                              std::to_string(options.k) + " clusters");
+  // scikit-learn's tolerance: 1e-4 of the mean per-dimension variance.
+  const Eigen::RowVectorXd mean = points.colwise().mean();
+  const double shift_tol = 1e-4 * (points.rowwise() - mean).array().square().colwise().mean().mean();
   result->inertia = std::numeric_limits<double>::infinity();
   Eigen::MatrixXd centers;
-  std::vector<int> labels;
-  Eigen::VectorXd best;
+  Eigen::ArrayXi labels, previous;
+  Eigen::ArrayXd best;
   for (int r = 0; r < options.restarts; ++r) {
     SeedPlusPlus(points, angle_mask, options.k, rng, &centers);
     double inertia = Assign(points, angle_mask, centers, &labels, &best);
     int it = 0;
     while (it < options.max_iterations) {
       ++it;
-      const std::vector<int> previous = labels;
-      Update(points, angle_mask, labels, best, &centers);
+      previous = labels;
+      const double shift = Update(points, angle_mask, labels, best, &centers);
       inertia = Assign(points, angle_mask, centers, &labels, &best);
-      if (labels == previous) break;
+      if ((labels == previous).all() || shift <= shift_tol) break;
     }
     if (inertia < result->inertia) {
       result->inertia = inertia;
       result->centers = centers;
-      result->labels = labels;
+      result->labels.assign(labels.data(), labels.data() + labels.size());
       result->iterations = it;
     }
   }

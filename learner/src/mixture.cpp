@@ -79,11 +79,12 @@ void LogDensity(const Mixture& m, const Eigen::MatrixXd& points, Eigen::VectorXd
   detail::Prepare(m, &p);
   const Eigen::Index n = points.cols();
   out->resize(n);
+  const Eigen::MatrixXd rows = points.transpose();  // points as rows: see component_terms.hpp
   Eigen::MatrixXd terms;
   Eigen::VectorXd lse;
   for (Eigen::Index start = 0; start < n; start += detail::kBlockPoints) {
     const Eigen::Index b = std::min<Eigen::Index>(detail::kBlockPoints, n - start);
-    detail::LogTerms(m, p, points.middleCols(start, b), &terms);
+    detail::LogTerms(m, p, rows.middleRows(start, b), &terms);
     detail::LogSumExpRows(terms, &lse);
     out->segment(start, b) = lse;
   }

@@ -34,16 +34,20 @@ namespace learn {
 struct FitOptions {
   int k = 19;                   // components (the paper's choice, Sect. 5.1), 1..GMMRRT_MAX_K
   uint64_t seed = 1;            // seeds k-means++; same seed -> same result
-  int restarts = 4;             // k-means++ seedings (each followed by Lloyd); lowest inertia kept
+  int restarts = 4;             // candidate starts: k-means++ seeding + Lloyd + screen_iterations
+                                // EM steps each; the highest log-likelihood continues (short-EM
+                                // selection, Biernacki et al. 2003)
+  int screen_iterations = 20;   // EM steps per candidate before choosing (when restarts > 1)
   int kmeans_max_iterations = 100;
   int max_iterations = 500;     // EM M-steps at most
   double tolerance = 1e-6;      // stop when |delta mean log-likelihood per point| < this [nats]
   double reg_relative = 1e-6;   // regularisation relative to the mean data variance
   double reg_floor = 1e-9;      // absolute regularisation floor [unit^2 of each dimension]
   int max_reseeds = -1;         // re-seeds allowed over the fit; -1 means 3 K
-  // Called after each E-step with the iteration (0 = the seed mixture) and the mean
-  // log-likelihood per point; may be empty.
-  std::function<void(int iteration, double mean_log_likelihood)> progress;
+  // Progress, may be empty. With restarts > 1: once per candidate after its screening steps,
+  // then after each E-step of the kept candidate; with restarts == 1 after each E-step.
+  // iteration 0 is the seed mixture; the value is the mean log-likelihood per point.
+  std::function<void(int restart, int iteration, double mean_log_likelihood)> progress;
   // Called with each warning (degenerate component re-seeded or dropped); may be empty.
   std::function<void(const std::string& warning)> warn;
 
@@ -56,14 +60,16 @@ struct FitSummary {
   int dim = 0;
   int k_requested = 0;
   int k_final = 0;                      // k_requested minus dropped components
-  int iterations = 0;                   // M-steps done
+  int iterations = 0;                   // M-steps of the kept candidate (screening included)
   bool converged = false;               // tolerance reached before max_iterations
-  std::vector<double> log_likelihood;   // mean log-likelihood per point after each step (0 = seed)
+  std::vector<double> log_likelihood;   // kept candidate: mean log-likelihood per point after each
+                                        // step (0 = seed)
   std::vector<int> reseed_iterations;   // iterations at which a component was re-seeded or dropped
   double final_mean_log_likelihood = 0.0;
   double bic = 0.0;                     // Bic(final mean LL, N, k_final, D)
-  double kmeans_inertia = 0.0;
-  int reseeds = 0;
+  double kmeans_inertia = 0.0;           // of the kept candidate's k-means
+  int restart_kept = 0;                  // which candidate was kept
+  int reseeds = 0;                       // over all candidates
   int dropped = 0;
   std::vector<std::string> warnings;
 

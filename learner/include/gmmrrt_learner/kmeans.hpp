@@ -18,7 +18,9 @@ namespace learn {
 struct KMeansOptions {
   int k = 1;                // clusters, >= 1, <= number of points
   int restarts = 4;         // independent seedings; the lowest final inertia is kept
-  int max_iterations = 100; // Lloyd iterations per restart
+  int max_iterations = 100; // Lloyd iterations per restart; a restart also stops when the
+                            // squared center shift sums to <= 1e-4 x the mean data variance
+                            // (scikit-learn's rule) or no label changes
   bool IsValid(std::string* error) const;
 };
 
@@ -29,11 +31,13 @@ struct KMeansResult {
   int iterations = 0;       // Lloyd iterations of the kept restart
 };
 
-// Squared distances of every column of points to center (angle rows wrapped) into *d2 (N).
+// Squared distances of every row of points (N x D) to center (D; angle dimensions wrapped)
+// into *d2 (N).
 void SquaredDistances(const Eigen::MatrixXd& points, const Eigen::VectorXd& center,
-                      uint32_t angle_mask, Eigen::VectorXd* d2);
+                      uint32_t angle_mask, Eigen::ArrayXd* d2);
 
-// Clusters the columns of points (D x N, finite). rng is advanced deterministically.
+// Clusters the ROWS of points (N x D, finite, angle columns in (-pi, pi]); rows keep each
+// dimension contiguous so that distances vectorise. rng is advanced deterministically.
 // kInvalidArgument for bad options or K > N.
 Status KMeans(const Eigen::MatrixXd& points, uint32_t angle_mask, const KMeansOptions& options,
               std::mt19937_64* rng, KMeansResult* result);

@@ -1,0 +1,266 @@
+// test_em.cpp - learner.em: k-means++ and EM on synthetic mixtures (recovered means and
+// weights), monotone log-likelihood, determinism, degenerate components, the +-pi seam, BIC
+// choosing the generating K, bad input, and the Eigen density against the C gmm.h density.
+#include <cmath>
+#include <random>
+
+#include "gmmrrt/gmm.h"
+#include "gmmrrt_learner/bic.hpp"
+#include "gmmrrt_learner/em.hpp"
+#include "gmmrrt_learner/kmeans.hpp"
+#include "gmmrrt_learner/mixture.hpp"
+#include "test_support.hpp"
+
+// cmocka last: its fail() macro would clash with the standard library.
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+extern "C" {
+#include <cmocka.h>
+}
+
+using namespace gmmrrt::learn;
+using test_support::Blob;
+using test_support::Diag;
+using test_support::Vec;
+
+namespace {
+
+std::vector<Blob> ThreeBlobs() {
+  Eigen::MatrixXd tilted(2, 2);
+  tilted << 0.5, 0.0, 0.3, 0.2;
+  return {{Vec({0.0, 0.0}), Diag({0.4, 0.4}), 1500},
+          {Vec({6.0, 1.0}), tilted, 900},
+          {Vec({2.0, 7.0}), Diag({0.3, 0.6}), 600}};
+}
+
+// Index of the component whose mean is nearest to target.
+int Nearest(const Mixture& m, const Eigen::VectorXd& target) {
+  int best = 0;
+  for (int i = 1; i < m.k(); ++i)
+    if ((m.means.col(i) - target).norm() < (m.means.col(best) - target).norm()) best = i;
+  return best;
+}
+
+FitOptions Quiet(int k, uint64_t seed) {
+  FitOptions o;
+  o.k = k;
+  o.seed = seed;
+  return o;
+}
+
+void test_kmeans_finds_separated_centers(void** state) {
+  (void)state;
+  const auto blobs = ThreeBlobs();
+  const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 7);
+  KMeansOptions o;
+  o.k = 3;
+  std::mt19937_64 rng(3);
+  KMeansResult r;
+  const Eigen::MatrixXd rows = x.transpose();
+  assert_true(KMeans(rows, 0, o, &rng, &r).ok());
+  for (const Blob& b : blobs) {
+    double nearest = 1e9;
+    for (int c = 0; c < 3; ++c) nearest = std::min(nearest, (r.centers.col(c) - b.mean).norm());
+    assert_true(nearest < 0.15);
+  }
+}
+
+void test_em_recovers_means_and_weights(void** state) {
+  (void)state;
+  const auto blobs = ThreeBlobs();
+  const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 11);
+  Mixture m;
+  FitSummary s;
+  assert_true(FitMixture(x, 0, Quiet(3, 1), &m, &s).ok());
+  assert_int_equal(m.k(), 3);
+  assert_true(s.converged);
+  const double n = static_cast<double>(x.cols());
+  for (const Blob& b : blobs) {
+    const int i = Nearest(m, b.mean);
+    assert_true((m.means.col(i) - b.mean).norm() < 0.1);
+    assert_true(std::fabs(m.weights[i] - b.count / n) < 0.02);
+    const Eigen::MatrixXd cov = m.chol[i] * m.chol[i].transpose();
+    const Eigen::MatrixXd truth = b.chol * b.chol.transpose();
+    assert_true((cov - truth).cwiseAbs().maxCoeff() < 0.05);
+  }
+  // The summary's final value is the mixture's mean log-likelihood.
+  assert_true(std::fabs(MeanLogLikelihood(m, x) - s.final_mean_log_likelihood) < 1e-12);
+}
+
+void test_em_log_likelihood_never_decreases(void** state) {
+  (void)state;
+  // Overlapping blobs so that EM needs many steps.
+  std::vector<Blob> blobs = {{Vec({0.0, 0.0}), Diag({1.0, 1.0}), 800},
+                             {Vec({1.5, 0.5}), Diag({0.7, 1.2}), 800},
+                             {Vec({-1.0, 2.0}), Diag({0.5, 0.5}), 400}};
+  const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 5);
+  FitOptions o = Quiet(3, 2);
+  o.restarts = 1;
+  o.tolerance = 1e-10;
+  Mixture m;
+  FitSummary s;
+  assert_true(FitMixture(x, 0, o, &m, &s).ok());
+  assert_true(s.reseed_iterations.empty());
+  assert_true(s.log_likelihood.size() > 5);
+  for (size_t t = 1; t < s.log_likelihood.size(); ++t)
+    assert_true(s.log_likelihood[t] >= s.log_likelihood[t - 1] - 1e-12);
+}
+
+void test_same_seed_gives_the_same_mixture(void** state) {
+  (void)state;
+  const Eigen::MatrixXd x = test_support::Sample(ThreeBlobs(), 0, 13);
+  Mixture a, b;
+  FitSummary sa, sb;
+  assert_true(FitMixture(x, 0, Quiet(4, 99), &a, &sa).ok());
+  assert_true(FitMixture(x, 0, Quiet(4, 99), &b, &sb).ok());
+  assert_int_equal(a.k(), b.k());
+  assert_true(a.weights == b.weights);
+  assert_true(a.means == b.means);
+  for (int i = 0; i < a.k(); ++i) assert_true(a.chol[i] == b.chol[i]);
+  assert_true(sa.log_likelihood == sb.log_likelihood);
+}
+
+void test_degenerate_components_are_reseeded_or_dropped(void** state) {
+  (void)state;
+  // 300 points on only 3 distinct values: K = 5 must collapse, the fit must still succeed.
+  Eigen::MatrixXd x(1, 300);
+  for (int i = 0; i < 300; ++i) x(0, i) = (i % 3) * 10.0 + (i % 2) * 1e-3;
+  std::vector<std::string> warnings;
+  FitOptions o = Quiet(5, 1);
+  o.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
+  Mixture m;
+  FitSummary s;
+  assert_true(FitMixture(x, 0, o, &m, &s).ok());
+  assert_true(s.reseeds + s.dropped > 0);
+  assert_false(warnings.empty());
+  assert_int_equal(static_cast<int>(warnings.size()), static_cast<int>(s.warnings.size()));
+  assert_true(ValidateMixture(m).ok());
+  assert_int_equal(m.k(), s.k_final);
+  assert_true(std::isfinite(s.final_mean_log_likelihood));
+}
+
+void test_cluster_across_the_seam_is_one_component(void** state) {
+  (void)state;
+  // (d, theta): a cluster behind the person (theta = pi, sd 0.25: half its points are near -pi)
+  // and one in front; K = 2 must give one component at the back, one at the front.
+  const uint32_t mask = 1u << 1;
+  std::vector<Blob> blobs = {{Vec({1.5, M_PI}), Diag({0.2, 0.25}), 1200},
+                             {Vec({2.5, 0.0}), Diag({0.3, 0.3}), 800}};
+  const Eigen::MatrixXd x = test_support::Sample(blobs, mask, 21);
+  int plus = 0, minus = 0;
+  for (int i = 0; i < 1200; ++i) (x(1, i) > 0 ? plus : minus)++;
+  assert_true(plus > 400 && minus > 400);  // the data really straddles the seam
+  Mixture m;
+  FitSummary s;
+  assert_true(FitMixture(x, mask, Quiet(2, 4), &m, &s).ok());
+  assert_int_equal(m.k(), 2);
+  const int back = std::fabs(m.means(1, 0)) > std::fabs(m.means(1, 1)) ? 0 : 1;
+  assert_true(std::fabs(gmmrrt_wrap_angle(m.means(1, back) - M_PI)) < 0.05);
+  assert_true(std::fabs(m.weights[back] - 0.6) < 0.02);
+  const Eigen::MatrixXd cov = m.chol[back] * m.chol[back].transpose();
+  assert_true(std::fabs(std::sqrt(cov(1, 1)) - 0.25) < 0.03);  // not a 2 pi wide smear
+  assert_true(m.means(1, back) > -M_PI && m.means(1, back) <= M_PI);
+}
+
+void test_bic_picks_the_generating_k(void** state) {
+  (void)state;
+  std::vector<Blob> blobs = {{Vec({0.0, 0.0}), Diag({0.5, 0.5}), 400},
+                             {Vec({5.0, 0.0}), Diag({0.5, 0.8}), 400},
+                             {Vec({0.0, 5.0}), Diag({0.7, 0.4}), 300},
+                             {Vec({5.0, 5.0}), Diag({0.4, 0.4}), 300}};
+  const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 8);
+  BicSweepResult r;
+  assert_true(SweepBic(x, 0, Quiet(1, 1), 1, 8, &r).ok());
+  assert_int_equal(static_cast<int>(r.rows.size()), 8);
+  assert_int_equal(r.best_k, 4);
+  assert_int_equal(r.best.k(), 4);
+  assert_true(FormatBicTable(r).find("  *") != std::string::npos);
+}
+
+void test_bad_input_is_rejected(void** state) {
+  (void)state;
+  Mixture m;
+  FitSummary s;
+  Eigen::MatrixXd empty(2, 0);
+  assert_int_equal(static_cast<int>(FitMixture(empty, 0, Quiet(1, 1), &m, &s).code),
+                   static_cast<int>(StatusCode::kNotEnoughData));
+  Eigen::MatrixXd few = Eigen::MatrixXd::Random(2, 10);
+  assert_int_equal(static_cast<int>(FitMixture(few, 0, Quiet(4, 1), &m, &s).code),
+                   static_cast<int>(StatusCode::kNotEnoughData));
+  Eigen::MatrixXd nan = Eigen::MatrixXd::Random(2, 100);
+  nan(1, 50) = std::nan("");
+  const Status st = FitMixture(nan, 0, Quiet(2, 1), &m, &s);
+  assert_int_equal(static_cast<int>(st.code), static_cast<int>(StatusCode::kBadInput));
+  assert_true(st.message.find("point 50") != std::string::npos);
+  Eigen::MatrixXd constant = Eigen::MatrixXd::Random(2, 100);
+  constant.row(0).setConstant(3.0);
+  assert_int_equal(static_cast<int>(FitMixture(constant, 0, Quiet(2, 1), &m, &s).code),
+                   static_cast<int>(StatusCode::kBadInput));
+  FitOptions bad = Quiet(0, 1);
+  std::string why;
+  assert_false(bad.IsValid(&why));
+  assert_true(why.find("k") != std::string::npos);
+  assert_int_equal(static_cast<int>(FitMixture(few, 0, bad, &m, &s).code),
+                   static_cast<int>(StatusCode::kInvalidArgument));
+}
+
+void test_eigen_density_equals_the_c_density(void** state) {
+  (void)state;
+  // A random 3-D mixture with one angle dimension, evaluated by both implementations.
+  std::mt19937_64 rng(17);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Mixture m;
+  m.dim = 3;
+  m.angle_mask = 1u << 2;
+  const int k = 6;
+  m.weights.resize(k);
+  m.means.resize(3, k);
+  m.chol.assign(k, Eigen::MatrixXd::Zero(3, 3));
+  for (int i = 0; i < k; ++i) {
+    m.weights[i] = 0.5 + std::fabs(normal(rng));
+    for (int j = 0; j < 3; ++j) m.means(j, i) = 2.0 * normal(rng);
+    m.means(2, i) = gmmrrt_wrap_angle(m.means(2, i) + (i == 0 ? M_PI : 0.0));
+    for (int r = 0; r < 3; ++r) {
+      m.chol[i](r, r) = 0.2 + 0.5 * std::fabs(normal(rng));
+      for (int c = 0; c < r; ++c) m.chol[i](r, c) = 0.2 * normal(rng);
+    }
+  }
+  m.weights /= m.weights.sum();
+  gmmrrt_model_t model;
+  assert_true(MixtureToModel(m, GMMRRT_MODEL_KIND_GENERIC, GMMRRT_TASK_NONE, GMMRRT_HOMOTOPY_ALL, 0.001, &model).ok());
+  char err[128];
+  assert_int_equal(gmmrrt_model_prepare(&model, err, sizeof err), GMMRRT_OK);
+  Eigen::MatrixXd pts(3, 500);
+  for (int c = 0; c < 500; ++c)
+    for (int j = 0; j < 3; ++j) pts(j, c) = 3.0 * normal(rng);
+  pts(2, 0) = M_PI;
+  pts(2, 1) = -M_PI + 1e-12;
+  Eigen::VectorXd ll;
+  LogDensity(m, pts, &ll);
+  for (int c = 0; c < 500; ++c) {
+    const double expected = gmmrrt_gmm_log_density(&model, pts.col(c).data());
+    assert_true(std::fabs(ll[c] - expected) <= 1e-9 * std::max(1.0, std::fabs(expected)));
+  }
+  // And back: the model's stored fields give the same mixture.
+  const Mixture back = MixtureFromModel(model);
+  assert_true(back.means == m.means && back.weights == m.weights);
+}
+
+}  // namespace
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_kmeans_finds_separated_centers),
+      cmocka_unit_test(test_em_recovers_means_and_weights),
+      cmocka_unit_test(test_em_log_likelihood_never_decreases),
+      cmocka_unit_test(test_same_seed_gives_the_same_mixture),
+      cmocka_unit_test(test_degenerate_components_are_reseeded_or_dropped),
+      cmocka_unit_test(test_cluster_across_the_seam_is_one_component),
+      cmocka_unit_test(test_bic_picks_the_generating_k),
+      cmocka_unit_test(test_bad_input_is_rejected),
+      cmocka_unit_test(test_eigen_density_equals_the_c_density),
+  };
+  return cmocka_run_group_tests(tests, nullptr, nullptr);
+}
