@@ -108,6 +108,9 @@ static double point_segment_distance(double px, double py, double ax, double ay,
     return hypot(px - (ax + t * vx), py - (ay + t * vy));
 }
 
+static void consider_goal(struct gmmrrt_planner *p, int32_t i);
+static void update_best(struct gmmrrt_planner *p);
+
 static void reset_tree(struct gmmrrt_planner *p)
 {
     p->num_nodes = 1;
@@ -215,6 +218,8 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
     gmmrrt_sampler_prepare(p);
     reset_tree(p);
     p->has_problem = 1;
+    consider_goal(p, 0); /* a start already within the goal tolerance is a solution */
+    update_best(p);
     return GMMRRT_OK;
 }
 

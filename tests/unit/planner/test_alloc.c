@@ -17,15 +17,15 @@
 
 #include "planner_fixtures.h"
 
+static volatile int counting;
+static volatile long alloc_calls;
+
 #ifndef GMMRRT_ALLOC_TEST_SKIP
 extern void *__libc_malloc(size_t);
 extern void *__libc_calloc(size_t, size_t);
 extern void *__libc_realloc(void *, size_t);
 extern void *__libc_memalign(size_t, size_t);
 extern void __libc_free(void *);
-
-static volatile int counting;
-static volatile long alloc_calls;
 
 void *malloc(size_t n)
 {

@@ -409,6 +409,53 @@ static void test_seed_path_warm_starts_the_tree(void **state)
     test_planner_free(&t);
 }
 
+static void test_convergence_and_time_budgets_stop_the_run(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    cfg.max_nodes = 200000;
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = disc_problem();
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    /* converged: less than 0.1 % better over 3000 iterations, long before the cap */
+    gmmrrt_budget_t conv = {0.0, 150000, 0.001, 3000};
+    gmmrrt_plan_stats_t st;
+    assert_int_equal(gmmrrt_planner_run(t.p, &conv, &st), GMMRRT_OK);
+    printf("converged after %lld iterations at %.4f\n", (long long)st.iterations, st.best_cost);
+    assert_true(st.iterations < 150000);
+    assert_true(st.iterations % 3000 == 0);
+    assert_true(st.best_cost < disc_detour_length(5.0, 2.0) * 1.05);
+    /* a time budget alone stops too; the run continues the same tree */
+    const int64_t before = st.iterations;
+    gmmrrt_budget_t timed = {20.0, 0, 0.0, 0};
+    const gmmrrt_status_t s = gmmrrt_planner_run(t.p, &timed, &st);
+    assert_true(s == GMMRRT_OK || s == GMMRRT_POOL_FULL);
+    assert_true(st.iterations > before);
+    assert_true(st.time_ms > 0.0);
+    test_planner_free(&t);
+}
+
+static void test_start_within_goal_tolerance_is_solved_at_once(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = empty_problem(1.0, 1.0, 1.03, 1.0);
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    gmmrrt_path_t path;
+    assert_int_equal(gmmrrt_planner_best_path(t.p, &path), GMMRRT_OK);
+    assert_int_equal(path.num_points, 2);
+    assert_true(path.x[0] == 1.0 && path.x[1] == 1.03);
+    assert_true(fabs(path.length_m - 0.03) < 1e-12);
+    gmmrrt_budget_t b = {0.0, 10, 0.0, 0};
+    gmmrrt_plan_stats_t st;
+    assert_int_equal(gmmrrt_planner_run(t.p, &b, &st), GMMRRT_OK);
+    assert_int_equal(st.first_solution_iteration, 0);
+    test_planner_free(&t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -424,6 +471,8 @@ int main(void)
         cmocka_unit_test(test_config_validation_names_the_field),
         cmocka_unit_test(test_path_is_resampled_with_heading),
         cmocka_unit_test(test_seed_path_warm_starts_the_tree),
+        cmocka_unit_test(test_convergence_and_time_budgets_stop_the_run),
+        cmocka_unit_test(test_start_within_goal_tolerance_is_solved_at_once),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

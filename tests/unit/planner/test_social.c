@@ -174,6 +174,154 @@ static void test_two_side_model_takes_the_free_side_when_one_is_blocked(void **s
     }
 }
 
+/* A person beyond person_influence_m of the start-goal segment does not shape the plan:
+ * same seed, same path with or without them; one near the path does. */
+static void test_only_people_near_the_path_count(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    left_model(&m);
+    gmmrrt_path_t paths[3];
+    for (int extra = 0; extra < 3; ++extra) {
+        gmmrrt_planner_config_t cfg;
+        gmmrrt_planner_config_default(&cfg);
+        cfg.max_nodes = 6000;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
+        pr.goal_tolerance_m = 0.1;
+        pr.task = GMMRRT_TASK_AVOID;
+        pr.model = &m;
+        pr.obstacles.num_people = extra ? 2 : 1;
+        pr.obstacles.people[0] = person;
+        /* extra 1: 4.5 m off the segment (influence 3 m), in a corner no sample reaches first;
+         * extra 2: 2.5 m off it, within influence */
+        pr.obstacles.people[1] = extra == 1 ? (gmmrrt_pose_t){6.5, 4.5, 0.0} : (gmmrrt_pose_t){2.5, 2.5, 0.0};
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        gmmrrt_budget_t b = {0.0, 3000, 0.0, 0};
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+        assert_int_equal(gmmrrt_planner_best_path(t.p, &paths[extra]), GMMRRT_OK);
+        test_planner_free(&t);
+    }
+    assert_true(paths[1].cost == paths[0].cost);
+    assert_int_equal(paths[1].num_points, paths[0].num_points);
+    assert_memory_equal(paths[1].x, paths[0].x, sizeof(double) * (size_t)paths[0].num_points);
+    assert_true(paths[2].cost != paths[0].cost);
+}
+
+/* GMM-RRT (the baseline) with an xy model of a pass on the person's left. */
+static void test_gmm_rrt_follows_its_xy_model(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    memset(&m, 0, sizeof m);
+    m.kind = GMMRRT_MODEL_KIND_XY;
+    m.task = GMMRRT_TASK_AVOID;
+    m.homotopy = GMMRRT_HOMOTOPY_LEFT;
+    m.dim = 3;
+    m.k = 7;
+    m.delta = GMMRRT_MODEL_DEFAULT_DELTA;
+    for (int32_t i = 0; i < m.k; ++i) {
+        const double s = (i + 0.5) / m.k;
+        const int32_t slot = m.k - 1 - i; /* stored out of order: the planner sorts by s */
+        m.weight[slot] = 1.0 / m.k;
+        m.mean[slot][0] = s;
+        m.mean[slot][1] = 3.5 - 7.0 * s;           /* x': from the person's front to behind */
+        m.mean[slot][2] = 1.3 * sin(M_PI * s);     /* y' > 0: their left */
+        m.chol[slot][0] = 0.05;
+        m.chol[slot][2] = 0.25;
+        m.chol[slot][5] = 0.25;
+    }
+    double sum = 0.0;
+    for (int32_t i = 1; i < m.k; ++i)
+        sum += m.weight[i];
+    m.weight[0] = 1.0 - sum;
+    assert_int_equal(gmmrrt_model_prepare(&m, NULL, 0), GMMRRT_OK);
+    for (uint64_t seed = 1; seed <= 3; ++seed) {
+        gmmrrt_planner_config_t cfg;
+        gmmrrt_planner_config_default(&cfg);
+        cfg.planner = GMMRRT_PLANNER_GMM_RRT;
+        cfg.seed = seed;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
+        pr.goal_tolerance_m = 0.1;
+        pr.task = GMMRRT_TASK_AVOID;
+        pr.model = &m;
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = person;
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        gmmrrt_budget_t b = {0.0, 20000, 0.0, 0};
+        gmmrrt_plan_stats_t st;
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, &st), GMMRRT_OK);
+        gmmrrt_path_t path;
+        assert_int_equal(gmmrrt_planner_best_path(t.p, &path), GMMRRT_OK);
+        double cross, dmin;
+        path_side(&path, &cross, &dmin);
+        printf("gmm-rrt, left xy model, seed %d: crosses at y = %.2f after %lld iterations, %d nodes\n",
+               (int)seed, cross, (long long)st.first_solution_iteration, st.nodes);
+        assert_true(cross < -0.65);
+        test_planner_free(&t);
+    }
+}
+
+/* APPROACH: the model of the target person (components on their front axis, theta = 0,
+ * at 1.3-3.1 m) bends the arrival towards that axis: 2 m of path before the goal the
+ * bearing from the person is smaller than plain RRT*'s straight-line arrival. Person 0
+ * stands far off and is not the target. */
+static void test_approach_arrives_along_the_model(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    memset(&m, 0, sizeof m);
+    m.kind = GMMRRT_MODEL_KIND_FEATURES;
+    m.task = GMMRRT_TASK_APPROACH;
+    m.dim = 2;
+    m.k = 4;
+    m.angle_mask = 0x2u;
+    m.delta = GMMRRT_MODEL_DEFAULT_DELTA;
+    for (int32_t i = 0; i < 4; ++i) {
+        m.weight[i] = 0.25;
+        m.mean[i][0] = 1.3 + 0.6 * i;
+        m.mean[i][1] = 0.0;
+        m.chol[i][0] = 0.3;
+        m.chol[i][2] = 0.15;
+    }
+    assert_int_equal(gmmrrt_model_prepare(&m, NULL, 0), GMMRRT_OK);
+    const gmmrrt_pose_t target = {0.0, 0.0, 0.0}; /* faces +x: the goal is 1 m in front */
+    double bearing[2];
+    for (int plain = 0; plain < 2; ++plain) {
+        gmmrrt_planner_config_t cfg;
+        gmmrrt_planner_config_default(&cfg);
+        cfg.planner = plain ? GMMRRT_PLANNER_RRT_STAR : GMMRRT_PLANNER_GMM_RRT_STAR;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(4.0, 3.0, 1.0, 0.0);
+        pr.goal_tolerance_m = 0.1;
+        pr.task = GMMRRT_TASK_APPROACH;
+        pr.target_person = 1;
+        pr.model = &m;
+        pr.obstacles.num_people = 2;
+        pr.obstacles.people[0] = (gmmrrt_pose_t){-6.0, -4.0, 0.0};
+        pr.obstacles.people[1] = target;
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        gmmrrt_budget_t b = {0.0, 15000, 0.0, 0};
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+        gmmrrt_path_t path;
+        assert_int_equal(gmmrrt_planner_best_path(t.p, &path), GMMRRT_OK);
+        const int32_t back = (int32_t)(2.0 / cfg.waypoint_spacing_m);
+        assert_true(path.num_points > back + 1);
+        const int32_t i = path.num_points - 1 - back;
+        double d;
+        gmmrrt_features_from_xy(&target, path.x[i], path.y[i], &d, &bearing[plain]);
+        printf("approach, %s: 2 m before the goal at (%.2f, %.2f), d = %.2f, theta = %.2f\n",
+               plain ? "rrt-star" : "gmm-rrt-star", path.x[i], path.y[i], d, bearing[plain]);
+        test_planner_free(&t);
+    }
+    assert_true(bearing[0] < bearing[1] - 0.08);
+    assert_true(fabs(bearing[0]) < 0.45);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -182,6 +330,9 @@ int main(void)
         cmocka_unit_test(test_task_cost_alone_picks_the_model_side),
         cmocka_unit_test(test_mirrored_model_passes_on_the_right),
         cmocka_unit_test(test_two_side_model_takes_the_free_side_when_one_is_blocked),
+        cmocka_unit_test(test_only_people_near_the_path_count),
+        cmocka_unit_test(test_gmm_rrt_follows_its_xy_model),
+        cmocka_unit_test(test_approach_arrives_along_the_model),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
