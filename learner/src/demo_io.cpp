@@ -148,13 +148,13 @@ class LogReader {
     bool CheckHeader(FILE* f, long offset, long file_size, int64_t event_no, long* next_offset) {
         unsigned char h[kEventHeaderBytes];
         size_t got = std::fread(h, 1, sizeof h, f);
-        if (got < sizeof h)
-            return Error(Where(event_no, offset, nullptr) + ": log truncated inside an event header (" +
-                         std::to_string(file_size - offset) + " bytes left)");
-        if (BigEndian32(h) != kLcmSyncWord)
+        if (got >= 4 && BigEndian32(h) != kLcmSyncWord)
             return Error(Where(event_no, offset, nullptr) +
                          (event_no == 1 ? ": not an LCM log (no sync word at the start)"
                                         : ": corrupted log (no LCM sync word where an event starts)"));
+        if (got < sizeof h)
+            return Error(Where(event_no, offset, nullptr) + ": log truncated inside an event header (" +
+                         std::to_string(file_size - offset) + " bytes left)");
         const int32_t channel_len = static_cast<int32_t>(BigEndian32(h + 20));
         const int32_t data_len = static_cast<int32_t>(BigEndian32(h + 24));
         if (channel_len <= 0 || channel_len > kMaxChannelLen)

@@ -49,7 +49,7 @@ struct ReadResult {
 
 // Largest |robot pose utime - person utime| [s] for pairing a ROBOT_POSE with the latest
 // PEOPLE entry of the episode's person; poses without such a partner are skipped.
-constexpr double kMaxPersonAgeS = 0.5;
+constexpr double kMaxPersonAgeS = 5.0;
 
 // Largest number of warnings kept; the last one then says how many more were dropped.
 constexpr size_t kMaxWarnings = 100;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "gmmrrt/demo_info_t.hpp"
+#include "gmmrrt/features.h"
 #include "gmmrrt/model.h"
 #include "gmmrrt/people_t.hpp"
 #include "gmmrrt/pose2d_t.hpp"
@@ -206,10 +207,12 @@ void test_log_pose_without_recent_person_is_skipped(void** state) {
         LogWriter w(path);
         w.Write("DEMO_INFO", Info(kT0, 0, 1, 2, 3), kT0);
         w.Write("PEOPLE", People(kT0, 3, 1, 1, 0), kT0);
-        w.Write("ROBOT_POSE", Pose(kT0 + 100000, 0, 0, 0), kT0 + 100000);  // 0.1 s old person: paired
-        w.Write("ROBOT_POSE", Pose(kT0 + 900000, 1, 0, 0), kT0 + 900000);  // 0.9 s: skipped
-        w.Write("PEOPLE", People(kT0 + 950000, 9, 1, 1, 0), kT0 + 950000);  // other person only
-        w.Write("ROBOT_POSE", Pose(kT0 + 1000000, 2, 0, 0), kT0 + 1000000);  // still 1 s: skipped
+        // Ages relative to the person's entry at kT0, against kMaxPersonAgeS.
+        const int64_t max_age_us = static_cast<int64_t>(gmmrrt::learn::kMaxPersonAgeS * 1e6);
+        w.Write("ROBOT_POSE", Pose(kT0 + max_age_us, 0, 0, 0), kT0);                     // at the limit: paired
+        w.Write("ROBOT_POSE", Pose(kT0 + max_age_us + 1000, 1, 0, 0), kT0);              // 1 ms over: skipped
+        w.Write("PEOPLE", People(kT0 + max_age_us + 2000, 9, 1, 1, 0), kT0);            // other person only
+        w.Write("ROBOT_POSE", Pose(kT0 + max_age_us + 3000, 2, 0, 0), kT0);              // still stale: skipped
     }
     std::vector<Episode> eps;
     ReadResult r = gmmrrt::learn::ReadDemoLog(path, &eps);
@@ -375,7 +378,7 @@ void test_log_flipped_bytes_never_crash_and_broken_headers_are_named(void** stat
 void test_log_garbage_file_is_not_a_log(void** state) {
     (void)state;
     const std::string path = TempPath("garbage.lcmlog");
-    WriteText(path, "this is not an LCM log at all, just text\n");
+    WriteText(path, "not a log\n");  // shorter than an event header
     std::vector<Episode> eps;
     ReadResult r = gmmrrt::learn::ReadDemoLog(path, &eps);
     assert_false(r.ok);
@@ -486,6 +489,47 @@ void test_split_index_reads_and_rejects_duplicates(void** state) {
     assert_true(Contains(r.error, "no split column"));
 }
 
+// The synthesized logs in logs/demos/ (tools/synth_demos.py) read with no warning: 9 episodes per
+// file with the file's labels, and avoid demonstrations pass on their labelled side (features
+// from the C core, as the learner will compute them).
+void test_repository_demo_logs_read_with_their_labels(void** state) {
+    (void)state;
+    struct {
+        const char* file;
+        int task, homotopy;
+    } const sets[] = {{"avoid_left", GMMRRT_TASK_AVOID, GMMRRT_HOMOTOPY_LEFT},
+                      {"avoid_right", GMMRRT_TASK_AVOID, GMMRRT_HOMOTOPY_RIGHT},
+                      {"approach_frontal", GMMRRT_TASK_APPROACH, GMMRRT_HOMOTOPY_FRONTAL},
+                      {"approach_left", GMMRRT_TASK_APPROACH, GMMRRT_HOMOTOPY_LEFT},
+                      {"approach_right", GMMRRT_TASK_APPROACH, GMMRRT_HOMOTOPY_RIGHT}};
+    for (const auto& set : sets) {
+        const std::string path = std::string(GMMRRT_DEMOS_DIR) + "/" + set.file + ".lcmlog";
+        std::vector<Episode> eps;
+        ReadResult r = gmmrrt::learn::ReadDemoLog(path, &eps);
+        if (!r.ok || !r.warnings.empty())
+            fail_msg("%s: ok=%d error='%s' warnings=%zu", path.c_str(), static_cast<int>(r.ok), r.error.c_str(),
+                     r.warnings.size());
+        assert_int_equal(eps.size(), 9);
+        for (const Episode& e : eps) {
+            assert_int_equal(e.task, set.task);
+            assert_int_equal(e.homotopy, set.homotopy);
+            double d_min = 1e9, theta_at_min = 0;
+            for (const auto& s : e.samples) {
+                const gmmrrt_pose_t person = {s.person_x, s.person_y, s.person_yaw};
+                double d = 0, theta = 0;
+                gmmrrt_features_from_xy(&person, s.robot_x, s.robot_y, &d, &theta);
+                if (d < d_min) {
+                    d_min = d;
+                    theta_at_min = theta;
+                }
+            }
+            assert_true(d_min > 0.45);
+            if (set.task == GMMRRT_TASK_AVOID)
+                assert_true((theta_at_min > 0) == (set.homotopy == GMMRRT_HOMOTOPY_LEFT));
+        }
+    }
+}
+
 void test_real_upo_csv_reads_with_its_index(void** state) {
     (void)state;
     const std::string dir = std::getenv("GMMRRT_REAL_DATA");
@@ -543,6 +587,7 @@ int main(int argc, char** argv) {
             cmocka_unit_test(test_csv_errors_name_the_line),
             cmocka_unit_test(test_read_episodes_picks_the_reader_by_content),
             cmocka_unit_test(test_split_index_reads_and_rejects_duplicates),
+            cmocka_unit_test(test_repository_demo_logs_read_with_their_labels),
         };
         failed = cmocka_run_group_tests(tests, nullptr, nullptr);
     }
