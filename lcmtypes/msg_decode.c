@@ -86,12 +86,15 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_people(const void *buf, size_t len, gmmrrt
         return r;
     for (int32_t i = 0; i < out->num_people; ++i) {
         const gmmrrt_person_t *p = &out->people[i];
-        char field[32];
-        if (!(isfinite(p->x) && isfinite(p->y) && isfinite(p->yaw) && isfinite(p->vx) && isfinite(p->vy))) {
-            snprintf(field, sizeof field, "people[%d]", (int)i);
-            return reject(GMMRRT_MSG_NOT_FINITE, err, errcap, "people_t.%s has a non-finite pose or velocity",
-                          field);
-        }
+        const char *bad = !isfinite(p->x)     ? "x"
+                          : !isfinite(p->y)   ? "y"
+                          : !isfinite(p->yaw) ? "yaw"
+                          : !isfinite(p->vx)  ? "vx"
+                          : !isfinite(p->vy)  ? "vy"
+                                              : NULL;
+        if (bad != NULL)
+            return reject(GMMRRT_MSG_NOT_FINITE, err, errcap, "people_t.people[%d].%s is not finite", (int)i,
+                          bad);
         if (p->id < 0)
             return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "people_t.people[%d].id = %d is negative", (int)i,
                           (int)p->id);
@@ -132,20 +135,31 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_obstacles(const void *buf, size_t len, gmm
     if (r != GMMRRT_MSG_OK)
         return r;
     for (int32_t i = 0; i < out->num_circles; ++i) {
-        if (!(isfinite(out->circle_x[i]) && isfinite(out->circle_y[i]) && isfinite(out->circle_radius[i])))
-            return reject(GMMRRT_MSG_NOT_FINITE, err, errcap, "obstacles_t circle %d is not finite", (int)i);
+        const char *bad = !isfinite(out->circle_x[i])        ? "circle_x"
+                          : !isfinite(out->circle_y[i])      ? "circle_y"
+                          : !isfinite(out->circle_radius[i]) ? "circle_radius"
+                                                             : NULL;
+        if (bad != NULL)
+            return reject(GMMRRT_MSG_NOT_FINITE, err, errcap, "obstacles_t.%s[%d] is not finite", bad, (int)i);
         if (!(out->circle_radius[i] > 0.0))
             return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "obstacles_t.circle_radius[%d] = %g must be > 0",
                           (int)i, out->circle_radius[i]);
     }
     for (int32_t i = 0; i < out->num_boxes; ++i) {
-        if (!(isfinite(out->box_x[i]) && isfinite(out->box_y[i]) && isfinite(out->box_width[i]) &&
-              isfinite(out->box_height[i]) && isfinite(out->box_yaw[i])))
-            return reject(GMMRRT_MSG_NOT_FINITE, err, errcap, "obstacles_t box %d is not finite", (int)i);
-        if (!(out->box_width[i] > 0.0 && out->box_height[i] > 0.0))
-            return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
-                          "obstacles_t box %d: width %g and height %g must be > 0", (int)i, out->box_width[i],
-                          out->box_height[i]);
+        const char *bad = !isfinite(out->box_x[i])        ? "box_x"
+                          : !isfinite(out->box_y[i])      ? "box_y"
+                          : !isfinite(out->box_width[i])  ? "box_width"
+                          : !isfinite(out->box_height[i]) ? "box_height"
+                          : !isfinite(out->box_yaw[i])    ? "box_yaw"
+                                                          : NULL;
+        if (bad != NULL)
+            return reject(GMMRRT_MSG_NOT_FINITE, err, errcap, "obstacles_t.%s[%d] is not finite", bad, (int)i);
+        if (!(out->box_width[i] > 0.0))
+            return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "obstacles_t.box_width[%d] = %g must be > 0", (int)i,
+                          out->box_width[i]);
+        if (!(out->box_height[i] > 0.0))
+            return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "obstacles_t.box_height[%d] = %g must be > 0",
+                          (int)i, out->box_height[i]);
     }
     return GMMRRT_MSG_OK;
 }
@@ -158,9 +172,20 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_waypoints(const void *buf, size_t len, gmm
                                         GMMRRT_WAYPOINTS_T_MAX_WAYPOINTS, err, errcap);
     if (r != GMMRRT_MSG_OK)
         return r;
-    for (int32_t i = 0; i < out->num_waypoints; ++i)
-        if (!(isfinite(out->x[i]) && isfinite(out->y[i]) && isfinite(out->yaw[i])))
-            return reject(GMMRRT_MSG_NOT_FINITE, err, errcap, "waypoints_t waypoint %d is not finite", (int)i);
+    for (int32_t i = 0; i < out->num_waypoints; ++i) {
+        const char *bad = !isfinite(out->x[i])     ? "x"
+                          : !isfinite(out->y[i])   ? "y"
+                          : !isfinite(out->yaw[i]) ? "yaw"
+                                                   : NULL;
+        if (bad != NULL)
+            return reject(GMMRRT_MSG_NOT_FINITE, err, errcap, "waypoints_t.%s[%d] is not finite", bad, (int)i);
+    }
+    if (out->planner < GMMRRT_WAYPOINTS_T_PLANNER_NONE || out->planner > GMMRRT_WAYPOINTS_T_PLANNER_GMM_RRT)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "waypoints_t.planner = %d is not a PLANNER_* value",
+                      (int)out->planner);
+    if (out->task < GMMRRT_NAV_GOAL_T_TASK_NONE || out->task > GMMRRT_NAV_GOAL_T_TASK_APPROACH)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "waypoints_t.task = %d is not a TASK_* value",
+                      (int)out->task);
     return GMMRRT_MSG_OK;
 }
 

@@ -1,0 +1,273 @@
+/*
+ * cycle.c - one gmmrrtd planning cycle (issue 6, "Behaviour"): from the latest inputs to a
+ * plan. Picks the model by the goal's task (avoid / approach, paper Sect. 4-5), plans from
+ * the latest robot pose with gmmrrt_planner_set_problem + run, warm-starts from the last
+ * published path when the situation has not changed much, and publishes PLAN and
+ * PLANNER_STATUS. A stale pose, a missing model or target, an unusable goal or no path
+ * publishes a stop (an empty plan whose status says why), never an old plan.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "daemon.h"
+
+#define ST(x) GMMRRT_PLANNER_STATUS_T_##x
+
+/* Counts `reason` at most once per goal (per goal content, see inputs.c). */
+static void reject_once_per_goal(gmmrrtd_t *d, int reason, gmmrrt_status_t why)
+{
+    if (d->counted_goal_version[reason] == d->goal_version)
+        return;
+    d->counted_goal_version[reason] = d->goal_version;
+    gmmrrtd_reject(d, GMMRRTD_NUM_INPUTS, reason, "goal (%.2f, %.2f): %s", d->goal.x, d->goal.y,
+                   gmmrrt_status_str(why));
+}
+
+static void publish_status(gmmrrtd_t *d, int64_t now_utime, int8_t state)
+{
+    d->status.utime = now_utime;
+    d->status.state = state;
+    gmmrrt_planner_status_t_publish(d->lcm_out, d->set.ch_status, &d->status);
+}
+
+static void publish_plan(gmmrrtd_t *d, const gmmrrt_path_t *path, gmmrrt_status_t status)
+{
+    gmmrrt_waypoints_t *m = &d->plan_msg;
+    m->utime = d->pose.utime;
+    m->seq = ++d->plan_seq;
+    const int32_t n = path != NULL ? path->num_points : 0;
+    m->num_waypoints = n;
+    for (int32_t i = 0; i < n; ++i) {
+        m->x[i] = path->x[i];
+        m->y[i] = path->y[i];
+        m->yaw[i] = path->yaw[i];
+    }
+    for (int32_t i = n; i < GMMRRT_WAYPOINTS_T_MAX_WAYPOINTS; ++i)
+        m->x[i] = m->y[i] = m->yaw[i] = 0.0;
+    m->total_cost = n > 0 ? path->cost : 0.0;
+    m->length_m = n > 0 ? path->length_m : 0.0;
+    m->planner = n > 0 ? (int8_t)d->set.cfg.planner : GMMRRT_WAYPOINTS_T_PLANNER_NONE;
+    m->task = d->have[GMMRRTD_IN_GOAL] ? d->goal.task : GMMRRT_NAV_GOAL_T_TASK_NONE;
+    m->status = (int32_t)status;
+    gmmrrt_waypoints_t_publish(d->lcm_out, d->set.ch_plan, m);
+    d->status.plans_published++;
+}
+
+static void clear_stats(gmmrrtd_t *d)
+{
+    d->status.iterations = 0;
+    d->status.nodes = 0;
+    d->status.first_solution_ms = -1.0;
+    d->status.best_cost = -1.0;
+}
+
+/* Stats of the cycle stay as they are (cleared by the callers that did not plan). */
+static void publish_stop(gmmrrtd_t *d, int64_t now_utime, gmmrrt_status_t why, int8_t state)
+{
+    d->last.valid = 0; /* never warm-start across a stop */
+    d->status.last_error = (int32_t)why;
+    publish_plan(d, NULL, why);
+    publish_status(d, now_utime, state);
+}
+
+static int find_person(const gmmrrt_people_t *people, int32_t id)
+{
+    for (int32_t i = 0; i < people->num_people; ++i)
+        if (people->people[i].id == id)
+            return (int)i;
+    return -1;
+}
+
+/* The planning problem from the latest inputs. Bounds: the box around robot and goal grown
+ * by bounds_margin_m (obstacles and people outside it cannot matter to a path inside). */
+static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_index)
+{
+    gmmrrt_problem_t *p = &d->problem;
+    memset(p, 0, sizeof *p);
+    p->start_x = d->pose.x;
+    p->start_y = d->pose.y;
+    p->goal_x = d->goal.x;
+    p->goal_y = d->goal.y;
+    p->goal_tolerance_m = d->goal.tolerance_m;
+    p->task = d->goal.task;
+    p->target_person = target_index;
+    p->model = model;
+    const double m = d->set.bounds_margin_m;
+    p->obstacles.bounds.xmin = fmin(p->start_x, p->goal_x) - m;
+    p->obstacles.bounds.xmax = fmax(p->start_x, p->goal_x) + m;
+    p->obstacles.bounds.ymin = fmin(p->start_y, p->goal_y) - m;
+    p->obstacles.bounds.ymax = fmax(p->start_y, p->goal_y) + m;
+    if (d->have[GMMRRTD_IN_OBSTACLES]) {
+        const gmmrrt_obstacles_t *o = &d->obstacles;
+        p->obstacles.num_circles = o->num_circles;
+        for (int32_t i = 0; i < o->num_circles; ++i)
+            p->obstacles.circles[i] = (gmmrrt_circle_t){o->circle_x[i], o->circle_y[i], o->circle_radius[i]};
+        p->obstacles.num_boxes = o->num_boxes;
+        for (int32_t i = 0; i < o->num_boxes; ++i)
+            p->obstacles.boxes[i] =
+                (gmmrrt_box_t){o->box_x[i], o->box_y[i], o->box_width[i], o->box_height[i], o->box_yaw[i]};
+    }
+    if (d->have[GMMRRTD_IN_PEOPLE]) {
+        p->obstacles.num_people = d->people.num_people;
+        for (int32_t i = 0; i < d->people.num_people; ++i)
+            p->obstacles.people[i] =
+                (gmmrrt_pose_t){d->people.people[i].x, d->people.people[i].y, d->people.people[i].yaw};
+    }
+}
+
+/* "Not changed much" (docs/daemon.md): same task and target, goal moved < warm_goal_shift_m,
+ * obstacles unchanged, the same tracked ids each moved < warm_people_shift_m, and the robot
+ * within warm_robot_offset_m of the last path. Then the seed is the robot followed by the
+ * last path from the waypoint after the nearest one. Returns the seed length (0: cold). */
+static int32_t warm_start_seed(gmmrrtd_t *d)
+{
+    const gmmrrtd_snapshot_t *s = &d->last;
+    const gmmrrtd_settings_t *set = &d->set;
+    if (!s->valid || s->task != d->goal.task || s->target_id != d->goal.target_person_id ||
+        hypot(s->goal_x - d->goal.x, s->goal_y - d->goal.y) >= set->warm_goal_shift_m ||
+        s->obstacles_version != d->obstacles_version)
+        return 0;
+    const int32_t np = d->have[GMMRRTD_IN_PEOPLE] ? d->people.num_people : 0;
+    if (np != s->num_people)
+        return 0;
+    for (int32_t i = 0; i < np; ++i) {
+        const gmmrrt_person_t *q = &d->people.people[i];
+        if (q->id != s->people_id[i] || hypot(q->x - s->people_x[i], q->y - s->people_y[i]) >= set->warm_people_shift_m)
+            return 0;
+    }
+    const gmmrrt_path_t *lp = &d->last_path;
+    if (lp->num_points < 2)
+        return 0;
+    int32_t nearest = 0;
+    double best = INFINITY;
+    for (int32_t i = 0; i < lp->num_points; ++i) {
+        const double dist = hypot(lp->x[i] - d->pose.x, lp->y[i] - d->pose.y);
+        if (dist < best) {
+            best = dist;
+            nearest = i;
+        }
+    }
+    if (best >= set->warm_robot_offset_m)
+        return 0;
+    int32_t n = 0;
+    d->seed_x[n] = d->pose.x;
+    d->seed_y[n++] = d->pose.y;
+    for (int32_t i = nearest + 1; i < lp->num_points; ++i) {
+        d->seed_x[n] = lp->x[i];
+        d->seed_y[n++] = lp->y[i];
+    }
+    return n >= 2 ? n : 0;
+}
+
+static void remember_situation(gmmrrtd_t *d)
+{
+    gmmrrtd_snapshot_t *s = &d->last;
+    s->valid = 1;
+    s->goal_x = d->goal.x;
+    s->goal_y = d->goal.y;
+    s->task = d->goal.task;
+    s->target_id = d->goal.target_person_id;
+    s->obstacles_version = d->obstacles_version;
+    s->num_people = d->have[GMMRRTD_IN_PEOPLE] ? d->people.num_people : 0;
+    for (int32_t i = 0; i < s->num_people; ++i) {
+        s->people_id[i] = d->people.people[i].id;
+        s->people_x[i] = d->people.people[i].x;
+        s->people_y[i] = d->people.people[i].y;
+    }
+    d->last_path = d->path;
+}
+
+void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_utime)
+{
+    d->cycles++;
+    d->status.plan_time_ms = 0.0;
+    clear_stats(d);
+    if (!d->have[GMMRRTD_IN_GOAL]) {
+        publish_status(d, now_utime, ST(STATE_IDLE));
+        return;
+    }
+
+    /* No pose, or none newer than pose_timeout_ms: stop; the gap is counted once. */
+    const int64_t timeout_us = (int64_t)(d->set.pose_timeout_ms * 1000.0);
+    if (!d->have[GMMRRTD_IN_POSE] || now_utime - d->pose.utime > timeout_us) {
+        if (!d->pose_stale_counted) {
+            d->pose_stale_counted = 1;
+            gmmrrtd_reject(d, GMMRRTD_NUM_INPUTS, ST(REJECT_POSE_STALE), "no robot pose for %.3f s (limit %.3f s)",
+                           d->have[GMMRRTD_IN_POSE] ? (double)(now_utime - d->pose.utime) * 1e-6 : INFINITY,
+                           d->set.pose_timeout_ms * 1e-3);
+        }
+        publish_stop(d, now_utime, GMMRRT_STOP_POSE_STALE, ST(STATE_STOPPED));
+        return;
+    }
+
+    const gmmrrt_model_t *model = NULL;
+    int target = -1;
+    if (d->goal.task == GMMRRT_NAV_GOAL_T_TASK_AVOID || d->goal.task == GMMRRT_NAV_GOAL_T_TASK_APPROACH) {
+        const int avoid = d->goal.task == GMMRRT_NAV_GOAL_T_TASK_AVOID;
+        if (!(avoid ? d->have_avoid : d->have_approach)) {
+            publish_stop(d, now_utime, GMMRRT_STOP_NO_MODEL, ST(STATE_ERROR));
+            return;
+        }
+        model = avoid ? &d->model_avoid : &d->model_approach;
+    }
+    if (d->goal.task == GMMRRT_NAV_GOAL_T_TASK_APPROACH) {
+        target = d->have[GMMRRTD_IN_PEOPLE] ? find_person(&d->people, d->goal.target_person_id) : -1;
+        if (target < 0) {
+            reject_once_per_goal(d, ST(REJECT_UNKNOWN_TARGET), GMMRRT_STOP_UNKNOWN_TARGET);
+            publish_stop(d, now_utime, GMMRRT_STOP_UNKNOWN_TARGET, ST(STATE_STOPPED));
+            return;
+        }
+    }
+    if (d->set.cfg.planner == GMMRRT_PLANNER_RRT_STAR)
+        model = NULL;
+
+    build_problem(d, model, target);
+    gmmrrt_status_t st = gmmrrt_planner_set_problem(d->planner, &d->problem);
+    if (st != GMMRRT_OK) {
+        int8_t state = ST(STATE_STOPPED);
+        if (st == GMMRRT_ERR_GOAL_IN_COLLISION || st == GMMRRT_ERR_GOAL_OUT_OF_BOUNDS)
+            reject_once_per_goal(d, ST(REJECT_GOAL_IN_COLLISION), st);
+        else if (st == GMMRRT_ERR_START_IN_COLLISION || st == GMMRRT_ERR_START_OUT_OF_BOUNDS)
+            reject_once_per_goal(d, ST(REJECT_START_IN_COLLISION), st);
+        else
+            state = ST(STATE_ERROR); /* model mismatch, bad argument: the set-up is wrong */
+        publish_stop(d, now_utime, st, state);
+        return;
+    }
+
+    const int32_t n_seed = warm_start_seed(d);
+    if (n_seed > 0) {
+        if (gmmrrt_planner_seed_path(d->planner, d->seed_x, d->seed_y, n_seed) == GMMRRT_OK)
+            d->warm_starts++;
+    }
+
+    const gmmrrt_budget_t budget = {
+        .time_ms = d->set.budget_ms,
+        .max_iterations = d->set.budget_iterations,
+        .converge_rel = 0.0,
+        .converge_window = 0,
+    };
+    gmmrrt_plan_stats_t stats;
+    st = gmmrrt_planner_run(d->planner, &budget, &stats);
+    d->status.iterations = stats.iterations;
+    d->status.nodes = stats.nodes;
+    d->status.first_solution_ms = stats.first_solution_ms;
+    d->status.best_cost = isfinite(stats.best_cost) ? stats.best_cost : -1.0;
+    d->status.plan_time_ms = stats.time_ms;
+
+    if ((st == GMMRRT_OK || st == GMMRRT_POOL_FULL) && gmmrrt_planner_best_path(d->planner, &d->path) == GMMRRT_OK &&
+        d->path.num_points >= 2) {
+        d->no_path_cycles = 0;
+        d->status.last_error = st == GMMRRT_POOL_FULL ? (int32_t)st : 0;
+        remember_situation(d);
+        publish_plan(d, &d->path, GMMRRT_OK);
+        publish_status(d, now_utime, ST(STATE_PLANNING));
+        return;
+    }
+    if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL)
+        st = GMMRRT_NO_PATH_YET;
+    if (++d->no_path_cycles >= d->set.unreachable_after_cycles)
+        reject_once_per_goal(d, ST(REJECT_GOAL_UNREACHABLE), st);
+    publish_stop(d, now_utime, st, ST(STATE_STOPPED));
+}

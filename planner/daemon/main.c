@@ -1,0 +1,272 @@
+/*
+ * main.c - gmmrrtd's main loop, like Redis's (STYLE.md 10; issue 6): poll() on the LCM file
+ * descriptor with a timeout to the next tick, a fixed cycle rate with a planning budget
+ * inside each period, signal handlers that only set flags (SIGINT/SIGTERM: exit cleanly;
+ * SIGHUP: reload config and models), systemd readiness and watchdog via sd_notify when
+ * built with libsystemd. Two clocks (docs/daemon.md): live (ticks on CLOCK_MONOTONIC) and
+ * log (ticks on the inputs' utime, for deterministic file:// replays).
+ */
+#include <errno.h>
+#include <math.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef GMMRRT_HAVE_SYSTEMD
+#include <systemd/sd-daemon.h>
+#define NOTIFY(...) sd_notifyf(0, __VA_ARGS__)
+#else
+#define NOTIFY(...) ((void)0)
+#endif
+
+#include "daemon.h"
+
+static volatile sig_atomic_t g_stop;
+static volatile sig_atomic_t g_reload;
+static gmmrrtd_t g_d; /* the whole daemon; static, allocated once */
+
+static void on_signal(int sig)
+{
+    if (sig == SIGHUP)
+        g_reload = 1;
+    else
+        g_stop = 1;
+}
+
+static int install_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = 0; /* no SA_RESTART: poll() returns EINTR and the loop sees the flag */
+    if (sigaction(SIGINT, &sa, NULL) != 0 || sigaction(SIGTERM, &sa, NULL) != 0 || sigaction(SIGHUP, &sa, NULL) != 0)
+        return -1;
+    signal(SIGPIPE, SIG_IGN);
+    return 0;
+}
+
+/* The planner block: sized by the config, allocated once, 64-byte aligned. */
+static int planner_setup(gmmrrtd_t *d)
+{
+    d->mem_size = gmmrrt_planner_mem_size(&d->set.cfg);
+    if (d->mem_size == 0) {
+        LOG_ERROR("planner configuration gives a zero-sized block");
+        return -1;
+    }
+    const size_t rounded = (d->mem_size + 63u) / 64u * 64u;
+    d->mem = aligned_alloc(64, rounded);
+    if (d->mem == NULL) {
+        LOG_ERROR("cannot allocate the planner block (%zu bytes)", rounded);
+        return -1;
+    }
+    const gmmrrt_status_t st = gmmrrt_planner_init(&d->planner, d->mem, d->mem_size, &d->set.cfg);
+    if (st != GMMRRT_OK) {
+        LOG_ERROR("planner init: %s", gmmrrt_status_str(st));
+        return -1;
+    }
+    LOG_INFO("planner block %.1f MiB, %d nodes", (double)d->mem_size / (1024.0 * 1024.0), (int)d->set.cfg.max_nodes);
+    return 0;
+}
+
+static int settings_differ_str(const char *a, const char *b) { return strcmp(a, b) != 0; }
+
+/* SIGHUP: re-read the config file and the command line, then the models. What needs a new
+ * memory block or new LCM instances (URLs, channels) waits for a restart; a planner config
+ * that fits the block is applied by re-initialising the planner in place. */
+static void reload(gmmrrtd_t *d, int argc, char **argv)
+{
+    NOTIFY("RELOADING=1");
+    static gmmrrtd_settings_t s;
+    char err[512];
+    gmmrrtd_settings_default(&s);
+    if (gmmrrtd_settings_from_args(&s, argc, argv, err, sizeof err) != 0 ||
+        gmmrrtd_settings_validate(&s, err, sizeof err) != 0) {
+        LOG_ERROR("reload: %s; keeping the running configuration", err);
+        d->status.rejected[GMMRRT_PLANNER_STATUS_T_REJECT_MODEL_RELOAD]++;
+        NOTIFY("READY=1");
+        return;
+    }
+    if (settings_differ_str(s.lcm_url, d->set.lcm_url) || settings_differ_str(s.lcm_out_url, d->set.lcm_out_url) ||
+        settings_differ_str(s.ch_pose, d->set.ch_pose) || settings_differ_str(s.ch_people, d->set.ch_people) ||
+        settings_differ_str(s.ch_goal, d->set.ch_goal) || settings_differ_str(s.ch_obstacles, d->set.ch_obstacles) ||
+        settings_differ_str(s.ch_plan, d->set.ch_plan) || settings_differ_str(s.ch_status, d->set.ch_status) ||
+        settings_differ_str(s.clock, d->set.clock)) {
+        LOG_WARN("reload: LCM URLs, channels and clock apply at the next restart");
+        memcpy(s.lcm_url, d->set.lcm_url, sizeof s.lcm_url);
+        memcpy(s.lcm_out_url, d->set.lcm_out_url, sizeof s.lcm_out_url);
+        memcpy(s.ch_pose, d->set.ch_pose, sizeof s.ch_pose);
+        memcpy(s.ch_people, d->set.ch_people, sizeof s.ch_people);
+        memcpy(s.ch_goal, d->set.ch_goal, sizeof s.ch_goal);
+        memcpy(s.ch_obstacles, d->set.ch_obstacles, sizeof s.ch_obstacles);
+        memcpy(s.ch_plan, d->set.ch_plan, sizeof s.ch_plan);
+        memcpy(s.ch_status, d->set.ch_status, sizeof s.ch_status);
+        memcpy(s.clock, d->set.clock, sizeof s.clock);
+    }
+    if (memcmp(&s.cfg, &d->set.cfg, sizeof s.cfg) != 0) {
+        if (gmmrrt_planner_mem_size(&s.cfg) > d->mem_size) {
+            LOG_ERROR("reload: the new planner settings need %zu bytes, the block has %zu; keeping the old ones "
+                      "(restart to grow it)",
+                      gmmrrt_planner_mem_size(&s.cfg), d->mem_size);
+            s.cfg = d->set.cfg;
+        } else if (gmmrrt_planner_init(&d->planner, d->mem, d->mem_size, &s.cfg) != GMMRRT_OK) {
+            LOG_ERROR("reload: planner init refused the new settings; keeping the old ones");
+            s.cfg = d->set.cfg;
+            (void)gmmrrt_planner_init(&d->planner, d->mem, d->mem_size, &d->set.cfg);
+        }
+        d->last.valid = 0;
+    }
+    /* Models: each replaced only when its new file is good. */
+    memcpy(d->set.model_avoid, s.model_avoid, sizeof s.model_avoid);
+    memcpy(d->set.model_approach, s.model_approach, sizeof s.model_approach);
+    (void)gmmrrtd_models_load(d, 1);
+    memcpy(s.model_avoid, d->set.model_avoid, sizeof s.model_avoid);
+    memcpy(s.model_approach, d->set.model_approach, sizeof s.model_approach);
+    d->set = s;
+    gmmrrtd_log_level_t lvl;
+    if (gmmrrtd_log_level_parse(d->set.log_level, &lvl) == 0)
+        gmmrrtd_log_set_level(lvl);
+    d->last.valid = 0;
+    LOG_INFO("reloaded");
+    NOTIFY("READY=1");
+}
+
+/* Live clock: the newest input utime plus the monotonic time since it arrived. */
+static int64_t live_clock_utime(const gmmrrtd_t *d, int64_t mono_us)
+{
+    return d->have_clock ? d->clock_utime + (mono_us - d->clock_mono_us) : 0;
+}
+
+static int run(gmmrrtd_t *d, int argc, char **argv)
+{
+    const int fd = lcm_get_fileno(d->lcm_in);
+    int64_t period_us = (int64_t)llround(1e6 / d->set.rate_hz);
+    int64_t next_tick = gmmrrtd_mono_us() + period_us;
+    int eof = 0;
+    while (!g_stop) {
+        if (g_reload) {
+            g_reload = 0;
+            reload(d, argc, argv);
+            period_us = (int64_t)llround(1e6 / d->set.rate_hz);
+        }
+        int timeout_ms;
+        int64_t now = gmmrrtd_mono_us();
+        if (d->clock_mode == GMMRRTD_CLOCK_LIVE) {
+            if (now >= next_tick) {
+                const int64_t tick = next_tick;
+                gmmrrtd_cycle(d, live_clock_utime(d, now));
+                NOTIFY("WATCHDOG=1");
+                const int64_t done = gmmrrtd_mono_us();
+                if (done > tick + period_us) {
+                    d->status.missed_deadlines++;
+                    LOG_DEBUG("cycle overran its period by %.1f ms", (double)(done - tick - period_us) * 1e-3);
+                }
+                next_tick = tick + period_us;
+                if (next_tick <= done) /* skip the ticks we can no longer make */
+                    next_tick = done + period_us - (done - next_tick) % period_us;
+                now = done;
+            }
+            timeout_ms = (int)((next_tick - now + 999) / 1000);
+        } else {
+            timeout_ms = 500; /* log clock: cycles run from the input handlers */
+            NOTIFY("WATCHDOG=1");
+        }
+        if (eof) {
+            if (d->set.exit_at_eof)
+                break;
+            (void)poll(NULL, 0, timeout_ms);
+            continue;
+        }
+        struct pollfd pfd = {.fd = fd, .events = POLLIN};
+        const int n = poll(&pfd, 1, timeout_ms);
+        if (n < 0) {
+            if (errno == EINTR)
+                continue;
+            LOG_ERROR("poll: %s", strerror(errno));
+            return -1;
+        }
+        if (n > 0 && (pfd.revents & POLLIN)) {
+            if (lcm_handle(d->lcm_in) != 0) {
+                if (strncmp(d->set.lcm_url, "file://", 7) == 0) {
+                    LOG_INFO("end of input log after %lld cycles, %lld plans", (long long)d->cycles,
+                             (long long)d->status.plans_published);
+                    eof = 1;
+                } else {
+                    LOG_ERROR("lcm_handle failed");
+                }
+            }
+        }
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    gmmrrtd_t *d = &g_d;
+    char err[512];
+    gmmrrtd_settings_default(&d->set);
+    const int rc = gmmrrtd_settings_from_args(&d->set, argc, argv, err, sizeof err);
+    if (rc > 0)
+        return 0;
+    if (rc < 0 || gmmrrtd_settings_validate(&d->set, err, sizeof err) != 0) {
+        fprintf(stderr, "gmmrrtd: error: %s\n", err);
+        return 2;
+    }
+    gmmrrtd_log_level_t lvl = GMMRRTD_LOG_INFO;
+    (void)gmmrrtd_log_level_parse(d->set.log_level, &lvl);
+    gmmrrtd_log_set_level(lvl);
+    d->clock_mode = gmmrrtd_settings_clock(&d->set);
+    d->status.first_solution_ms = -1.0;
+    d->status.best_cost = -1.0;
+
+    if (install_signals() != 0) {
+        LOG_ERROR("cannot install signal handlers: %s", strerror(errno));
+        return 1;
+    }
+    if (gmmrrtd_models_load(d, 0) != 0)
+        return 1;
+    if (planner_setup(d) != 0)
+        return 1;
+    d->lcm_in = lcm_create(d->set.lcm_url);
+    if (d->lcm_in == NULL) {
+        LOG_ERROR("cannot open LCM input %s", d->set.lcm_url);
+        return 1;
+    }
+    d->lcm_out = d->lcm_in;
+    if (d->set.lcm_out_url[0] != '\0') {
+        d->lcm_out = lcm_create(d->set.lcm_out_url);
+        if (d->lcm_out == NULL) {
+            LOG_ERROR("cannot open LCM output %s", d->set.lcm_out_url);
+            lcm_destroy(d->lcm_in);
+            return 1;
+        }
+    }
+    if (gmmrrtd_inputs_subscribe(d) != 0)
+        return 1;
+    LOG_INFO("running: %s clock, %.1f Hz, budget %g ms / %lld iterations, in %s%s%s",
+             d->clock_mode == GMMRRTD_CLOCK_LOG ? "log" : "live", d->set.rate_hz, d->set.budget_ms,
+             (long long)d->set.budget_iterations, d->set.lcm_url, d->set.lcm_out_url[0] ? ", out " : "",
+             d->set.lcm_out_url);
+    NOTIFY("READY=1\nSTATUS=planning at %.1f Hz", d->set.rate_hz);
+
+    const int result = run(d, argc, argv);
+
+    NOTIFY("STOPPING=1");
+    const char *names[] = {"decode", "count", "not_finite", "backwards", "goal_coll", "unreachable", "pose_stale",
+                           "bad_value", "unknown_target", "start_coll", "model_reload"};
+    char summary[512];
+    int off = 0;
+    for (int i = 0; i < 11; ++i)
+        off += snprintf(summary + off, sizeof summary - (size_t)off, " %s=%lld", names[i],
+                        (long long)d->status.rejected[i]);
+    LOG_INFO("exiting: %lld cycles, %lld plans, %lld warm starts, %lld missed deadlines; rejected:%s",
+             (long long)d->cycles, (long long)d->status.plans_published, (long long)d->warm_starts,
+             (long long)d->status.missed_deadlines, summary);
+    if (d->lcm_out != d->lcm_in)
+        lcm_destroy(d->lcm_out);
+    lcm_destroy(d->lcm_in);
+    free(d->mem);
+    return result == 0 ? 0 : 1;
+}

@@ -1,0 +1,313 @@
+/*
+ * settings.c - gmmrrtd's settings: defaults, INI file (inih) and getopt_long command line
+ * from one key table (see settings.h; reference in docs/daemon.md).
+ */
+#include "settings.h"
+
+#include <errno.h>
+#include <getopt.h>
+#include <ini.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "log.h"
+
+#ifndef GMMRRT_VERSION_STRING
+#define GMMRRT_VERSION_STRING "unknown"
+#endif
+
+typedef enum { K_STR, K_F64, K_I32, K_I64, K_U64, K_BOOL, K_PLANNER } key_type_t;
+
+typedef struct {
+    const char *section, *key; /* INI [section] key */
+    const char *flag;          /* --flag (long option name) */
+    key_type_t type;
+    size_t offset, size;       /* into gmmrrtd_settings_t; size for K_STR */
+    double min, max;           /* numeric range, inclusive */
+    const char *help;
+} key_t_;
+
+#define OFF(f) offsetof(gmmrrtd_settings_t, f)
+#define STR(sec, k, fl, f, h) {sec, k, fl, K_STR, OFF(f), sizeof(((gmmrrtd_settings_t *)0)->f), 0, 0, h}
+#define NUM(sec, k, fl, ty, f, lo, hi, h) {sec, k, fl, ty, OFF(f), 0, lo, hi, h}
+
+static const key_t_ k_keys[] = {
+    STR("lcm", "url", "lcm-url", lcm_url, "LCM URL to subscribe (and publish) on"),
+    STR("lcm", "out_url", "lcm-out-url", lcm_out_url, "separate LCM URL to publish on (e.g. file://out.lcmlog?mode=w)"),
+    NUM("lcm", "exit_at_eof", "exit-at-eof", K_BOOL, exit_at_eof, 0, 1, "exit when a file:// input ends (flag: no value)"),
+    STR("lcm", "clock", "clock", clock, "auto | live | log: planning clock (docs/daemon.md)"),
+    STR("channels", "pose", "channel-pose", ch_pose, "robot pose channel (pose2d_t)"),
+    STR("channels", "people", "channel-people", ch_people, "people channel (people_t)"),
+    STR("channels", "goal", "channel-goal", ch_goal, "goal channel (nav_goal_t)"),
+    STR("channels", "obstacles", "channel-obstacles", ch_obstacles, "obstacles channel (obstacles_t)"),
+    STR("channels", "plan", "channel-plan", ch_plan, "plan output channel (waypoints_t)"),
+    STR("channels", "status", "channel-status", ch_status, "status output channel (planner_status_t)"),
+    STR("models", "avoid", "model-avoid", model_avoid, "model file for TASK_AVOID"),
+    STR("models", "approach", "model-approach", model_approach, "model file for TASK_APPROACH"),
+    NUM("timing", "rate_hz", "rate-hz", K_F64, rate_hz, 0.1, 1000, "planning cycles per second"),
+    NUM("timing", "budget_ms", "budget-ms", K_F64, budget_ms, 0, 1e6, "planning time per cycle, ms (0: none)"),
+    NUM("timing", "budget_iterations", "budget-iterations", K_I64, budget_iterations, 0, 1e12,
+        "samples per cycle (0: none); deterministic replays"),
+    NUM("timing", "pose_timeout_ms", "pose-timeout-ms", K_F64, pose_timeout_ms, 1, 1e7, "stop when the pose is older, ms"),
+    NUM("timing", "unreachable_after_cycles", "unreachable-after", K_I32, unreachable_after_cycles, 1, 1e6,
+        "cycles without a path before a goal counts as unreachable"),
+    NUM("world", "bounds_margin_m", "bounds-margin", K_F64, bounds_margin_m, 0.1, 1e4, "planning bounds margin, m"),
+    NUM("warm_start", "goal_shift_m", "warm-goal-shift", K_F64, warm_goal_shift_m, 0, 1e4, "warm start: goal moved less, m"),
+    NUM("warm_start", "people_shift_m", "warm-people-shift", K_F64, warm_people_shift_m, 0, 1e4,
+        "warm start: each person moved less, m"),
+    NUM("warm_start", "robot_offset_m", "warm-robot-offset", K_F64, warm_robot_offset_m, 0, 1e4,
+        "warm start: robot within this of the last path, m"),
+    NUM("planner", "planner", "planner", K_PLANNER, cfg.planner, 0, 0, "gmm-rrt-star | rrt-star | gmm-rrt"),
+    NUM("planner", "seed", "seed", K_U64, cfg.seed, 0, 1.8e19, "RNG seed"),
+    NUM("planner", "max_nodes", "max-nodes", K_I32, cfg.max_nodes, 2, 4194304, "tree node pool (memory)"),
+    NUM("planner", "grid_max_cells", "grid-max-cells", K_I32, cfg.grid_max_cells, 1, 2147483647.0, "clearance grid cells (memory)"),
+    NUM("planner", "robot_radius_m", "robot-radius", K_F64, cfg.robot_radius_m, 0, 100, "robot radius, m"),
+    NUM("planner", "person_radius_m", "person-radius", K_F64, cfg.person_radius_m, 0, 100, "person radius, m"),
+    NUM("planner", "grid_resolution_m", "grid-resolution", K_F64, cfg.grid_resolution_m, 1e-4, 100, "clearance grid cell, m"),
+    NUM("planner", "step_m", "step", K_F64, cfg.step_m, 1e-4, 1e4, "longest new edge, m"),
+    NUM("planner", "goal_bias", "goal-bias", K_F64, cfg.goal_bias, 0, 0.999999, "probability of sampling the goal"),
+    NUM("planner", "gmm_bias", "gmm-bias", K_F64, cfg.gmm_bias, 0, 1, "probability of a mixture sample"),
+    NUM("planner", "w_length", "w-length", K_F64, cfg.w_length, 0, 1e6, "weight of length in the cost"),
+    NUM("planner", "w_task", "w-task", K_F64, cfg.w_task, 0, 1e6, "weight of the task cost"),
+    NUM("planner", "waypoint_spacing_m", "waypoint-spacing", K_F64, cfg.waypoint_spacing_m, 1e-3, 1e4, "plan spacing, m"),
+    STR("log", "level", "log-level", log_level, "error | warn | info | debug"),
+    NUM("log", "interval_ms", "log-interval-ms", K_F64, log_interval_ms, 0, 1e9, "one line per reason per interval, ms"),
+};
+#define N_KEYS ((int)(sizeof k_keys / sizeof k_keys[0]))
+
+static const char *const k_planner_names[] = {NULL, "gmm-rrt-star", "rrt-star", "gmm-rrt"};
+
+static int fail(char *err, size_t errcap, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static int fail(char *err, size_t errcap, const char *fmt, ...)
+{
+    if (err != NULL && errcap > 0) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(err, errcap, fmt, ap);
+        va_end(ap);
+    }
+    return -1;
+}
+
+void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
+{
+    memset(s, 0, sizeof *s);
+    snprintf(s->lcm_url, sizeof s->lcm_url, "%s", GMMRRTD_DEFAULT_LCM_URL);
+    snprintf(s->clock, sizeof s->clock, "auto");
+    snprintf(s->ch_pose, sizeof s->ch_pose, "ROBOT_POSE");
+    snprintf(s->ch_people, sizeof s->ch_people, "PEOPLE");
+    snprintf(s->ch_goal, sizeof s->ch_goal, "NAV_GOAL");
+    snprintf(s->ch_obstacles, sizeof s->ch_obstacles, "OBSTACLES");
+    snprintf(s->ch_plan, sizeof s->ch_plan, "PLAN");
+    snprintf(s->ch_status, sizeof s->ch_status, "PLANNER_STATUS");
+    s->rate_hz = 10.0;
+    s->budget_ms = 60.0;
+    s->budget_iterations = 0;
+    s->pose_timeout_ms = 500.0;
+    s->unreachable_after_cycles = 5;
+    s->bounds_margin_m = 3.0;
+    s->warm_goal_shift_m = 0.25;
+    s->warm_people_shift_m = 0.3;
+    s->warm_robot_offset_m = 0.5;
+    gmmrrt_planner_config_default(&s->cfg);
+    snprintf(s->log_level, sizeof s->log_level, "info");
+    s->log_interval_ms = 5000.0;
+}
+
+/* Parses `value` into the field of key k. 0 or -1 with the reason (without location). */
+static int set_key(gmmrrtd_settings_t *s, const key_t_ *k, const char *value, char *err, size_t errcap)
+{
+    char *field = (char *)s + k->offset;
+    if (value == NULL)
+        value = "";
+    if (k->type == K_STR) {
+        if (strlen(value) >= k->size)
+            return fail(err, errcap, "%s: value longer than %zu characters", k->key, k->size - 1);
+        memcpy(field, value, strlen(value) + 1);
+        return 0;
+    }
+    if (k->type == K_BOOL) {
+        int32_t b;
+        if (!strcmp(value, "1") || !strcmp(value, "true") || !strcmp(value, "yes") || !strcmp(value, "on"))
+            b = 1;
+        else if (!strcmp(value, "0") || !strcmp(value, "false") || !strcmp(value, "no") || !strcmp(value, "off"))
+            b = 0;
+        else
+            return fail(err, errcap, "%s = \"%s\": expected true or false", k->key, value);
+        memcpy(field, &b, sizeof b);
+        return 0;
+    }
+    if (k->type == K_PLANNER) {
+        for (int32_t i = 1; i <= 3; ++i)
+            if (!strcmp(value, k_planner_names[i])) {
+                memcpy(field, &i, sizeof i);
+                return 0;
+            }
+        return fail(err, errcap, "%s = \"%s\": expected gmm-rrt-star, rrt-star or gmm-rrt", k->key, value);
+    }
+    errno = 0;
+    char *end = NULL;
+    const double v = strtod(value, &end);
+    if (end == value || *end != '\0' || errno == ERANGE || !isfinite(v))
+        return fail(err, errcap, "%s = \"%s\": not a number", k->key, value);
+    if (v < k->min || v > k->max)
+        return fail(err, errcap, "%s = %s: outside %g..%g", k->key, value, k->min, k->max);
+    if ((k->type == K_I32 || k->type == K_I64 || k->type == K_U64) && v != floor(v))
+        return fail(err, errcap, "%s = %s: must be a whole number", k->key, value);
+    switch (k->type) {
+    case K_F64: memcpy(field, &v, sizeof v); break;
+    case K_I32: { int32_t x = (int32_t)v; memcpy(field, &x, sizeof x); break; }
+    case K_I64: { int64_t x = (int64_t)v; memcpy(field, &x, sizeof x); break; }
+    case K_U64: { uint64_t x = strtoull(value, NULL, 10); memcpy(field, &x, sizeof x); break; }
+    default: break;
+    }
+    return 0;
+}
+
+typedef struct {
+    gmmrrtd_settings_t *s;
+    char first_err[512]; /* the handler's reason for the first bad line */
+} ini_ctx_t;
+
+static int on_ini_line(void *user, const char *section, const char *name, const char *value)
+{
+    ini_ctx_t *ctx = user;
+    char why[256];
+    for (int i = 0; i < N_KEYS; ++i) {
+        if (strcmp(k_keys[i].section, section) != 0 || strcmp(k_keys[i].key, name) != 0)
+            continue;
+        if (set_key(ctx->s, &k_keys[i], value, why, sizeof why) == 0)
+            return 1;
+        if (ctx->first_err[0] == '\0')
+            snprintf(ctx->first_err, sizeof ctx->first_err, "[%s] %s", section, why);
+        return 0;
+    }
+    if (ctx->first_err[0] == '\0')
+        snprintf(ctx->first_err, sizeof ctx->first_err, "unknown key \"%s\" in section [%s]", name, section);
+    return 0;
+}
+
+int gmmrrtd_settings_load_ini(gmmrrtd_settings_t *s, const char *path, char *err, size_t errcap)
+{
+    ini_ctx_t ctx = {.s = s, .first_err = ""};
+    const int rc = ini_parse(path, on_ini_line, &ctx);
+    if (rc == -1)
+        return fail(err, errcap, "%s: cannot open: %s", path, strerror(errno));
+    if (rc == -2)
+        return fail(err, errcap, "%s: out of memory while parsing", path);
+    if (rc > 0)
+        return fail(err, errcap, "%s:%d: %s", path, rc, ctx.first_err[0] ? ctx.first_err : "syntax error");
+    return 0;
+}
+
+void gmmrrtd_settings_print_help(const char *argv0)
+{
+    printf("Usage: %s [OPTION]...\n"
+           "gmmrrtd: the gmmrrt social navigation planner daemon. Subscribes robot pose, people,\n"
+           "goal and obstacles on LCM, publishes a plan and a status at a fixed rate.\n\n"
+           "  -h, --help             this text\n"
+           "  -V, --version          print the version\n"
+           "  -c, --config FILE      INI file with the settings below ([section] key); flags override it\n",
+           argv0);
+    for (int i = 0; i < N_KEYS; ++i) {
+        char left[64];
+        snprintf(left, sizeof left, "--%s%s", k_keys[i].flag, k_keys[i].type == K_BOOL ? "" : " V");
+        printf("      %-26s %s  [%s] %s\n", left, k_keys[i].help, k_keys[i].section, k_keys[i].key);
+    }
+    printf("\nDefault LCM URL: %s (ttl=0: messages stay on this host).\n"
+           "Signals: SIGINT/SIGTERM exit cleanly; SIGHUP reloads the config file and the models.\n"
+           "Details: docs/daemon.md\n",
+           GMMRRTD_DEFAULT_LCM_URL);
+}
+
+int gmmrrtd_settings_from_args(gmmrrtd_settings_t *s, int argc, char **argv, char *err, size_t errcap)
+{
+    enum { OPT_BASE = 1000 };
+    struct option opts[N_KEYS + 4];
+    int n = 0;
+    opts[n++] = (struct option){"help", no_argument, NULL, 'h'};
+    opts[n++] = (struct option){"version", no_argument, NULL, 'V'};
+    opts[n++] = (struct option){"config", required_argument, NULL, 'c'};
+    for (int i = 0; i < N_KEYS; ++i)
+        opts[n++] = (struct option){k_keys[i].flag, k_keys[i].type == K_BOOL ? no_argument : required_argument, NULL,
+                                    OPT_BASE + i};
+    opts[n] = (struct option){NULL, 0, NULL, 0};
+
+    /* Pass 1: --help, --version, --config, and any syntax error. */
+    opterr = 0;
+    optind = 0;
+    int c;
+    s->config_path[0] = '\0';
+    while ((c = getopt_long(argc, argv, ":hVc:", opts, NULL)) != -1) {
+        if (c == 'h') {
+            gmmrrtd_settings_print_help(argv[0]);
+            return 1;
+        }
+        if (c == 'V') {
+            printf("gmmrrtd %s\n", GMMRRT_VERSION_STRING);
+            return 1;
+        }
+        if (c == 'c') {
+            if (strlen(optarg) >= sizeof s->config_path)
+                return fail(err, errcap, "--config: path too long");
+            snprintf(s->config_path, sizeof s->config_path, "%s", optarg);
+        } else if (c == ':') {
+            return fail(err, errcap, "%s: needs a value (see --help)", argv[optind - 1]);
+        } else if (c == '?') {
+            return fail(err, errcap, "%s: unknown option (see --help)", argv[optind - 1]);
+        }
+    }
+    if (optind < argc)
+        return fail(err, errcap, "unexpected argument \"%s\" (see --help)", argv[optind]);
+    if (s->config_path[0] != '\0' && gmmrrtd_settings_load_ini(s, s->config_path, err, errcap) != 0)
+        return -1;
+
+    /* Pass 2: every other flag, over the file. */
+    optind = 0;
+    while ((c = getopt_long(argc, argv, ":hVc:", opts, NULL)) != -1) {
+        if (c < OPT_BASE)
+            continue;
+        const key_t_ *k = &k_keys[c - OPT_BASE];
+        char why[256];
+        if (set_key(s, k, k->type == K_BOOL ? "1" : optarg, why, sizeof why) != 0)
+            return fail(err, errcap, "--%s: %s", k->flag, why);
+    }
+    return 0;
+}
+
+gmmrrtd_clock_mode_t gmmrrtd_settings_clock(const gmmrrtd_settings_t *s)
+{
+    if (!strcmp(s->clock, "live"))
+        return GMMRRTD_CLOCK_LIVE;
+    if (!strcmp(s->clock, "log"))
+        return GMMRRTD_CLOCK_LOG;
+    return strncmp(s->lcm_url, "file://", 7) == 0 ? GMMRRTD_CLOCK_LOG : GMMRRTD_CLOCK_LIVE;
+}
+
+int gmmrrtd_settings_validate(const gmmrrtd_settings_t *s, char *err, size_t errcap)
+{
+    if (strcmp(s->clock, "auto") && strcmp(s->clock, "live") && strcmp(s->clock, "log"))
+        return fail(err, errcap, "clock = \"%s\": expected auto, live or log", s->clock);
+    gmmrrtd_log_level_t lvl;
+    if (gmmrrtd_log_level_parse(s->log_level, &lvl) != 0)
+        return fail(err, errcap, "log level \"%s\": expected error, warn, info or debug", s->log_level);
+    if (s->lcm_url[0] == '\0')
+        return fail(err, errcap, "lcm url is empty");
+    const char *chans[] = {s->ch_pose, s->ch_people, s->ch_goal, s->ch_obstacles, s->ch_plan, s->ch_status};
+    for (int i = 0; i < 6; ++i)
+        if (chans[i][0] == '\0')
+            return fail(err, errcap, "a channel name is empty");
+    const double period_ms = 1000.0 / s->rate_hz;
+    if (s->budget_ms >= period_ms)
+        return fail(err, errcap, "budget_ms = %g must be below the period %g ms (rate_hz = %g)", s->budget_ms,
+                    period_ms, s->rate_hz);
+    if (s->budget_ms <= 0.0 && s->budget_iterations <= 0)
+        return fail(err, errcap, "budget_ms and budget_iterations are both 0: a cycle would never end");
+    char why[200];
+    if (gmmrrt_planner_config_validate(&s->cfg, why, sizeof why) != GMMRRT_OK)
+        return fail(err, errcap, "planner settings: %s", why);
+    return 0;
+}

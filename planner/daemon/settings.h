@@ -1,0 +1,73 @@
+/*
+ * settings.h - everything gmmrrtd can be told: defaults, the INI file (read with inih) and
+ * the command line (getopt_long), one table of keys shared by both so that a flag and its
+ * INI key can never drift apart. Flags override the file. Every bad value is an error that
+ * names file:line or the flag (issue 6, "CLI"). The reference is docs/daemon.md.
+ */
+#ifndef GMMRRTD_SETTINGS_H
+#define GMMRRTD_SETTINGS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "gmmrrt/config.h"
+
+#define GMMRRTD_PATH_MAX 512
+#define GMMRRTD_DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
+
+typedef enum { GMMRRTD_CLOCK_AUTO = 0, GMMRRTD_CLOCK_LIVE = 1, GMMRRTD_CLOCK_LOG = 2 } gmmrrtd_clock_mode_t;
+
+typedef struct {
+    /* [lcm] */
+    char lcm_url[GMMRRTD_PATH_MAX];      /* input (and output unless lcm_out_url is set) */
+    char lcm_out_url[GMMRRTD_PATH_MAX];  /* "" = publish on lcm_url */
+    int32_t exit_at_eof;                 /* 1: exit 0 when a file:// input ends */
+    char clock[16];                      /* "auto" (log for file://, else live), "live", "log" */
+    /* [channels] */
+    char ch_pose[64], ch_people[64], ch_goal[64], ch_obstacles[64], ch_plan[64], ch_status[64];
+    /* [models] paths; "" = none (tasks that need it publish a stop) */
+    char model_avoid[GMMRRTD_PATH_MAX];
+    char model_approach[GMMRRTD_PATH_MAX];
+    /* [timing] */
+    double rate_hz;              /* cycles per second, (0, 1000] */
+    double budget_ms;            /* planning time per cycle, >= 0, < period; 0 = no time limit */
+    int64_t budget_iterations;   /* samples per cycle, >= 0; 0 = no cap. Deterministic replays use this */
+    double pose_timeout_ms;      /* > 0: no pose newer than this -> stop */
+    int32_t unreachable_after_cycles; /* consecutive cycles without a path before the goal counts unreachable */
+    /* [world] */
+    double bounds_margin_m;      /* planning bounds: box around robot, goal, people, obstacles + this */
+    /* [warm_start]: the situation "has not changed much" when all hold */
+    double warm_goal_shift_m;    /* goal moved less than this, same task and target */
+    double warm_people_shift_m;  /* same tracked ids, each moved less than this */
+    double warm_robot_offset_m;  /* robot within this of the last path */
+    /* [planner]: the core's configuration (config.h); memory fields fixed at start-up */
+    gmmrrt_planner_config_t cfg;
+    /* [log] */
+    char log_level[16];          /* error, warn, info, debug */
+    double log_interval_ms;      /* one line per reason per interval, >= 0 */
+
+    /* Not settable in the file */
+    char config_path[GMMRRTD_PATH_MAX];
+} gmmrrtd_settings_t;
+
+/* Defaults: the values in docs/daemon.md. */
+void gmmrrtd_settings_default(gmmrrtd_settings_t *s);
+
+/* Reads `path` into *s (keys not in the file keep their value). 0 on success; -1 with
+ * "path:line: reason" (or "path: reason") in err[errcap]. */
+int gmmrrtd_settings_load_ini(gmmrrtd_settings_t *s, const char *path, char *err, size_t errcap);
+
+/* The full command line: finds --config (loaded first), then applies every flag over it.
+ * Returns 0 to run, 1 when --help/--version was printed (exit 0), -1 on error (message in
+ * err, exit 2). argv is not modified beyond getopt's permutation. */
+int gmmrrtd_settings_from_args(gmmrrtd_settings_t *s, int argc, char **argv, char *err, size_t errcap);
+
+/* Cross-field checks and the planner config's own validation. 0 or -1 with the reason. */
+int gmmrrtd_settings_validate(const gmmrrtd_settings_t *s, char *err, size_t errcap);
+
+/* The clock mode after resolving "auto" against the URL. */
+gmmrrtd_clock_mode_t gmmrrtd_settings_clock(const gmmrrtd_settings_t *s);
+
+void gmmrrtd_settings_print_help(const char *argv0);
+
+#endif /* GMMRRTD_SETTINGS_H */

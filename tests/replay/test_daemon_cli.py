@@ -1,0 +1,128 @@
+"""replay.daemon_cli: gmmrrtd's command line, INI file and signals (issue 6, "Behaviour").
+--help/--version; bad flags and bad INI lines are errors naming the flag or file:line; flags
+override the file; a missing model at start-up is fatal; SIGHUP with a corrupted model file
+keeps the old model (planning goes on) and counts REJECT_MODEL_RELOAD; SIGINT exits 0.
+"""
+import os
+import select
+import signal
+import subprocess
+import time
+
+import lcm
+from conftest import SCENARIOS, venv_bin
+from test_replay_udpm import private_url, wait_for_line
+
+from gmmrrt import planner_status_t, waypoints_t
+
+
+def run(gmmrrtd, *args, timeout=60):
+    return subprocess.run([gmmrrtd, *args], capture_output=True, text=True, timeout=timeout)
+
+
+def test_help_and_version(gmmrrtd):
+    res = run(gmmrrtd, "--help")
+    assert res.returncode == 0
+    for flag in ("--config", "--lcm-url", "--lcm-out-url", "--model-avoid", "--model-approach", "--rate-hz",
+                 "--budget-ms", "--robot-radius", "--channel-pose", "--exit-at-eof", "ttl=0"):
+        assert flag in res.stdout, flag
+    res = run(gmmrrtd, "--version")
+    assert res.returncode == 0 and res.stdout.startswith("gmmrrtd ")
+
+
+def test_bad_flags_are_named(gmmrrtd):
+    cases = [(["--no-such-flag"], "--no-such-flag"), (["--rate-hz", "abc"], "--rate-hz"),
+             (["--rate-hz", "0"], "--rate-hz"), (["--robot-radius", "nan"], "--robot-radius"),
+             (["--planner", "a-star"], "--planner"), (["--rate-hz"], "--rate-hz"), (["stray"], "stray"),
+             (["--rate-hz", "20", "--budget-ms", "60"], "budget_ms")]
+    for args, named in cases:
+        res = run(gmmrrtd, *args)
+        assert res.returncode == 2, (args, res.returncode, res.stderr)
+        assert named in res.stderr, (args, res.stderr)
+
+
+def test_bad_ini_lines_name_file_and_line(gmmrrtd, tmp_path):
+    for body, line in (("[timing]\nrate_hz = 10\n\nbudget_ms = fast\n", 4),
+                       ("[lcm]\nurl = udpm://239.255.76.67:7667?ttl=0\n[timing]\nrate = 10\n", 4),
+                       ("[planner]\nrobot_radius_m = -1\n", 2),
+                       ("[timing\n", 1)):
+        ini = tmp_path / "bad.ini"
+        ini.write_text(body)
+        res = run(gmmrrtd, "--config", str(ini))
+        assert res.returncode == 2, res.stderr
+        assert "%s:%d:" % (ini, line) in res.stderr, res.stderr
+    res = run(gmmrrtd, "--config", str(tmp_path / "missing.ini"))
+    assert res.returncode == 2 and "missing.ini" in res.stderr
+
+
+def test_flags_override_the_file_and_missing_model_is_fatal(gmmrrtd, models, tmp_path):
+    ini = tmp_path / "d.ini"
+    ini.write_text("[timing]\nbudget_ms = 500\nbudget_iterations = 200\n[models]\navoid = %s\napproach = %s\n"
+                   % (models["avoid"], models["approach"]))
+    out = tmp_path / "out.lcmlog"
+    common = ["--config", str(ini), "--lcm-url", "file://%s?speed=0" % os.path.join(SCENARIOS, "avoid_one_person.lcmlog"),
+              "--lcm-out-url", "file://%s?mode=w" % out, "--exit-at-eof"]
+    res = run(gmmrrtd, *common)
+    assert res.returncode == 2 and "budget_ms" in res.stderr  # 500 ms does not fit a 100 ms period
+    res = run(gmmrrtd, *common, "--budget-ms", "0")
+    assert res.returncode == 0, res.stderr
+    assert out.stat().st_size > 0
+    res = run(gmmrrtd, *common, "--budget-ms", "0", "--model-avoid", str(tmp_path / "nope.gmm"))
+    assert res.returncode == 1 and "nope.gmm" in res.stderr
+
+
+class StatusListener:
+    def __init__(self, url):
+        self.lc = lcm.LCM(url)
+        self.status, self.plans = None, []
+        self.lc.subscribe("PLANNER_STATUS", self._on_status)
+        self.lc.subscribe("PLAN", lambda c, d: self.plans.append(waypoints_t.decode(d)))
+
+    def _on_status(self, channel, data):
+        self.status = planner_status_t.decode(data)
+
+    def pump(self, seconds):
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            r, _, _ = select.select([self.lc.fileno()], [], [], 0.05)
+            if r:
+                self.lc.handle()
+
+
+def test_sighup_with_a_bad_model_keeps_the_old_one(gmmrrtd, models, tmp_path):
+    url = private_url()
+    avoid = tmp_path / "avoid.gmm"
+    avoid.write_bytes(open(models["avoid"], "rb").read())
+    ini = tmp_path / "d.ini"
+    ini.write_text("[lcm]\nurl = %s\n[models]\navoid = %s\n[timing]\nbudget_ms = 50\n" % (url, avoid))
+    err_path = tmp_path / "stderr"
+    listener = StatusListener(url)
+    with open(err_path, "w") as err:
+        daemon = subprocess.Popen([gmmrrtd, "--config", str(ini)], stderr=err)
+    try:
+        assert wait_for_line(str(err_path), "running:"), err_path.read_text()
+        listener.pump(0.5)
+        assert listener.status is not None, "no PLANNER_STATUS from the daemon"
+        assert listener.status.rejected[planner_status_t.REJECT_MODEL_RELOAD] == 0
+
+        avoid.write_bytes(b"GMMRRTMD this is not a model")
+        daemon.send_signal(signal.SIGHUP)
+        listener.pump(0.8)
+        assert daemon.poll() is None, "gmmrrtd died on SIGHUP with a bad model"
+        assert listener.status.rejected[planner_status_t.REJECT_MODEL_RELOAD] == 1, err_path.read_text()
+
+        # The old avoid model still plans: a scenario gives non-empty plans, not STOP_NO_MODEL.
+        player = subprocess.Popen([venv_bin("lcm-logplayer"), "--lcm-url", url,
+                                   os.path.join(SCENARIOS, "avoid_one_person.lcmlog")])
+        listener.plans.clear()
+        listener.pump(3.0)
+        player.wait(timeout=30)
+        assert any(p.num_waypoints > 0 for p in listener.plans), [(p.num_waypoints, p.status) for p in listener.plans]
+
+        daemon.send_signal(signal.SIGINT)
+        assert daemon.wait(timeout=10) == 0
+    finally:
+        if daemon.poll() is None:
+            daemon.kill()
+            daemon.wait()
+    assert "old model kept" in err_path.read_text()

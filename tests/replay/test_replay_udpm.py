@@ -1,0 +1,82 @@
+"""replay.udpm: the scenario with planted faults played by the real tools. lcm-logplayer
+plays logs/scenarios/faults.lcmlog in real time into a running gmmrrtd (live clock, time
+budget) over UDP multicast on a private port with ttl=0; lcm-logger records PLAN and
+PLANNER_STATUS; tools/gmmrrt_tools/replay_check.py checks the recording: plans collision-free,
+starting at the robot, ending at the goal, a status every period (median interval within
+15 %), and the reject counters equal to the planted faults, plus one more pose gap: after the
+log ends the daemon must publish stops (status GMMRRT_STOP_POSE_STALE), never an old plan.
+Then SIGTERM must end the daemon cleanly (exit 0).
+"""
+import json
+import os
+import signal
+import subprocess
+import time
+
+from conftest import PERSON_RADIUS, ROBOT_RADIUS, SCENARIOS, venv_bin
+
+from gmmrrt import waypoints_t
+from gmmrrt_tools import replay_check
+
+GMMRRT_STOP_POSE_STALE = 50  # planner/include/gmmrrt/status.h
+
+
+def private_url():
+    # A port of our own (not LCM's default 7667) so other LCM traffic on the host cannot mix in.
+    return "udpm://239.255.76.67:%d?ttl=0" % (7700 + os.getpid() % 200)
+
+
+def wait_for_line(proc_err_path, text, timeout_s=10.0):
+    end = time.monotonic() + timeout_s
+    while time.monotonic() < end:
+        with open(proc_err_path) as f:
+            if text in f.read():
+                return True
+        time.sleep(0.05)
+    return False
+
+
+def test_logplayer_into_gmmrrtd_over_udpm(gmmrrtd, models, tmp_path):
+    url = private_url()
+    rec = str(tmp_path / "recorded.lcmlog")
+    err_path = str(tmp_path / "gmmrrtd.stderr")
+    with open(os.path.join(SCENARIOS, "scenarios.json")) as f:
+        expected = dict(json.load(f)["faults"]["expected_rejected"])
+    expected["REJECT_POSE_STALE"] = expected.get("REJECT_POSE_STALE", 0) + 1  # the end of the log
+
+    logger = subprocess.Popen([venv_bin("lcm-logger"), "-q", "-f", "--lcm-url", url, "-c", "PLAN|PLANNER_STATUS",
+                               "--flush-interval", "50", rec])
+    with open(err_path, "w") as err:
+        daemon = subprocess.Popen([gmmrrtd, "--lcm-url", url, "--model-avoid", models["avoid"],
+                                   "--model-approach", models["approach"], "--rate-hz", "10", "--budget-ms", "70",
+                                   "--robot-radius", str(ROBOT_RADIUS), "--person-radius", str(PERSON_RADIUS),
+                                   "--pose-timeout-ms", "500"], stderr=err)
+    try:
+        assert wait_for_line(err_path, "running:"), open(err_path).read()
+        time.sleep(0.3)
+        play = subprocess.run([venv_bin("lcm-logplayer"), "--lcm-url", url,
+                               os.path.join(SCENARIOS, "faults.lcmlog")], capture_output=True, text=True, timeout=60)
+        assert play.returncode == 0, play.stderr
+        time.sleep(1.5)  # longer than the pose timeout: the daemon must stop the robot
+        daemon.send_signal(signal.SIGTERM)
+        assert daemon.wait(timeout=10) == 0, open(err_path).read()
+    finally:
+        if daemon.poll() is None:
+            daemon.kill()
+            daemon.wait()
+        time.sleep(0.3)
+        logger.send_signal(signal.SIGINT)
+        logger.wait(timeout=10)
+
+    summary, failures = replay_check.check(os.path.join(SCENARIOS, "faults.lcmlog"), rec, rate_hz=10.0,
+                                           robot_radius=ROBOT_RADIUS, person_radius=PERSON_RADIUS,
+                                           expected_rejected=expected, live=True)
+    assert not failures, "\n".join(failures) + "\n" + json.dumps(summary, indent=1) + open(err_path).read()
+    assert summary["plans_nonempty"] >= 20, summary
+
+    # The last plans (after the log ended) are stops that say the pose is stale.
+    plans = [waypoints_t.decode(d) for _, c, d in replay_check.read_events(rec) if c == "PLAN"]
+    assert plans, "no plan recorded"
+    tail = plans[-5:]
+    assert all(p.num_waypoints == 0 and p.status == GMMRRT_STOP_POSE_STALE for p in tail), \
+        [(p.num_waypoints, p.status) for p in tail]

@@ -1,0 +1,289 @@
+"""Checks gmmrrtd's output against the input it was given (issue 6, "Replay tests").
+
+Reads an input log (a scenario of logs/scenarios/) and the daemon's output log (PLAN and
+PLANNER_STATUS, written by gmmrrtd's file:// output or recorded by lcm-logger), rebuilds what
+the daemon knew at each cycle from the valid inputs, and checks that
+
+  * every non-empty plan starts at the robot pose it names (waypoints_t.utime),
+  * ends within the goal's tolerance of the goal in force,
+  * is collision-free: robot disc against circles, oriented boxes and people (discs),
+  * every empty plan (a stop) carries a non-zero status saying why,
+  * cycles come at the promised rate (log clock: one per period of input time; live: the
+    median interval between status messages within 15 % of the period),
+  * the last status's rejected[] counters equal the planted faults (scenarios.json).
+
+It also makes a summary (counts, mean path length and cost) for golden comparisons.
+
+    python -m gmmrrt_tools.replay_check IN.lcmlog OUT.lcmlog [--expected scenarios.json --scenario NAME]
+"""
+import argparse
+import bisect
+import json
+import math
+import statistics
+import struct
+import sys
+
+import lcm
+from gmmrrt import nav_goal_t, obstacles_t, people_t, planner_status_t, pose2d_t, waypoints_t
+
+REASONS = {getattr(planner_status_t, n): n for n in dir(planner_status_t) if n.startswith("REJECT_")}
+
+
+def read_events(path):
+    log = lcm.EventLog(path, "r")
+    out = [(e.timestamp, e.channel, e.data) for e in log]
+    log.close()
+    return out
+
+
+def _finite(*v):
+    return all(math.isfinite(x) for x in v)
+
+
+def _valid(channel, data):
+    """The message decoded when gmmrrtd would accept it on its own (msg_decode.c rules), else None."""
+    try:
+        if channel == "ROBOT_POSE":
+            m = pose2d_t.decode(data)
+            return m if _finite(m.x, m.y, m.yaw) else None
+        if channel == "PEOPLE":
+            m = people_t.decode(data)
+            if not 0 <= m.num_people <= people_t.MAX_PEOPLE:
+                return None
+            ok = all(_finite(p.x, p.y, p.yaw, p.vx, p.vy) and p.id >= 0 for p in m.people[:m.num_people])
+            return m if ok else None
+        if channel == "NAV_GOAL":
+            m = nav_goal_t.decode(data)
+            return m if _finite(m.x, m.y, m.tolerance_m) and m.tolerance_m > 0 and 0 <= m.task <= 2 else None
+        if channel == "OBSTACLES":
+            m = obstacles_t.decode(data)
+            if not (0 <= m.num_circles <= 64 and 0 <= m.num_boxes <= 64):
+                return None
+            ok = all(m.circle_radius[i] > 0 for i in range(m.num_circles)) and all(
+                m.box_width[i] > 0 and m.box_height[i] > 0 for i in range(m.num_boxes))
+            return m if ok else None
+    except (ValueError, struct.error):
+        return None
+    return None
+
+
+class Timeline:
+    """The valid inputs of one channel in utime order (older-than-last messages dropped, as gmmrrtd does)."""
+
+    def __init__(self):
+        self.utimes, self.msgs = [], []
+
+    def add(self, m):
+        if self.utimes and m.utime < self.utimes[-1]:
+            return
+        self.utimes.append(m.utime)
+        self.msgs.append(m)
+
+    def latest_before(self, utime, inclusive=False):
+        i = (bisect.bisect_right if inclusive else bisect.bisect_left)(self.utimes, utime)
+        return self.msgs[i - 1] if i > 0 else None
+
+    def by_utime(self, utime):
+        i = bisect.bisect_left(self.utimes, utime)
+        return self.msgs[i] if i < len(self.utimes) and self.utimes[i] == utime else None
+
+
+def read_inputs(path):
+    lines = {c: Timeline() for c in ("ROBOT_POSE", "PEOPLE", "NAV_GOAL", "OBSTACLES")}
+    first = last = None
+    for _, channel, data in read_events(path):
+        if channel not in lines:
+            continue
+        m = _valid(channel, data)
+        if m is None:
+            continue
+        lines[channel].add(m)
+        first = m.utime if first is None else min(first, m.utime)
+        last = m.utime if last is None else max(last, m.utime)
+    return lines, first, last
+
+
+def read_outputs(path, plan_channel="PLAN", status_channel="PLANNER_STATUS"):
+    """Cycles as (status_event_timestamp, status, plan or None): a plan belongs to the status after it."""
+    cycles, pending = [], None
+    for ts, channel, data in read_events(path):
+        if channel == plan_channel:
+            pending = waypoints_t.decode(data)
+        elif channel == status_channel:
+            cycles.append((ts, planner_status_t.decode(data), pending))
+            pending = None
+    return cycles
+
+
+def _dist_point_box(px, py, b):
+    x, y, w, h, yaw = b
+    c, s = math.cos(yaw), math.sin(yaw)
+    dx, dy = px - x, py - y
+    lx, ly = c * dx + s * dy, -s * dx + c * dy
+    ex, ey = max(abs(lx) - w / 2, 0.0), max(abs(ly) - h / 2, 0.0)
+    if ex == 0.0 and ey == 0.0:
+        return -min(w / 2 - abs(lx), h / 2 - abs(ly))
+    return math.hypot(ex, ey)
+
+
+def plan_clearance(plan, obstacles, people, robot_radius, person_radius, step=0.02):
+    """Smallest clearance (m) of the robot disc along the plan: (static, people)."""
+    circles = [(obstacles.circle_x[i], obstacles.circle_y[i], obstacles.circle_radius[i])
+               for i in range(obstacles.num_circles)] if obstacles else []
+    boxes = [(obstacles.box_x[i], obstacles.box_y[i], obstacles.box_width[i], obstacles.box_height[i],
+              obstacles.box_yaw[i]) for i in range(obstacles.num_boxes)] if obstacles else []
+    persons = [(p.x, p.y) for p in people.people[:people.num_people]] if people else []
+    worst_static, worst_people = math.inf, math.inf
+    n = plan.num_waypoints
+    for i in range(max(n - 1, 1)):
+        x0, y0 = plan.x[i], plan.y[i]
+        x1, y1 = (plan.x[i + 1], plan.y[i + 1]) if n > 1 else (x0, y0)
+        k = max(1, int(math.ceil(math.hypot(x1 - x0, y1 - y0) / step)))
+        for j in range(k + 1):
+            px, py = x0 + (x1 - x0) * j / k, y0 + (y1 - y0) * j / k
+            for cx, cy, r in circles:
+                worst_static = min(worst_static, math.hypot(px - cx, py - cy) - r - robot_radius)
+            for b in boxes:
+                worst_static = min(worst_static, _dist_point_box(px, py, b) - robot_radius)
+            for qx, qy in persons:
+                worst_people = min(worst_people, math.hypot(px - qx, py - qy) - person_radius - robot_radius)
+    return worst_static, worst_people
+
+
+def check(in_log, out_log, rate_hz=10.0, robot_radius=0.3, person_radius=0.25, expected_rejected=None,
+          live=False, static_slack=0.03, people_slack=0.08, live_window_us=300_000):
+    """Returns (summary, failures). failures is a list of one-line reasons; empty = all checks pass."""
+    lines, first, last = read_inputs(in_log)
+    cycles = read_outputs(out_log)
+    failures = []
+    period_us = 1e6 / rate_hz
+    plans = [c for c in cycles if c[2] is not None]
+    nonempty = [c for c in plans if c[2].num_waypoints > 0]
+    lengths, costs = [], []
+    worst_static, worst_people = math.inf, math.inf
+    for ts, status, plan in plans:
+        if plan.num_waypoints == 0:
+            if plan.status == 0:
+                failures.append("plan seq %d is a stop with status 0 (no reason)" % plan.seq)
+            continue
+        tick = status.utime
+        pose = lines["ROBOT_POSE"].by_utime(plan.utime)
+        if pose is None:
+            failures.append("plan seq %d names pose utime %d, which is not a valid input" % (plan.seq, plan.utime))
+        elif math.hypot(plan.x[0] - pose.x, plan.y[0] - pose.y) > 1e-3:
+            failures.append("plan seq %d starts at (%.3f, %.3f), the robot was at (%.3f, %.3f)"
+                            % (plan.seq, plan.x[0], plan.y[0], pose.x, pose.y))
+        goal = lines["NAV_GOAL"].latest_before(tick, inclusive=live)
+        # Live: the daemon's clock runs ahead of the messages in flight, so the goal in force may
+        # be any valid goal sent within live_window_us around the cycle.
+        candidates = [goal] if goal is not None else []
+        if live:
+            early = lines["NAV_GOAL"].latest_before(tick - live_window_us) if tick else None
+            candidates += [g for g in lines["NAV_GOAL"].msgs if abs(g.utime - tick) <= live_window_us]
+            candidates += [early] if early is not None else []
+        if not candidates:
+            failures.append("plan seq %d made before any goal" % plan.seq)
+        else:
+            n = plan.num_waypoints
+            ends = [(math.hypot(plan.x[n - 1] - g.x, plan.y[n - 1] - g.y) - g.tolerance_m, g) for g in candidates]
+            margin, goal = min(ends, key=lambda e: e[0])
+            d = margin + goal.tolerance_m
+            if d > goal.tolerance_m + 1e-6:
+                failures.append("plan seq %d ends %.3f m from the goal (%.2f, %.2f), tolerance %.2f"
+                                % (plan.seq, d, goal.x, goal.y, goal.tolerance_m))
+        obst = lines["OBSTACLES"].latest_before(tick, inclusive=live)
+        ppl = lines["PEOPLE"].latest_before(tick, inclusive=live)
+        cs, cp = plan_clearance(plan, obst, ppl, robot_radius, person_radius)
+        worst_static, worst_people = min(worst_static, cs), min(worst_people, cp)
+        if cs < -static_slack:
+            failures.append("plan seq %d goes %.3f m into an obstacle" % (plan.seq, -cs))
+        if cp < -people_slack:
+            failures.append("plan seq %d goes %.3f m into a person" % (plan.seq, -cp))
+        lengths.append(plan.length_m)
+        costs.append(plan.total_cost)
+
+    # Rate.
+    if live:
+        stamps = [c[0] for c in cycles]
+        gaps = [b - a for a, b in zip(stamps, stamps[1:])]
+        if len(gaps) < 5:
+            failures.append("only %d status messages recorded" % len(cycles))
+        else:
+            med = statistics.median(gaps)
+            if abs(med - period_us) > 0.15 * period_us:
+                failures.append("median status interval %.1f ms, promised %.1f ms" % (med / 1e3, period_us / 1e3))
+    elif first is not None:
+        want = int((last - first) // period_us)
+        if abs(len(cycles) - want) > 1:
+            failures.append("%d cycles for %.2f s of input at %.1f Hz (want %d)"
+                            % (len(cycles), (last - first) / 1e6, rate_hz, want))
+
+    final = cycles[-1][1] if cycles else None
+    rejected = {REASONS[i]: int(final.rejected[i]) for i in sorted(REASONS)} if final else {}
+    if expected_rejected is not None and final is not None:
+        for i, name in sorted(REASONS.items()):
+            want = expected_rejected.get(name, 0)
+            if rejected[name] != want:
+                failures.append("rejected[%s] = %d, the log plants %d" % (name, rejected[name], want))
+    if not cycles:
+        failures.append("no output at all")
+
+    summary = {
+        "cycles": len(cycles),
+        "plans": len(plans),
+        "plans_nonempty": len(nonempty),
+        "stops": len(plans) - len(nonempty),
+        "mean_length_m": round(statistics.mean(lengths), 4) if lengths else None,
+        "mean_cost": round(statistics.mean(costs), 4) if costs else None,
+        "min_clearance_static_m": round(worst_static, 4) if math.isfinite(worst_static) else None,
+        "min_clearance_people_m": round(worst_people, 4) if math.isfinite(worst_people) else None,
+        "rejected": rejected,
+        "states": {s: sum(1 for c in cycles if c[1].state == s) for s in range(4)},
+    }
+    return summary, failures
+
+
+def compare_golden(summary, golden, rel_tol=0.05, count_tol=2):
+    """Differences between a summary and its golden copy beyond tolerance (list of reasons)."""
+    diffs = []
+    for key in ("cycles", "plans"):
+        if summary[key] != golden[key]:
+            diffs.append("%s: %s, golden %s" % (key, summary[key], golden[key]))
+    for key in ("plans_nonempty", "stops"):
+        if abs(summary[key] - golden[key]) > count_tol:
+            diffs.append("%s: %s, golden %s (tolerance %d)" % (key, summary[key], golden[key], count_tol))
+    for key in ("mean_length_m", "mean_cost"):
+        a, b = summary[key], golden[key]
+        if (a is None) != (b is None) or (a is not None and abs(a - b) > rel_tol * abs(b)):
+            diffs.append("%s: %s, golden %s (tolerance %g%%)" % (key, a, b, rel_tol * 100))
+    if summary["rejected"] != golden["rejected"]:
+        diffs.append("rejected: %s, golden %s" % (summary["rejected"], golden["rejected"]))
+    return diffs
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description="Check gmmrrtd's output log against its input log.")
+    ap.add_argument("input")
+    ap.add_argument("output")
+    ap.add_argument("--rate-hz", type=float, default=10.0)
+    ap.add_argument("--robot-radius", type=float, default=0.3)
+    ap.add_argument("--person-radius", type=float, default=0.25)
+    ap.add_argument("--live", action="store_true", help="output recorded live (lcm-logger), not by the log clock")
+    ap.add_argument("--expected", help="scenarios.json with expected_rejected per scenario")
+    ap.add_argument("--scenario", help="scenario name in --expected")
+    args = ap.parse_args(argv)
+    expected = None
+    if args.expected:
+        with open(args.expected) as f:
+            expected = json.load(f)[args.scenario]["expected_rejected"]
+    summary, failures = check(args.input, args.output, args.rate_hz, args.robot_radius, args.person_radius,
+                              expected, args.live)
+    print(json.dumps(summary, indent=2, sort_keys=True))
+    for f in failures:
+        print("FAIL:", f, file=sys.stderr)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,56 @@
+"""Small hand-made mixture models for gmmrrtd's scenario and replay tests (issue 6).
+
+They stand in for learned models until the learner's exist: a features-kind model
+(D = 2: d [m], theta [rad, wrapped]) per task, written in the format of
+docs/model-format.md with struct + zlib.crc32 (the same layout tools/gen_model_vectors.py
+writes). The avoid model puts its mass beside the person (theta = +-pi/2, d ~ 1.2 m: pass
+on either side); the approach model in front of the person (theta ~ 0, d ~ 1.0 m).
+
+    python -m gmmrrt_tools.scenario_models OUT_DIR     # writes avoid.gmm and approach.gmm
+"""
+import math
+import os
+import struct
+import sys
+import zlib
+
+MAGIC = b"GMMRRTMD"
+HEADER = struct.Struct("<8sHHBBBBHHId")  # 32 bytes: docs/model-format.md
+KIND_FEATURES, TASK_AVOID, TASK_APPROACH = 1, 1, 2
+
+
+def encode_features_model(task, components, delta=0.001):
+    """components: (weight, mean_d, mean_theta, sigma_d, sigma_theta), uncorrelated; weights sum to 1."""
+    k = len(components)
+    total = sum(c[0] for c in components)
+    body = HEADER.pack(MAGIC, 1, 0xFEFF, KIND_FEATURES, task, 0, 2, k, 0, 0b10, delta)
+    body += struct.pack("<%dd" % k, *[c[0] / total for c in components])
+    body += struct.pack("<%dd" % (2 * k), *[v for c in components for v in (c[1], c[2])])
+    # packed row-major lower triangle of L = diag(sigma_d, sigma_theta): L00, L10, L11
+    body += struct.pack("<%dd" % (3 * k), *[v for c in components for v in (c[3], 0.0, c[4])])
+    return body + struct.pack("<I", zlib.crc32(body))
+
+
+AVOID = [(0.5, 1.2, math.pi / 2, 0.3, 0.35), (0.5, 1.2, -math.pi / 2, 0.3, 0.35)]
+APPROACH = [(0.7, 1.0, 0.0, 0.25, 0.3), (0.3, 1.8, 0.0, 0.4, 0.5)]
+
+
+def write_models(out_dir):
+    """Writes avoid.gmm and approach.gmm into out_dir; returns their paths."""
+    os.makedirs(out_dir, exist_ok=True)
+    paths = {}
+    for name, task, comps in (("avoid", TASK_AVOID, AVOID), ("approach", TASK_APPROACH, APPROACH)):
+        path = os.path.join(out_dir, name + ".gmm")
+        with open(path + ".tmp", "wb") as f:
+            f.write(encode_features_model(task, comps))
+        os.replace(path + ".tmp", path)
+        paths[name] = path
+    return paths
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2 or sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(sys.argv) == 2 else 2)
+    for p in write_models(sys.argv[1]).values():
+        print(p)
