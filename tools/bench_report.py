@@ -303,6 +303,12 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
     else:
         L += [f"`{da.get('command')}`", "", "```", da.get("text", ""), "```", ""]
     L += ["## Reproduce", "",
+          "Programs: `tests/bench/ompl/` (gmmrrt-bench-ompl: both planners, interleaved trials, optional OMPL "
+          "log), `tests/bench/social/` (gmmrrt-bench-social), `tests/bench/memory/` (gmmrrt-bench-memory), "
+          "`tests/bench/learner/` (gmmrrt-bench-learner: times our EM or BIC sweep on a CSV of points); "
+          "`tools/bench.py` runs them with `tools/bench_planner.py`, `tools/bench_learner.py` (the scikit-learn "
+          "peer), `tools/bench_report.py` (targets, this page) and `tools/bench_stats.py`. Each program prints "
+          "one JSON object per trial; raw records land in `build/bench-raw/`.", "",
           "```", "GMMRRT_REAL_DATA=/path/to/data/real tools/run bench          # full run, this page",
           "tools/run bench --quick                                      # smoke run (build/bench-results-quick.json)",
           "build/bin/gmmrrt-bench-ompl --help; build/bin/gmmrrt-bench-social --help",

@@ -165,6 +165,7 @@ bool write_ompl_benchmark_log(const std::string &path, const std::string &object
     req.runCount = runs;
     req.displayProgress = false;
     req.simplify = false;
+    req.saveConsoleOutput = false; /* else OMPL leaves ompl_<host>_<date>.console in the working directory */
     b.benchmark(req);
     if (!b.saveResultsToFile(path.c_str())) {
         *err = "cannot write the OMPL benchmark log '" + path + "'";
