@@ -187,10 +187,13 @@ def main(argv=None) -> int:
         out = {"length": bp.run_ompl_comparison(bin_dir, "length", trials, time_ms, args.seed, None,
                                                 raw / "ompl_length.jsonl",
                                                 None if args.quick else ROOT / "bench" / "ompl_length.log")}
-        m = get_models()
-        out["task"] = bp.run_ompl_comparison(bin_dir, "task", trials, time_ms, args.seed, m["avoid"],
-                                             raw / "ompl_task.jsonl", None)
-        out["task"]["model_source"] = m["source"]
+        try:  # the length comparison stands even when the task model cannot be made
+            m = get_models()
+            out["task"] = bp.run_ompl_comparison(bin_dir, "task", trials, time_ms, args.seed, m["avoid"],
+                                                 raw / "ompl_task.jsonl", None)
+            out["task"]["model_source"] = m["source"]
+        except (bp.BenchError, subprocess.SubprocessError, OSError) as e:
+            out["task"] = {"error": str(e)}
         return out
     section("ompl", ompl)
 

@@ -84,7 +84,8 @@ def ensure_models(bin_dir: Path, out_dir: Path, real_data: Optional[Path]) -> Di
             js.write_text(json.dumps(HAND_BUILT[task]))
             cmd = [str(learn), "import", "--json", str(js), "--task", task, "-o", str(path)]
         commands.append(" ".join(cmd))
-        if not path.is_file():
+        # Made again when the learner was rebuilt since (the format or the fit may have changed).
+        if not path.is_file() or path.stat().st_mtime < learn.stat().st_mtime:
             _run(cmd, timeout_s=1800)
     source = ("learned with gmmrrt-learn from the real demonstrations (train split; avoid: UPO robot, "
               "approach: UCY walkers), K = 19" if have_real else
