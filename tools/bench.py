@@ -196,6 +196,18 @@ def main(argv=None) -> int:
             out["task"] = {"error": str(e)}
         return out
     section("ompl", ompl)
+    if doc_path and isinstance(res.get("ompl"), dict) and "error" not in res["ompl"]:
+        # The cost-over-time figure next to the report (docs/img/).
+        fig = doc_path.parent / "img" / "benchmarks-ompl-cost.png"
+        recs = [raw / "ompl_length.jsonl"] + ([raw / "ompl_task.jsonl"] if "error" not in res["ompl"].get("task", {})
+                                              else [])
+        cmd = [sys.executable, str(HERE / "bench_plot.py")] + [str(r) for r in recs] + ["-o", str(fig)]
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+        if proc.returncode == 0:
+            res["ompl"]["figure"] = str(fig.relative_to(doc_path.parent))
+            res["ompl"]["figure_command"] = " ".join([".venv/bin/python"] + cmd[1:])
+        else:
+            res["ompl"]["figure_error"] = proc.stderr.strip()[-300:]
 
     def social():
         m = get_models()

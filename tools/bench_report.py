@@ -188,6 +188,10 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
             if s.get("model_source"):
                 L.append(f"- task model: {s['model_source']}")
             L.append("")
+        if om.get("figure"):
+            L += [f"![best cost against time, ours and OMPL's RRTstar]({om['figure']})", "",
+                  f"Figure: median best cost over the trials (line) and their range (band); made by "
+                  f"`{om.get('figure_command')}`.", ""]
         L += ["An OMPL-format log of both planners (ompl::tools::Benchmark; our planner wrapped as an "
               "`ompl::base::Planner`; not interleaved) is written to `bench/ompl_length.log` in full mode: "
               "`ompl_benchmark_statistics.py bench/ompl_length.log -d bench.db`, then load `bench.db` into "
