@@ -66,7 +66,7 @@ struct Stats {
 struct DataInfo {
   Eigen::VectorXd mean;       // D (angle rows: circular mean)
   Eigen::MatrixXd cov;        // D x D (angle rows: of wrapped differences to the mean)
-  double reg = 0.0;           // added to each covariance diagonal
+  Eigen::VectorXd reg;        // D: added to each covariance diagonal
 };
 
 void ComputeDataInfo(const Eigen::MatrixXd& xt, uint32_t mask, const FitOptions& o, DataInfo* info) {
@@ -83,7 +83,7 @@ void ComputeDataInfo(const Eigen::MatrixXd& xt, uint32_t mask, const FitOptions&
   const Eigen::VectorXd dmean = delta.rowwise().mean();
   delta.colwise() -= dmean;
   info->cov = delta * delta.transpose() / static_cast<double>(n);
-  info->reg = std::max(o.reg_relative * info->cov.diagonal().mean(), o.reg_floor);
+  info->reg = (o.reg_relative * info->cov.diagonal().array()).max(o.reg_floor).matrix();
 }
 
 // One E-step over xt (points as rows, N x D): mean log-likelihood per point; statistics and
@@ -181,8 +181,8 @@ bool MStep(const FitState& s, const Stats& st, const Eigen::MatrixXd& old_means,
       const Eigen::VectorXd c = st.s1.col(i) / st.nk[i];
       Eigen::MatrixXd cov = st.s2[i] / st.nk[i] - c * c.transpose();
       cov = 0.5 * (cov + cov.transpose());
-      ok = (cov.diagonal().array() > s.info.reg).all();
-      cov.diagonal().array() += s.info.reg;
+      ok = (cov.diagonal().array() > s.info.reg.array()).all();
+      cov.diagonal() += s.info.reg;
       Eigen::LLT<Eigen::MatrixXd> llt(cov);
       ok = ok && llt.info() == Eigen::Success && llt.matrixL().toDenseMatrix().allFinite();
       if (ok) {
@@ -325,7 +325,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
                                std::to_string(s.info.cov(j, j)) + " <= reg_floor");
   {
     Eigen::MatrixXd shrunk = s.info.cov * std::pow(static_cast<double>(options.k), -2.0 / d);
-    shrunk.diagonal().array() += s.info.reg;
+    shrunk.diagonal() += s.info.reg;
     Eigen::LLT<Eigen::MatrixXd> llt(shrunk);
     if (llt.info() != Eigen::Success)
       return Status::Error(StatusCode::kBadInput, "the data covariance is not positive definite");
