@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""demo_convert.py - episode CSV <-> demonstration log (paper Sect. 4 demonstrations; layout in
+"""demo_convert.py - episode CSV <-> demonstration log (paper Sect. 2 / 5.1 demonstrations; layout in
 docs/demonstrations.md).
 
   demo_convert.py csv2log IN.csv OUT.lcmlog [--index INDEX.csv --split train] [--task avoid]

@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
-"""demo_stats.py - statistics of demonstrations, synthetic against real (issue 3; paper Sect. 5 uses
+"""demo_stats.py - statistics of demonstrations, synthetic against real (issue 3; paper Sect. 5.1 uses
 9 demonstrations per homotopy): per episode the minimum distance to the person, the mean speed
 (path length / duration) and the path length over the straight start-goal distance; per set the
 mean, std and 5/25/50/75/95 % quantiles, and the two-sample Kolmogorov-Smirnov distance between
 the synthetic and the real episodes (0 = same distribution, 1 = disjoint).
 
-  demo_stats.py [--demos logs/demos] [--real-data DIR] [--split all|train|test] [--markdown]
+  demo_stats.py [--demos logs/demos] [--real-data DIR] [--split all|train|test]
+                [--encounter frontal|all] [--markdown]
 
-Avoid: logs/demos/avoid_*.lcmlog against UPO avoid (upo_avoid_episodes.csv). Approach:
+Avoid: logs/demos/avoid_*.lcmlog against UPO avoid (upo_avoid_episodes.csv), by default only the
+episodes flagged frontal_encounter in upo_avoid_index.csv (the person faces the oncoming robot, as
+in the paper's avoid task and the synthesizer). Approach:
 logs/demos/approach_*.lcmlog against UCY approach (ucy_approach_episodes.csv), with the final
 distance instead of the minimum one. Distances use the C core's features (gmmrrt_tools.core).
 """
@@ -24,7 +27,8 @@ from scipy.stats import ks_2samp
 
 from gmmrrt_tools import core
 from gmmrrt_tools.demolog import read_demo_log
-from gmmrrt_tools.episodes import Episode, EpisodeError, read_episode_csv, read_split_index
+from gmmrrt_tools.episodes import Episode, EpisodeError, read_episode_csv
+from gmmrrt_tools.realdata import select_upo
 
 QUANTILES = (5, 25, 50, 75, 95)
 
@@ -100,6 +104,8 @@ def main(argv=None) -> int:
                     help="folder of the real data (default $GMMRRT_REAL_DATA)")
     ap.add_argument("--split", choices=("all", "train", "test"), default="all",
                     help="real UPO episodes to compare with (index split; default all)")
+    ap.add_argument("--encounter", choices=("frontal", "all"), default="frontal",
+                    help="UPO episodes where the person faces the robot (default), or all")
     ap.add_argument("--markdown", action="store_true", help="print Markdown tables (for docs)")
     args = ap.parse_args(argv)
     if not args.real_data or not os.path.isdir(args.real_data):
@@ -109,15 +115,13 @@ def main(argv=None) -> int:
     try:
         s_avoid = read_logs(os.path.join(args.demos, "avoid_*.lcmlog"))
         s_appr = read_logs(os.path.join(args.demos, "approach_*.lcmlog"))
-        upo = read_episode_csv(os.path.join(args.real_data, "upo_avoid_episodes.csv"))
-        if args.split != "all":
-            split = read_split_index(os.path.join(args.real_data, "upo_avoid_index.csv"))
-            upo = [e for e in upo if split.get(e.id) == args.split]
+        upo = select_upo(args.real_data, args.split, args.encounter)
         ucy = read_episode_csv(os.path.join(args.real_data, "ucy_approach_episodes.csv"))
     except (EpisodeError, core.CoreNotBuilt) as e:
         print(f"demo_stats: error: {e}", file=sys.stderr)
         return 1
-    t1 = table(f"avoid: synthetic ({len(s_avoid)} episodes) vs UPO avoid ({args.split}, {len(upo)} episodes)",
+    what = f"{args.split}, {'frontal encounters' if args.encounter == 'frontal' else 'all encounters'}"
+    t1 = table(f"avoid: synthetic ({len(s_avoid)} episodes) vs UPO avoid ({what}, {len(upo)} episodes)",
                collect(s_avoid), collect(upo), len(s_avoid), len(upo), f"UPO {args.split}",
                ["d_min_m", "speed_mps", "path_ratio", "duration_s"])
     t2 = table(f"approach: synthetic ({len(s_appr)} episodes) vs UCY approach ({len(ucy)} episodes)",

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
-"""plot_demos.py - demonstrations drawn in the person's frame (x', y'; the person at the origin
-facing +x, theta > 0 on their left; ../shared/data/real/README.md), one row per task, synthetic
-(logs/demos) and real side by side: UPO avoid (a random sample) and UCY approach (all). The frame
+"""plot_demos.py - demonstrations (paper Sect. 2 tasks, as in its Fig. 2) in the person's frame
+(x', y'; the person at the origin facing +x, theta > 0 on their left; ../shared/data/real/README.md),
+one row per task, synthetic
+(logs/demos) and real side by side: UPO avoid (a random sample of the frontal encounters, where
+the person faces the oncoming robot as in the paper's avoid task) and UCY approach (all). The frame
 transform is the C core's (gmmrrt_tools.core.world_to_person), as the learner and planner use it.
 
   plot_demos.py [--demos logs/demos] [--real-data DIR] [--real-sample 40] [--seed 1]
@@ -24,6 +26,7 @@ import numpy as np  # noqa: E402
 from gmmrrt_tools import core  # noqa: E402
 from gmmrrt_tools.demolog import read_demo_log  # noqa: E402
 from gmmrrt_tools.episodes import EpisodeError, read_episode_csv  # noqa: E402
+from gmmrrt_tools.realdata import select_upo  # noqa: E402
 
 COLORS = {"left": "tab:blue", "right": "tab:orange", "frontal": "tab:green"}
 
@@ -87,12 +90,13 @@ def main(argv=None) -> int:
             if not files:
                 raise EpisodeError(f"no {task}_*.lcmlog in {args.demos}: run tools/synth_demos.py")
             synth[task] = [e for f in files for e in read_demo_log(f)[0]]
-        upo = read_episode_csv(os.path.join(args.real_data, "upo_avoid_episodes.csv"))
+        upo = select_upo(args.real_data, "all", "frontal")
         ucy = read_episode_csv(os.path.join(args.real_data, "ucy_approach_episodes.csv"))
     except (EpisodeError, core.CoreNotBuilt) as e:
         print(f"plot_demos: error: {e}", file=sys.stderr)
         return 1
     rng = np.random.default_rng(args.seed)
+    n_upo = len(upo)
     pick = sorted(rng.choice(len(upo), size=min(args.real_sample, len(upo)), replace=False))
     upo = [upo[i] for i in pick]
 
@@ -100,7 +104,7 @@ def main(argv=None) -> int:
     lim_avoid = extent(synth["avoid"] + upo)
     lim_appr = extent(synth["approach"] + ucy)
     draw(axes[0, 0], synth["avoid"], f"avoid, synthetic ({len(synth['avoid'])}; logs/demos)", lim_avoid)
-    draw(axes[0, 1], upo, f"avoid, real: UPO teleoperated robot ({len(upo)} of 398)", lim_avoid)
+    draw(axes[0, 1], upo, f"avoid, real: UPO teleoperated robot, person facing it ({len(upo)} of {n_upo})", lim_avoid)
     draw(axes[1, 0], synth["approach"], f"approach, synthetic ({len(synth['approach'])}; logs/demos)", lim_appr)
     draw(axes[1, 1], ucy, f"approach, real: UCY pedestrians ({len(ucy)})", lim_appr)
     fig.suptitle("Demonstrations in the person's frame (person at the origin facing +x'; "

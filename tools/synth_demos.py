@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """synth_demos.py - synthetic demonstrations of the paper's social tasks, shaped like a careful
-human teleoperator, written as demonstration logs (paper Sect. 4 and 5: 9 demonstrations per task
+human teleoperator, written as demonstration logs (paper Sect. 2 tasks; Sect. 5.1: 9 demonstrations per task
 and homotopy; layout in docs/demonstrations.md).
 
-Tasks and homotopies (the person stands; theta > 0 is the person's left, theta = 0 their front):
-  avoid    left | right       pass the person on their left / right on the way to a goal ~4.5 m on
+Tasks and homotopies (paper Sect. 2; the person stands; theta > 0 is the person's left, 0 their front):
+  avoid    left | right       the person faces the oncoming robot; pass them on their left / right on
+                              the way to a goal ~4.5 m on
   approach frontal           start in the person's front half-plane, stop in front of them
            left | right       start behind the person, curve round their left / right side, stop in front
 
@@ -14,8 +15,8 @@ unicycle (pure pursuit) with bounded speed, acceleration and turn rate, simulate
 robot and the person are then "seen" by a motion-capture system (OptiTrack-like: ~1 mm position and
 ~0.2 deg heading noise) and logged at 5 Hz (ROBOT_POSE) and every 4 s (PEOPLE; the person stands). The spreads of the
 passing distance and of the final approach distance are those of the real data
-(../shared/data/real: UPO avoid d_min, UCY approach d_end; numbers in DISTRIBUTIONS below and in
-docs/demonstrations.md). Deterministic: the same --seed gives byte-identical logs.
+(../shared/data/real: UPO frontal-encounter avoid d_min and facing, UCY approach d_end; numbers
+below and in docs/demonstrations.md). Deterministic: the same --seed gives byte-identical logs.
 
   synth_demos.py --seed 1 --out-dir logs/demos
 """
@@ -35,14 +36,17 @@ from gmmrrt_tools.demolog import DEFAULT_START_UTIME, MAX_PERSON_AGE_S, write_de
 from gmmrrt_tools.episodes import Episode
 
 # ---------------------------------------------------------------- distributions (from the real data)
-# Passing distance of avoid (distance to the person at the closest point): drawn from the
-# empirical distribution of the UPO avoid index's d_min (398 episodes; mean 1.16 m, std 0.38 m,
-# right-skewed), by inverse CDF through its deciles (0, 10, ..., 100 %), computed with
-#   numpy.percentile(d_min of upo_avoid_index.csv, range(0, 101, 10))
-UPO_DMIN_DECILES_M = (0.63, 0.82, 0.88, 0.92, 0.97, 1.02, 1.10, 1.23, 1.42, 1.78, 2.46)
-# Start and goal distance of avoid: UPO d_start 2.55 +- 0.58 m, d_end 2.29 +- 0.65 m.
-AVOID_START_MEAN_M, AVOID_START_STD_M = 2.55, 0.58
-AVOID_END_MEAN_M, AVOID_END_STD_M = 2.29, 0.65
+# Avoid, as in the paper (Sect. 2: "the robot avoids a standing person that is facing it"), is
+# compared with the UPO episodes flagged frontal_encounter (122 of 398: the person faces the
+# oncoming robot). From upo_avoid_index.csv, rows with frontal_encounter == True:
+# - passing distance (distance at the closest point), d_min deciles (0, 10, ..., 100 %), drawn by
+#   inverse CDF: numpy.percentile(d_min, range(0, 101, 10)); mean 1.20 m, std 0.38 m, right-skewed;
+UPO_DMIN_DECILES_M = (0.63, 0.85, 0.92, 0.96, 1.00, 1.06, 1.12, 1.27, 1.50, 1.79, 2.43)
+# - how far the person's facing is off the robot's start, |theta_start| deciles [deg];
+UPO_FACING_OFFSET_DECILES_DEG = (0.4, 3.0, 6.5, 9.9, 13.2, 15.8, 18.5, 24.9, 31.3, 38.9, 44.9)
+# - start and goal distance: d_start 2.63 +- 0.61 m, d_end 2.29 +- 0.68 m.
+AVOID_START_MEAN_M, AVOID_START_STD_M = 2.63, 0.61
+AVOID_END_MEAN_M, AVOID_END_STD_M = 2.29, 0.68
 # Final distance of approach: UCY approach d_end (30 episodes; mean 1.06 m, std 0.47 m), deciles
 # as above from ucy_index.csv (task approach); a robot stops no closer than 0.50 m (UCY has
 # pedestrians who stop shoulder to shoulder at 0.41 m).
@@ -188,29 +192,28 @@ def person_pose(rng) -> Tuple[float, float, float]:
 
 
 def plan_avoid(rng, homotopy: str):
-    """Start and goal on opposite sides of the person (about 4.5 m apart, as UPO's goals), passing
-    point beside the person at the drawn passing distance, on the requested side."""
-    person = person_pose(rng)
-    while True:
-        travel = float(rng.uniform(-math.pi, math.pi))  # world direction start -> goal
-        # Side of the travel direction that puts the passing point at theta > 0 (left) or < 0.
-        normal = travel + math.pi / 2
-        theta_normal = wrap(normal - person[2])  # bearing of the travel's left normal, person frame
-        if abs(math.sin(theta_normal)) < 0.35:
-            continue  # passing straight in front of / behind the person: side ambiguous, redraw
-        side = 1.0 if (theta_normal > 0) == (homotopy == "left") else -1.0
-        break
+    """Start and goal on opposite sides of the person (about 4.5 m apart, as UPO's goals), the
+    person facing the robot's start (off by UPO's frontal-encounter spread), passing point beside
+    the person at the drawn passing distance, on the requested side."""
+    px, py = (float(v) for v in rng.uniform(-1.0, 1.0, size=2))
+    travel = float(rng.uniform(-math.pi, math.pi))  # world direction start -> goal
     d_pass = from_deciles(rng, UPO_DMIN_DECILES_M)
     # Start and goal farther than the passing point, so the closest approach is the pass itself
     # (the homotopy is read at the closest point, as in the real data's index).
-    d_start = max(truncnorm(rng, AVOID_START_MEAN_M, AVOID_START_STD_M, 1.8, 3.6), d_pass + 0.8)
-    d_end = max(truncnorm(rng, AVOID_END_MEAN_M, AVOID_END_STD_M, 1.6, 3.4), d_pass + 0.8)
-    p = np.array(person[:2])
+    d_start = max(truncnorm(rng, AVOID_START_MEAN_M, AVOID_START_STD_M, 1.8, 3.8), d_pass + 0.8)
+    d_end = max(truncnorm(rng, AVOID_END_MEAN_M, AVOID_END_STD_M, 1.6, 3.6), d_pass + 0.8)
+    p = np.array([px, py])
     u = np.array([math.cos(travel), math.sin(travel)])
     n = np.array([-u[1], u[0]])
     lat_s, lat_g = rng.normal(0.0, 0.25, size=2)  # start/goal not exactly in line with the person
     start = p - u * math.sqrt(max(d_start ** 2 - lat_s ** 2, 1.0)) + n * lat_s
     goal = p + u * math.sqrt(max(d_end ** 2 - lat_g ** 2, 1.0)) + n * lat_g
+    offset = math.radians(from_deciles(rng, UPO_FACING_OFFSET_DECILES_DEG)) * (1 if rng.uniform() < 0.5 else -1)
+    yaw = wrap(math.atan2(start[1] - py, start[0] - px) + offset)
+    person = (px, py, yaw)
+    # Side of the travel direction that puts the passing point at theta > 0 (left) or < 0.
+    theta_normal = wrap(travel + math.pi / 2 - yaw)  # bearing of the travel's left normal, person frame
+    side = 1.0 if (theta_normal > 0) == (homotopy == "left") else -1.0
     along = rng.normal(0.0, 0.2)  # the driver passes a little before or after abeam
     via = p + side * n * d_pass + u * along
     # Hold the passing offset over ~1.2 m (a driver lines up beside the person, then passes):

@@ -1,5 +1,5 @@
 // demo_io.cpp - demonstration readers for the learner: LCM demonstration logs and
-// episode CSVs -> Episode lists (paper Sect. 4, learning from demonstrations).
+// episode CSVs -> Episode lists (paper Sect. 2 tasks, Sect. 3 learning, Sect. 5.1 data).
 // Log layout, pairing rule and error policy: docs/demonstrations.md.
 //
 // The log is read with LCM's C eventlog API. Before each event its 28-byte header is

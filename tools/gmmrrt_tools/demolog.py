@@ -1,4 +1,4 @@
-"""Demonstration logs: LCM event logs with DEMO_INFO, ROBOT_POSE and PEOPLE (paper Sect. 4, the
+"""Demonstration logs: LCM event logs with DEMO_INFO, ROBOT_POSE and PEOPLE (paper Sect. 2 and 5.1, the
 expert's teleoperated demonstrations). Python twin of learner/src/demo_io.cpp, with the same rules
 and error texts; the layout is fixed in docs/demonstrations.md:
 
@@ -280,7 +280,10 @@ def write_demo_log(path: str, episodes: List[Episode], start_utime: int = DEFAUL
         if any(b <= a for a, b in zip(ep.t[:-1], ep.t[1:])) or ep.t[0] < 0:
             raise EpisodeError(f"{path}: episode '{ep.id}': t must start >= 0 and increase")
     directory = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".lcmlog", dir=directory)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".lcmlog", dir=directory)
+    except OSError as e:
+        raise EpisodeError(f"{path}: cannot write: {e.strerror}") from None
     os.close(fd)
     try:
         log = lcm.EventLog(tmp, "w", overwrite=True)
@@ -310,6 +313,10 @@ def write_demo_log(path: str, episodes: List[Episode], start_utime: int = DEFAUL
             utime0 += int(round((float(ep.t[-1]) + EPISODE_GAP_S) * 1e6))
         log.close()
         os.replace(tmp, path)
+    except OSError as e:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise EpisodeError(f"{path}: cannot write: {e.strerror or e}") from None
     except BaseException:
         if os.path.exists(tmp):
             os.unlink(tmp)

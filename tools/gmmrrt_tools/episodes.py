@@ -1,4 +1,4 @@
-"""Demonstration episodes and the episode CSV format (paper Sect. 4: models are learned from
+"""Demonstration episodes and the episode CSV format (paper Sect. 2 and 5.1: models are learned from
 demonstrations of each task and homotopy).
 
 The CSV format is the one of ../shared/data/real/README.md:

@@ -1,4 +1,4 @@
-// demo_io.hpp - readers of recorded demonstrations for the learner (paper Sect. 4: the
+// demo_io.hpp - readers of recorded demonstrations for the learner (paper Sect. 2 and 5.1: the
 // models are learned from demonstrations of each task and homotopy).
 //
 // Two inputs give the same Episode list:
@@ -48,7 +48,9 @@ struct ReadResult {
 };
 
 // Largest |robot pose utime - person utime| [s] for pairing a ROBOT_POSE with the latest
-// PEOPLE entry of the episode's person; poses without such a partner are skipped.
+// PEOPLE entry of the episode's person; poses without such a partner are skipped. Generous
+// because the demonstrated person stands and a people_t message is 1.7 kB (small logs publish
+// PEOPLE every few seconds); see docs/demonstrations.md.
 constexpr double kMaxPersonAgeS = 5.0;
 
 // Largest number of warnings kept; the last one then says how many more were dropped.

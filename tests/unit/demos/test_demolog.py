@@ -252,3 +252,22 @@ def test_read_episodes_dispatches_by_content(tmp_path):
     assert len(eps) == 3 and eps[0].id == "looks_like_0000"
     eps, _ = read_episodes(str(src))
     assert eps[0].id == "a_1"
+
+
+def test_sparse_people_pair_within_the_age_limit(tmp_path):
+    """write_demo_log(people_every=k) writes PEOPLE at every k-th sample; readers pair each pose with
+    the latest entry, which must carry that sample's person pose."""
+    n = 12
+    rows = [(0.5 * i, 0.1 * i, 0.0, 0.0, 2.0 + 0.01 * i, 1.0, 0.3) for i in range(n)]
+    ep = Episode.from_rows("s", "avoid", "left", rows)
+    p = tmp_path / "sparse.lcmlog"
+    write_demo_log(str(p), [ep], people_every=4)
+    eps, warnings = read_demo_log(str(p))
+    assert warnings == [] and len(eps[0]) == n
+    np.testing.assert_allclose(eps[0].person_x, [2.0 + 0.01 * (4 * (i // 4)) for i in range(n)], atol=1e-12)
+    # Too sparse for the limit: poses more than MAX_PERSON_AGE_S after the last entry are dropped.
+    slow = Episode.from_rows("s", "avoid", "left", [(2.0 * i, 0.1 * i, 0, 0, 2, 1, 0.3) for i in range(8)])
+    write_demo_log(str(p), [slow], people_every=4)
+    eps, warnings = read_demo_log(str(p))
+    assert len(eps[0]) == 6  # ages 0, 2, 4 kept, 6 s dropped, in both groups of four
+    assert any("2 ROBOT_POSE events had no PEOPLE entry" in w for w in warnings)

@@ -97,3 +97,13 @@ def test_bad_arguments_exit_nonzero(tmp_path):
     r = subprocess.run([sys.executable, str(SYNTH), "--out-dir", str(blocker / "sub")], capture_output=True,
                        text=True)
     assert r.returncode == 1 and "cannot create" in r.stderr
+
+
+def test_from_behind_approaches_straddle_the_seam(seed1):
+    """Some from-behind approaches start across theta = +-pi from the side they curve round, so the
+    learner's wrapped model sees data on both sides of the seam (docs/demonstrations.md)."""
+    for name, sign in (("approach_left", 1.0), ("approach_right", -1.0)):
+        eps, _ = read_demo_log(str(seed1 / f"{name}.lcmlog"))
+        starts = [person_frame(e)[1][0] for e in eps]
+        assert any(sign * t < 0 for t in starts), f"{name}: no start across the seam"
+        assert any(sign * t > 0 for t in starts), f"{name}: every start across the seam"
