@@ -222,6 +222,7 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_utime)
     if (d->set.cfg.planner == GMMRRT_PLANNER_RRT_STAR)
         model = NULL;
 
+    const int64_t setup_start_us = gmmrrtd_mono_us();
     build_problem(d, model, target);
     gmmrrt_status_t st = gmmrrt_planner_set_problem(d->planner, &d->problem);
     if (st != GMMRRT_OK) {
@@ -242,8 +243,12 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_utime)
             d->warm_starts++;
     }
 
+    /* The budget covers the whole cycle: set_problem (world build) and the seed come out of it. */
+    const double setup_ms = (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3;
+    const double time_ms = d->set.budget_ms > 0.0 ? fmax(d->set.budget_ms - setup_ms, 1.0) : 0.0;
+    LOG_DEBUG("cycle set-up %.2f ms, planning %.2f ms", setup_ms, time_ms);
     const gmmrrt_budget_t budget = {
-        .time_ms = d->set.budget_ms,
+        .time_ms = time_ms,
         .max_iterations = d->set.budget_iterations,
         .converge_rel = 0.0,
         .converge_window = 0,
@@ -256,8 +261,11 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_utime)
     d->status.best_cost = isfinite(stats.best_cost) ? stats.best_cost : -1.0;
     d->status.plan_time_ms = stats.time_ms;
 
-    if ((st == GMMRRT_OK || st == GMMRRT_POOL_FULL) && gmmrrt_planner_best_path(d->planner, &d->path) == GMMRRT_OK &&
-        d->path.num_points >= 2) {
+    const int path_ok = (st == GMMRRT_OK || st == GMMRRT_POOL_FULL) &&
+                        gmmrrt_planner_best_path(d->planner, &d->path) == GMMRRT_OK && d->path.num_points >= 2;
+    LOG_DEBUG("cycle: run %.2f ms (%lld iterations), whole cycle so far %.2f ms", stats.time_ms,
+              (long long)stats.iterations, (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3);
+    if (path_ok) {
         d->no_path_cycles = 0;
         d->status.last_error = st == GMMRRT_POOL_FULL ? (int32_t)st : 0;
         remember_situation(d);

@@ -194,7 +194,8 @@ static int run(gmmrrtd_t *d, int argc, char **argv)
                              (long long)d->status.plans_published);
                     eof = 1;
                 } else {
-                    LOG_ERROR("lcm_handle failed");
+                    gmmrrtd_log_limited(&d->rl[GMMRRTD_NUM_INPUTS][0], gmmrrtd_mono_us() / 1000,
+                                        (int64_t)d->set.log_interval_ms, GMMRRTD_LOG_ERROR, "lcm_handle failed");
                 }
             }
         }

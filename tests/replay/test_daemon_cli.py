@@ -126,3 +126,29 @@ def test_sighup_with_a_bad_model_keeps_the_old_one(gmmrrtd, models, tmp_path):
             daemon.kill()
             daemon.wait()
     assert "old model kept" in err_path.read_text()
+
+
+def test_file_input_without_output_url_is_refused(gmmrrtd, models):
+    res = run(gmmrrtd, "--lcm-url", "file://%s?speed=0" % os.path.join(SCENARIOS, "avoid_one_person.lcmlog"),
+              "--model-avoid", models["avoid"])
+    assert res.returncode == 2 and "--lcm-out-url" in res.stderr, res.stderr
+
+
+def test_warm_start_is_used_when_nothing_changes_and_not_across_stops(gmmrrtd, models, tmp_path):
+    """Still robot, still person, same goal: nearly every cycle after the first is seeded with the
+    last path. The faults scenario stops often (stale pose, bad goals), and a stop forgets the path."""
+    import re
+    counts = {}
+    for sc in ("avoid_one_person", "faults"):
+        res = run(gmmrrtd, "--lcm-url", "file://%s?speed=0" % os.path.join(SCENARIOS, sc + ".lcmlog"),
+                  "--lcm-out-url", "file://%s?mode=w" % (tmp_path / (sc + ".lcmlog")), "--exit-at-eof",
+                  "--model-avoid", models["avoid"], "--model-approach", models["approach"],
+                  "--budget-ms", "0", "--budget-iterations", "300")
+        assert res.returncode == 0, res.stderr
+        m = re.search(r"exiting: (\d+) cycles, (\d+) plans, (\d+) warm starts", res.stderr)
+        assert m, res.stderr
+        counts[sc] = tuple(int(g) for g in m.groups())
+    cycles, _, warm = counts["avoid_one_person"]
+    assert warm >= cycles - 2, counts
+    cycles, _, warm = counts["faults"]
+    assert 0 < warm < cycles - 20, counts

@@ -5,7 +5,7 @@ PLANNER_STATUS, written by gmmrrtd's file:// output or recorded by lcm-logger), 
 the daemon knew at each cycle from the valid inputs, and checks that
 
   * every non-empty plan starts at the robot pose it names (waypoints_t.utime),
-  * ends within the goal's tolerance of the goal in force,
+  * ends within the goal's tolerance of the goal in force and was made for its task,
   * is collision-free: robot disc against circles, oriented boxes and people (discs),
   * every empty plan (a stop) carries a non-zero status saying why,
   * cycles come at the promised rate (log clock: one per period of input time; live: the
@@ -189,6 +189,8 @@ def check(in_log, out_log, rate_hz=10.0, robot_radius=0.3, person_radius=0.25, e
             ends = [(math.hypot(plan.x[n - 1] - g.x, plan.y[n - 1] - g.y) - g.tolerance_m, g) for g in candidates]
             margin, goal = min(ends, key=lambda e: e[0])
             d = margin + goal.tolerance_m
+            if plan.task != goal.task:
+                failures.append("plan seq %d made for task %d, the goal's task is %d" % (plan.seq, plan.task, goal.task))
             if d > goal.tolerance_m + 1e-6:
                 failures.append("plan seq %d ends %.3f m from the goal (%.2f, %.2f), tolerance %.2f"
                                 % (plan.seq, d, goal.x, goal.y, goal.tolerance_m))
