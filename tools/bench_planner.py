@@ -105,6 +105,7 @@ def summarize_ompl(trials: List[dict], time_ms: float) -> dict:
         if not rs:
             continue
         ips = [r["iterations"] / (r["time_ms"] / 1000.0) for r in rs]
+        cpu = [r["iterations"] / (r["cpu_ms"] / 1000.0) for r in rs if r.get("cpu_ms")]
         first = [INF if r["first_solution_ms"] in (None, -1) or r["first_solution_ms"] < 0
                  else r["first_solution_ms"] for r in rs]
         cps = {f"{int(c)}": median(cost_at(r["history"], c) for r in rs) for c in CHECKPOINTS_MS if c <= time_ms}
@@ -113,6 +114,8 @@ def summarize_ompl(trials: List[dict], time_ms: float) -> dict:
             "iterations_per_s_median": median(ips),
             "iterations_per_s_min": min(ips),
             "iterations_per_s_max": max(ips),
+            "iterations_per_cpu_s_median": median(cpu) if cpu else None,
+            "cpu_share_median": median(r["cpu_ms"] / r["time_ms"] for r in rs if r.get("cpu_ms")) if cpu else None,
             "first_solution_ms_median": median(first),
             "solved": sum(1 for r in rs if r["final_cost"] is not None and r["final_cost"] >= 0),
             "cost_at_ms_median": cps,
@@ -139,6 +142,7 @@ def summarize_ompl(trials: List[dict], time_ms: float) -> dict:
         out["ratios"] = {
             "iterations_per_s": ratio(pg["iterations_per_s_median"], po["iterations_per_s_median"]),
             "iterations_per_s_paired_median": median(paired) if paired else None,
+            "iterations_per_cpu_s": ratio(pg["iterations_per_cpu_s_median"], po["iterations_per_cpu_s_median"]),
             "first_solution_speedup": ratio(po["first_solution_ms_median"], pg["first_solution_ms_median"]),
         }
         out["ompl_reference"] = {

@@ -32,6 +32,9 @@ def evaluate_targets(res: dict) -> List[dict]:
     r = _get(res, "ompl", "length", "ratios", "iterations_per_s")
     t.append(_target("iterations/s vs OMPL RRTstar (length)", ">= 30x", r, fmt(r, 1, "x"),
                      None if r is None else r >= 30))
+    r = _get(res, "ompl", "length", "ratios", "iterations_per_cpu_s")
+    t.append(_target("iterations per CPU-second vs OMPL RRTstar (length; steadier on a shared machine)", ">= 30x",
+                     r, fmt(r, 1, "x"), None if r is None else r >= 30))
     s = _get(res, "ompl", "length", "ompl_reference", "speedup")
     ref = _get(res, "ompl", "length", "ompl_reference") or {}
     s_text = fmt(s, 1, "x") if s is not None else (
@@ -162,14 +165,17 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
             pl = s.get("planners", {})
             cps = sorted({k for p in pl.values() for k in p.get("cost_at_ms_median", {})}, key=float)
             L += [f"### Objective: {obj}", "",
-                  "| planner | trials | iterations/s | first solution | " +
+                  "| planner | trials | iterations/s | per CPU-s (CPU share) | first solution | " +
                   " | ".join(f"cost @ {c} ms" for c in cps) + " | final cost | nodes | setup |",
-                  "|---|---|---|---|" + "---|" * len(cps) + "---|---|---|"]
+                  "|---|---|---|---|---|" + "---|" * len(cps) + "---|---|---|"]
             for name in ("ompl_rrtstar", "gmmrrt_rrtstar"):
                 p = pl.get(name)
                 if not p:
                     continue
+                share = p.get("cpu_share_median")
                 L.append(f"| {name} | {p['trials']} | {fmt(p['iterations_per_s_median'], 0)} | "
+                         f"{fmt(p.get('iterations_per_cpu_s_median'), 0)} "
+                         f"({'-' if share is None else f'{100 * share:.0f} %'}) | "
                          f"{fmt(p['first_solution_ms_median'], 3, ' ms')} | " +
                          " | ".join(fmt(p['cost_at_ms_median'].get(c), 4) for c in cps) +
                          f" | {fmt(p['final_cost_median'], 4)} | {fmt(p['nodes_median'], 0)} | "
@@ -178,7 +184,8 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
             ref = s.get("ompl_reference", {})
             L += ["",
                   f"- iterations per second, ours / OMPL: **{fmt(r.get('iterations_per_s'), 1, 'x')}** "
-                  f"(median of per-trial paired ratios {fmt(r.get('iterations_per_s_paired_median'), 1, 'x')})",
+                  f"(median of per-trial paired ratios {fmt(r.get('iterations_per_s_paired_median'), 1, 'x')}; "
+                  f"per CPU-second of the planning thread: {fmt(r.get('iterations_per_cpu_s'), 1, 'x')})",
                   f"- time to first solution, OMPL / ours: {fmt(r.get('first_solution_speedup'), 1, 'x')}",
                   f"- OMPL's median cost after {fmt(ref.get('time_ms'), 0)} ms: {fmt(ref.get('ompl_median_cost'), 4)}; "
                   f"ours reached it in a median {fmt(ref.get('ours_median_time_to_that_cost_ms'), 3, ' ms')} "

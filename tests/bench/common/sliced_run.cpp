@@ -41,6 +41,7 @@ void run_sliced(gmmrrt_planner_t *p, double time_ms, int32_t history_capacity, T
     std::vector<CostPoint> slices;
     gmmrrt_plan_stats_t stats{};
     gmmrrt_status_t st = GMMRRT_NO_PATH_YET;
+    const double cpu0 = thread_cpu_ms();
     const Clock::time_point t0 = Clock::now();
     double end_ms = std::min(0.02, time_ms);
     for (;;) {
@@ -58,6 +59,7 @@ void run_sliced(gmmrrt_planner_t *p, double time_ms, int32_t history_capacity, T
         end_ms = std::min(end_ms * 1.1, time_ms);
     }
     r->time_ms = ms_since(t0);
+    r->cpu_ms = thread_cpu_ms() - cpu0;
     r->status = gmmrrt_status_str(st);
     r->iterations = stats.iterations;
     r->nodes = stats.nodes;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 
 namespace gmmrrt_bench {
 
@@ -37,6 +38,14 @@ static void put_string(std::ostream &out, const std::string &s)
     out << '"';
 }
 
+double thread_cpu_ms()
+{
+    struct timespec ts;
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) != 0)
+        return std::nan("");
+    return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+}
+
 void write_trial_json(std::ostream &out, const TrialResult &r)
 {
     out << "{\"planner\":";
@@ -47,6 +56,8 @@ void write_trial_json(std::ostream &out, const TrialResult &r)
     put_number(out, r.setup_ms);
     out << ",\"time_ms\":";
     put_number(out, r.time_ms);
+    out << ",\"cpu_ms\":";
+    put_number(out, r.cpu_ms);
     out << ",\"iterations\":" << r.iterations << ",\"nodes\":" << r.nodes << ",\"first_solution_ms\":";
     put_number(out, r.first_solution_ms);
     out << ",\"first_solution_iteration\":" << r.first_solution_iteration << ",\"final_cost\":";

@@ -29,7 +29,9 @@ struct TrialResult {
     int trial = 0;
     uint64_t seed = 0;
     double setup_ms = 0;           /* untimed preparation (OMPL setup(); our set_problem) */
-    double time_ms = 0;            /* timed planning */
+    double time_ms = 0;            /* timed planning, wall clock */
+    double cpu_ms = 0;             /* CPU time of the planning thread over the same span: on a shared
+                                      machine, iterations per CPU-second is the steadier rate */
     int64_t iterations = 0;        /* samples drawn, as OMPL counts them */
     int64_t nodes = 0;             /* tree size at the end */
     double first_solution_ms = -1; /* -1: no solution */
@@ -38,6 +40,9 @@ struct TrialResult {
     std::string status;            /* planner's own final status, for the record */
     std::vector<CostPoint> history;
 };
+
+/* CPU time of the calling thread, ms (CLOCK_THREAD_CPUTIME_ID). */
+double thread_cpu_ms();
 
 /* Writes r as one JSON object on one line (no trailing newline). Non-finite numbers become null. */
 void write_trial_json(std::ostream &out, const TrialResult &r);

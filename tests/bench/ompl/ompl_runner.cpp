@@ -100,9 +100,11 @@ TrialResult run_ompl_trial(const std::string &objective, const TaskSettings *tas
         });
     r.setup_ms = ms_since(t_setup);
 
+    const double cpu0 = thread_cpu_ms();
     t0 = Clock::now();
     const ob::PlannerStatus status = planner->solve(ob::timedPlannerTerminationCondition(time_ms / 1000.0));
     r.time_ms = ms_since(t0);
+    r.cpu_ms = thread_cpu_ms() - cpu0;
 
     r.iterations = planner->numIterations();
     ob::PlannerData data(si);

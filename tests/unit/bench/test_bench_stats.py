@@ -55,10 +55,10 @@ def test_clean_makes_strict_json():
     assert json.loads(text) == {"a": None, "b": [None, 1.5], "c": {"d": None}}
 
 
-def _trial(planner, trial, iterations, time_ms, history, first=None):
+def _trial(planner, trial, iterations, time_ms, history, first=None, cpu_ms=None):
     first = history[0][0] if first is None and history else first
     return {"planner": planner, "objective": "length", "trial": trial, "seed": trial, "setup_ms": 0.1,
-            "time_ms": time_ms, "iterations": iterations, "nodes": iterations // 2,
+            "time_ms": time_ms, "cpu_ms": cpu_ms, "iterations": iterations, "nodes": iterations // 2,
             "first_solution_ms": -1 if first is None else first,
             "first_solution_iteration": -1 if first is None else 1,
             "final_cost": history[-1][2] if history else -1, "status": "ok", "history": history}
@@ -66,16 +66,21 @@ def _trial(planner, trial, iterations, time_ms, history, first=None):
 
 def test_ompl_summary_ratios_and_reference_cost():
     # OMPL: 1000 and 3000 iterations in 1 s; ours 10x each. OMPL's 1 s costs 12 and 14 -> median 13.
-    o = [_trial("ompl_rrtstar", 0, 1000, 1000.0, [[5.0, 10, 20.0], [500.0, 500, 12.0]]),
-         _trial("ompl_rrtstar", 1, 3000, 1000.0, [[7.0, 10, 20.0], [600.0, 500, 14.0]])]
-    g = [_trial("gmmrrt_rrtstar", 0, 10000, 1000.0, [[0.5, 5, 19.0], [4.0, 50, 12.5], [40.0, 500, 11.0]]),
-         _trial("gmmrrt_rrtstar", 1, 30000, 1000.0, [[1.5, 5, 19.0], [8.0, 50, 13.0]])]
+    o = [_trial("ompl_rrtstar", 0, 1000, 1000.0, [[5.0, 10, 20.0], [500.0, 500, 12.0]], cpu_ms=500.0),
+         _trial("ompl_rrtstar", 1, 3000, 1000.0, [[7.0, 10, 20.0], [600.0, 500, 14.0]], cpu_ms=500.0)]
+    g = [_trial("gmmrrt_rrtstar", 0, 10000, 1000.0, [[0.5, 5, 19.0], [4.0, 50, 12.5], [40.0, 500, 11.0]],
+                cpu_ms=250.0),
+         _trial("gmmrrt_rrtstar", 1, 30000, 1000.0, [[1.5, 5, 19.0], [8.0, 50, 13.0]], cpu_ms=250.0)]
     s = summarize_ompl(o + g, 1000.0)
     po, pg = s["planners"]["ompl_rrtstar"], s["planners"]["gmmrrt_rrtstar"]
     assert po["iterations_per_s_median"] == pytest.approx(2000.0)
     assert pg["iterations_per_s_median"] == pytest.approx(20000.0)
     assert s["ratios"]["iterations_per_s"] == pytest.approx(10.0)
     assert s["ratios"]["iterations_per_s_paired_median"] == pytest.approx(10.0)
+    # per CPU-second: OMPL 2000 and 6000 -> 4000; ours 40000 and 120000 -> 80000
+    assert po["iterations_per_cpu_s_median"] == pytest.approx(4000.0)
+    assert s["ratios"]["iterations_per_cpu_s"] == pytest.approx(20.0)
+    assert pg["cpu_share_median"] == pytest.approx(0.25)
     assert po["first_solution_ms_median"] == pytest.approx(6.0)
     assert pg["first_solution_ms_median"] == pytest.approx(1.0)
     assert po["cost_at_ms_median"]["10"] == 20.0
