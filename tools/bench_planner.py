@@ -200,6 +200,8 @@ def summarize_social(trials: List[dict], time_ms: float) -> dict:
         "within_1pct_reached": sum(1 for t in within if math.isfinite(t)),
         "within_1pct_of_own_final_ms_median": median(within_own) if within_own else None,
         "iterations_per_s_median": median(r["iterations"] / (r["time_ms"] / 1000.0) for r in trials),
+        "cpu_share_median": (median(r["cpu_ms"] / r["time_ms"] for r in trials if r.get("cpu_ms"))
+                             if any(r.get("cpu_ms") for r in trials) else None),
         "statuses": sorted({r["status"] for r in trials}),
         "paper_first_solution_ms": 1500.0,
         "speedup_vs_paper": ratio(1500.0, median(first)),

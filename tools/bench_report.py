@@ -73,6 +73,12 @@ def evaluate_targets(res: dict) -> List[dict]:
     return t
 
 
+def _share(summary: dict) -> str:
+    """The planning thread's median CPU share of the wall-clock budget, as a percentage."""
+    v = summary.get("cpu_share_median")
+    return "-" if v is None else f"{100 * v:.0f} %"
+
+
 def _within_text(s: dict) -> str:
     """Median time to within 1 % of the converged cost; 'never' when most runs did not get there
     (the JSON holds null for an infinite median)."""
@@ -172,10 +178,8 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
                 p = pl.get(name)
                 if not p:
                     continue
-                share = p.get("cpu_share_median")
                 L.append(f"| {name} | {p['trials']} | {fmt(p['iterations_per_s_median'], 0)} | "
-                         f"{fmt(p.get('iterations_per_cpu_s_median'), 0)} "
-                         f"({'-' if share is None else f'{100 * share:.0f} %'}) | "
+                         f"{fmt(p.get('iterations_per_cpu_s_median'), 0)} ({_share(p)}) | "
                          f"{fmt(p['first_solution_ms_median'], 3, ' ms')} | " +
                          " | ".join(fmt(p['cost_at_ms_median'].get(c), 4) for c in cps) +
                          f" | {fmt(p['final_cost_median'], 4)} | {fmt(p['nodes_median'], 0)} | "
@@ -219,7 +223,7 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
               "'own final' = first time a run got within 1 % of the cost it ended with.",
               f"Models: {_get(so, 'models', 'source')}.", "",
               "| task | runs | solved | first solution median | p90 | max | within 1 % median (runs that got there) | "
-              "within 1 % of own final | converged cost | iterations/s | vs paper 1.5 s |",
+              "within 1 % of own final | converged cost | iterations/s (CPU share) | vs paper 1.5 s |",
               "|---|---|---|---|---|---|---|---|---|---|---|"]
         for task in ("avoid", "approach"):
             s = so.get(task)
@@ -230,7 +234,8 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
                      f"{fmt(s['first_solution_ms_p90'], 3, ' ms')} | {fmt(s['first_solution_ms_max'], 3, ' ms')} | "
                      f"{_within_text(s)} "
                      f"({s['within_1pct_reached']}) | {fmt(s.get('within_1pct_of_own_final_ms_median'), 1, ' ms')} | "
-                     f"{fmt(s['converged_cost'], 4)} | {fmt(s['iterations_per_s_median'], 0)} | "
+                     f"{fmt(s['converged_cost'], 4)} | {fmt(s['iterations_per_s_median'], 0)} "
+                     f"({_share(s)}) | "
                      f"{fmt(s['speedup_vs_paper'], 0, 'x')} |")
         L += [""] + [f"- `{so[t]['command']}`" for t in ("avoid", "approach") if not _err(so.get(t))]
         L += [f"- model: `{c}`" for c in (_get(so, "models", "commands") or [])] + [""]
