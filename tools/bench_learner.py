@@ -4,8 +4,9 @@ D = 2, K = 19, full covariances; and a BIC sweep over K = 1..30 on a mixture of 
 scikit-learn runs single-threaded (OMP/BLAS thread variables set to 1 before numpy loads, and
 threadpoolctl limits) with settings matched to ours: its defaults tol = 1e-3 and max_iter = 100
 (its tol is on the change of the mean log-likelihood per point, as ours), n_init = 1, k-means
-initialisation. Our learner keeps its own defaults otherwise (4 k-means++ restarts). Runs are
-interleaved (the order rotates each repetition; ours is also run with one k-means++ seeding,
+initialisation. Our learner keeps its own defaults otherwise (--restarts 4: candidate starts,
+k-means++ then a few screening EM steps each, best kept). Runs are
+interleaved (the order rotates each repetition; ours is also run with --restarts 1 (one candidate start),
 as context) and both fitted mixtures are scored by the same
 evaluator (scikit-learn's score on the same points), so "equal or better log-likelihood" is
 judged on one yardstick.
@@ -116,7 +117,7 @@ def run_fit_comparison(exe: Path, work: Path, n: int, k: int, reps: int, seed: i
     csv = work / f"fit_points_{n}.csv"
     write_points_csv(points, csv)
     ours: List[dict] = []
-    ours1: List[dict] = []  # one k-means++ seeding, like scikit-learn's single k-means init
+    ours1: List[dict] = []  # one candidate start (--restarts 1), like scikit-learn's single k-means init
     skl: List[dict] = []
     for rep in range(reps):
         order = ("ours", "ours1", "sklearn")[rep % 3:] + ("ours", "ours1", "sklearn")[:rep % 3]

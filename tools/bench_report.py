@@ -273,12 +273,12 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
         L += [f"Fit: N = {fit.get('n'):,}, D = 2, K = {fit.get('k')}, full covariances, points from a random "
               f"19-component mixture; both stop when the mean log-likelihood per point changes by less than "
               f"{st.get('tol')} or after {st.get('max_iter')} iterations (scikit-learn's defaults); scikit-learn "
-              f"single-threaded, n_init = 1, k-means init; ours with {st.get('ours_restarts')} k-means++ restarts "
+              f"single-threaded, n_init = 1, k-means init; ours with --restarts {st.get('ours_restarts')} "
               f"(its default). Both mixtures scored by scikit-learn's `score` on the same points. "
               f"{fit.get('reps')} interleaved repetitions.", "",
               "| learner | fit time (median) | mean log-likelihood / point | EM iterations |",
               "|---|---|---|---|"]
-        names = {"ours": "gmmrrt (defaults)", "ours_one_restart": "gmmrrt, 1 k-means++ seeding",
+        names = {"ours": "gmmrrt (defaults)", "ours_one_restart": "gmmrrt, --restarts 1",
                  "sklearn": "scikit-learn 1.3.2"}
         for who in ("ours", "ours_one_restart", "sklearn"):
             w = fit.get(who, {})
