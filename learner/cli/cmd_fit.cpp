@@ -187,8 +187,14 @@ int RunFit(int argc, char** argv) {
   FitSummary summary;
   if (auto_k) {
     BicSweepResult sweep;
-    if (!spec.quiet) options.progress = nullptr;  // one table line per K is progress enough
-    if (!(s = SweepBic(points, mask, options, k_min, k_max, &sweep)).ok()) return Fail(cmd, s.message);
+    options.progress = nullptr;  // one line per K is progress enough
+    const bool quiet = spec.quiet;
+    auto on_row = [quiet](const BicRow& r) {
+      if (!quiet)
+        std::fprintf(stderr, "K = %d: mean log-likelihood %.6f, BIC %.3f, %d iterations\n", r.k,
+                     r.mean_log_likelihood, r.bic, r.iterations);
+    };
+    if (!(s = SweepBic(points, mask, options, k_min, k_max, &sweep, on_row)).ok()) return Fail(cmd, s.message);
     std::fputs(FormatBicTable(sweep).c_str(), stdout);
     std::printf("chosen K = %d (lowest BIC)\n", sweep.best_k);
     mixture = sweep.best;

@@ -81,7 +81,9 @@ int RunImport(int argc, char** argv) {
     return UsageError(cmd, s.message);
 
   Mixture m;
-  if (!(s = ImportJsonMixture(json_path, options, &m)).ok()) return Fail(cmd, s.message);
+  std::string note;
+  if (!(s = ImportJsonMixture(json_path, options, &m, &note)).ok()) return Fail(cmd, s.message);
+  if (!note.empty()) std::fprintf(stderr, "gmmrrt-learn import: note: %s\n", note.c_str());
   const int kind = (m.dim == 2 && m.angle_mask == (1u << 1)) ? GMMRRT_MODEL_KIND_FEATURES : GMMRRT_MODEL_KIND_GENERIC;
   gmmrrt_model_t model;
   if (!(s = MixtureToModel(m, kind, task, homotopy, delta, &model)).ok()) return Fail(cmd, s.message);

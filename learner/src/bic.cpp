@@ -9,7 +9,8 @@ namespace gmmrrt {
 namespace learn {
 
 Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
-                int k_min, int k_max, BicSweepResult* result) {
+                int k_min, int k_max, BicSweepResult* result,
+                const std::function<void(const BicRow&)>& on_row) {
   if (k_min < 1 || k_max < k_min || k_max > GMMRRT_MAX_K)
     return Status::Error(StatusCode::kInvalidArgument,
                          "K range " + std::to_string(k_min) + ".." + std::to_string(k_max) +
@@ -35,6 +36,7 @@ Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOpt
     row.iterations = s.iterations;
     row.converged = s.converged;
     result->rows.push_back(row);
+    if (on_row) on_row(row);
     if (s.bic < best_bic) {
       best_bic = s.bic;
       result->best_k = k;

@@ -37,7 +37,10 @@ bool ToVector(const json& j, std::vector<double>* v) {
 
 }  // namespace
 
-Status ImportJsonMixture(const std::string& path, const JsonImportOptions& options, Mixture* out) {
+Status ImportJsonMixture(const std::string& path, const JsonImportOptions& options, Mixture* out,
+                         std::string* note) {
+  if (note) note->clear();
+  int mixtures_in_task = 1;
   std::ifstream in(path);
   if (!in) return Status::Error(StatusCode::kIoError, path + ": cannot open: " + std::strerror(errno));
   json doc = json::parse(in, nullptr, /*allow_exceptions=*/false);
@@ -87,6 +90,9 @@ Status ImportJsonMixture(const std::string& path, const JsonImportOptions& optio
     const json& task = tasks[options.task_name];
     if (!task.is_object() || !task.contains("components") || !task["components"].is_array())
       return Bad(path, "task \"" + options.task_name + "\" has no \"components\" array");
+    // A two-homotopy task concatenates two mixtures, each with priors summing to 1.
+    if (task.contains("two_homotopies") && task["two_homotopies"].is_boolean() && task["two_homotopies"].get<bool>())
+      mixtures_in_task = 2;
     int i = 0;
     for (const json& c : task["components"]) {
       const std::string comp = "task \"" + options.task_name + "\" component " + std::to_string(i++);
@@ -149,8 +155,12 @@ Status ImportJsonMixture(const std::string& path, const JsonImportOptions& optio
     m.chol[i] = llt.matrixL().toDenseMatrix();
     m.weights[i] = weights[i];
   }
-  if (std::fabs(sum - 1.0) > 1e-6)
-    return Status::Error(StatusCode::kBadModel, path + ": weights sum to " + std::to_string(sum) + ", not 1");
+  if (std::fabs(sum - mixtures_in_task) > 1e-6 * mixtures_in_task)
+    return Status::Error(StatusCode::kBadModel, path + ": weights sum to " + std::to_string(sum) + ", not " +
+                                                    std::to_string(mixtures_in_task));
+  if (mixtures_in_task > 1 && note)
+    *note = "task \"" + options.task_name + "\" holds one mixture per homotopy (priors sum to " +
+            std::to_string(mixtures_in_task) + "); imported as their equal-weight union (homotopy all)";
   m.weights /= sum;
   WrapAngleRows(m.angle_mask, &m.means);
   Status s = ValidateMixture(m);

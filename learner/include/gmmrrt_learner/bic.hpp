@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,9 +36,10 @@ struct BicSweepResult {
 
 // Fits K = k_min..k_max (1 <= k_min <= k_max <= GMMRRT_MAX_K; options.k is ignored). A K with
 // too few points for it ends the sweep early (note says so) unless it is k_min, which is an
-// error. Other fit errors are returned as they are.
+// error. Other fit errors are returned as they are. on_row (may be empty) is called after each K.
 Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
-                int k_min, int k_max, BicSweepResult* result);
+                int k_min, int k_max, BicSweepResult* result,
+                const std::function<void(const BicRow&)>& on_row = nullptr);
 
 // The rows as a fixed-width text table (header, one line per K, the chosen K marked with *).
 std::string FormatBicTable(const BicSweepResult& result);

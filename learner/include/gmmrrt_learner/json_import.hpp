@@ -26,10 +26,13 @@ struct JsonImportOptions {
 };
 
 // Reads path into *out (validated, weights renormalised when their sum is within 1e-6 of 1).
+// A task flagged "two_homotopies": true holds two concatenated mixtures whose priors sum to 2;
+// it is imported as their equal-weight union (weights / 2) and *note (may be null) says so.
 // kIoError: unreadable; kBadInput: not JSON or the wrong shape (the message says which key and,
 // for an unknown set or task, lists the known ones); kBadModel: a covariance that is not
 // symmetric positive definite or a bad weight, naming the component.
-Status ImportJsonMixture(const std::string& path, const JsonImportOptions& options, Mixture* out);
+Status ImportJsonMixture(const std::string& path, const JsonImportOptions& options, Mixture* out,
+                         std::string* note = nullptr);
 
 }  // namespace learn
 }  // namespace gmmrrt

@@ -198,5 +198,26 @@ def test_import_upo_approach_models():
         spec = json.loads(path.read_text())["sets"]["tasks"]["1-front"]
         r = run("inspect", out)
         assert f"K        {spec['n_components']}" in r.stdout
+        # Every task of both sets imports; two-homotopy tasks (priors summing to 2) say so.
+        sets = json.loads(path.read_text())["sets"]
+        for set_name, tasks in sets.items():
+            for task_name, task in tasks.items():
+                r = run("import", "--json", path, "--set", set_name, "--task-name", task_name, "-o", out)
+                assert r.returncode == 0, (set_name, task_name, r.stderr)
+                assert ("one mixture per homotopy" in r.stderr) == bool(task["two_homotopies"])
+                assert f"K        {task['n_components']}" in run("inspect", out).stdout
         r = run("import", "--json", path, "--task-name", "9-nowhere", "-o", out)
         assert r.returncode != 0 and "1-front" in r.stderr  # lists the known tasks
+
+
+def test_fit_from_demonstration_logs(tmp_path):
+    logs = [Path("logs/demos/avoid_left.lcmlog"), Path("logs/demos/avoid_right.lcmlog")]
+    if not all(p.exists() for p in logs):
+        pytest.skip("logs/demos/avoid_*.lcmlog not in this checkout (made by the demos issue)")
+    model = tmp_path / "demo.gmm"
+    r = run("fit", "--input", *logs, "--task", "avoid", "--homotopy", "left", "--k", 4, "-o", model, "-q")
+    assert r.returncode == 0, r.stderr
+    assert "homotopy left" in run("inspect", model).stdout
+    own = float(run("score", model, "--input", logs[0], "-q").stdout.split()[1])
+    other = float(run("score", model, "--input", logs[1], "--homotopy", "right", "-q").stdout.split()[1])
+    assert own > other  # a left-passing model explains left passes better than right ones
