@@ -212,10 +212,32 @@ void gmmrrtd_settings_print_help(const char *argv0)
            "  -V, --version          print the version\n"
            "  -c, --config FILE      INI file with the settings below ([section] key); flags override it\n",
            argv0);
+    static gmmrrtd_settings_t defaults;
+    gmmrrtd_settings_default(&defaults);
     for (int i = 0; i < N_KEYS; ++i) {
-        char left[64];
-        snprintf(left, sizeof left, "--%s%s", k_keys[i].flag, k_keys[i].type == K_BOOL ? "" : " V");
-        printf("      %-26s %s  [%s] %s\n", left, k_keys[i].help, k_keys[i].section, k_keys[i].key);
+        const key_t_ *k = &k_keys[i];
+        const char *field = (const char *)&defaults + k->offset;
+        char left[64], def[80] = "";
+        snprintf(left, sizeof left, "--%s%s", k->flag, k->type == K_BOOL ? "" : " V");
+        if (k->type == K_STR && field[0] != '\0') {
+            snprintf(def, sizeof def, "; default %.60s", field);
+        } else if (k->type == K_F64) {
+            double v;
+            memcpy(&v, field, sizeof v);
+            snprintf(def, sizeof def, "; default %g", v);
+        } else if (k->type == K_I32 || k->type == K_BOOL || k->type == K_PLANNER) {
+            int32_t v;
+            memcpy(&v, field, sizeof v);
+            if (k->type == K_PLANNER && v >= 1 && v <= 3)
+                snprintf(def, sizeof def, "; default %s", k_planner_names[v]);
+            else
+                snprintf(def, sizeof def, "; default %d", (int)v);
+        } else if (k->type == K_I64 || k->type == K_U64) {
+            int64_t v;
+            memcpy(&v, field, sizeof v);
+            snprintf(def, sizeof def, "; default %lld", (long long)v);
+        }
+        printf("      %-26s %s%s  [%s] %s\n", left, k->help, def, k->section, k->key);
     }
     printf("\nDefault LCM URL: %s (ttl=0: messages stay on this host).\n"
            "Signals: SIGINT/SIGTERM exit cleanly; SIGHUP reloads the config file and the models.\n"

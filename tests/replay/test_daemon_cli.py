@@ -152,3 +152,50 @@ def test_warm_start_is_used_when_nothing_changes_and_not_across_stops(gmmrrtd, m
     assert warm >= cycles - 2, counts
     cycles, _, warm = counts["faults"]
     assert 0 < warm < cycles - 20, counts
+
+
+def built_with_systemd():
+    cache = os.path.join(os.environ.get("GMMRRT_BUILD_DIR", ""), "CMakeCache.txt")
+    return os.path.exists(cache) and "LIBSYSTEMD_FOUND:INTERNAL=1" in open(cache).read()
+
+
+def test_systemd_notify_ready_watchdog_reloading_stopping(gmmrrtd, models, tmp_path):
+    """Type=notify without systemd: a datagram socket in NOTIFY_SOCKET receives what the unit needs
+    (or, in a build without libsystemd, nothing at all)."""
+    import socket
+    path = str(tmp_path / "notify.sock")
+    sock = socket.socket(socket.AF_UNIX, socket.SOCK_DGRAM)
+    sock.bind(path)
+    sock.settimeout(0.2)
+    env = dict(os.environ, NOTIFY_SOCKET=path, WATCHDOG_USEC="2000000")
+    daemon = subprocess.Popen([gmmrrtd, "--lcm-url", private_url(), "--model-avoid", models["avoid"],
+                               "--log-level", "warn"], env=env)
+    got = []
+
+    def collect(seconds):
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            try:
+                got.append(sock.recv(4096).decode())
+            except socket.timeout:
+                pass
+
+    try:
+        collect(1.0)
+        daemon.send_signal(signal.SIGHUP)
+        collect(0.5)
+        daemon.send_signal(signal.SIGTERM)
+        assert daemon.wait(timeout=10) == 0
+        collect(0.3)
+    finally:
+        if daemon.poll() is None:
+            daemon.kill()
+            daemon.wait()
+        sock.close()
+    text = "\n".join(got)
+    if not built_with_systemd():
+        assert got == [], "built without libsystemd yet sent notifications: %s" % got[:3]
+        return
+    assert "READY=1" in got[0], got[:3]
+    assert text.count("WATCHDOG=1") >= 5, got  # every cycle at 10 Hz
+    assert "RELOADING=1" in text and "STOPPING=1" in got[-1], got[-3:]
