@@ -169,6 +169,10 @@ gmmrrt_status_t gmmrrt_world_build(gmmrrt_world_t **out, void *mem, size_t size,
 
 /* Lower bound on the clearance at (x, y) from the four cell centres around it; the point
  * must lie inside the bounds. */
+/* Margin an edge must keep from every obstacle (m): edges closer than this are refused, which is
+ * what keeps sphere tracing exact and finite (see gmmrrt_world_segment_free). */
+#define GMMRRT_EDGE_MIN_CLEARANCE_M 1e-3
+
 static double clearance_lower_bound(const struct gmmrrt_world *w, double x, double y)
 {
     const gmmrrt_bounds_t *b = &w->obstacles.bounds;
@@ -232,12 +236,17 @@ int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0,
         return 1;
     const double ux = (x1 - x0) / len, uy = (y1 - y0) / len;
     /* Bounds are convex and both ends are inside, so every point between is inside. */
+    /* Sphere tracing: lb is a lower bound on the exact clearance and clearance is 1-Lipschitz, so
+     * the robot is free everywhere within lb of the probe and a step of lb never skips an obstacle,
+     * not even a corner cut between probes. Edges that pass closer than GMMRRT_EDGE_MIN_CLEARANCE_M
+     * are refused instead of walked in ever smaller steps; that bounds the probes per edge by
+     * len / GMMRRT_EDGE_MIN_CLEARANCE_M. */
     double s = 0.0;
     for (;;) {
         const double lb = clearance_lower_bound(world, x0 + s * ux, y0 + s * uy);
-        if (!(lb > 0.0))
+        if (!(lb > GMMRRT_EDGE_MIN_CLEARANCE_M))
             return 0;
-        s += lb > world->edge_resolution_m ? lb : world->edge_resolution_m;
+        s += lb;
         if (s >= len)
             return 1; /* the end point was checked above */
     }

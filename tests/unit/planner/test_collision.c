@@ -124,6 +124,52 @@ static void test_segments_through_obstacles_are_blocked_both_ways(void **state)
     free(t.mem);
 }
 
+/* A segment that cuts a box corner by less than a millimetre has most of its length far from
+ * the box; only sphere tracing that never steps further than the proven clearance notices. Every
+ * segment the world calls free must keep positive exact clearance (FCL) all along, probed every
+ * 0.1 mm. Fails with fixed-size steps between probes. */
+static void test_free_segments_never_cut_a_corner(void **state)
+{
+    (void)state;
+    gmmrrt_obstacle_set_t o;
+    memset(&o, 0, sizeof o);
+    o.bounds = (gmmrrt_bounds_t){-4.0, -4.0, 4.0, 4.0};
+    o.num_boxes = 1;
+    o.boxes[0] = (gmmrrt_box_t){0.0, 0.0, 2.0, 2.0, 0.0}; /* corner at (1, 1) */
+    const double radii[] = {0.0, 0.3};
+    for (int r = 0; r < 2; ++r) {
+        world_t t;
+        assert_int_equal(build(&t, 0.05, radii[r], &o), GMMRRT_OK);
+        gmmrrt_rng_t rng;
+        gmmrrt_rng_seed(&rng, 5);
+        int called_free = 0;
+        for (int i = 0; i < 400; ++i) {
+            /* Lines x + y = c through the corner region: the corner (of the robot-inflated box) is
+             * at x + y = 2 + radius * sqrt(2); offsets from -2 mm (cutting it) to +15 cm (clear of it,
+             * beyond the grid's one-cell conservatism). */
+            const double u = gmmrrt_rng_uniform(&rng);
+            const double c = 2.0 + radii[r] * sqrt(2.0) + (u < 0.5 ? (u - 0.25) * 8e-3 : (u - 0.5) * 0.3);
+            const double half = 1.0 + gmmrrt_rng_uniform(&rng);
+            const double shift = (gmmrrt_rng_uniform(&rng) - 0.5) * 0.2;
+            const double mx = c / 2 + shift, my = c / 2 - shift;
+            const double x0 = mx - half / sqrt(2.0), y0 = my + half / sqrt(2.0);
+            const double x1 = mx + half / sqrt(2.0), y1 = my - half / sqrt(2.0);
+            if (!gmmrrt_world_segment_free(t.w, x0, y0, x1, y1))
+                continue;
+            ++called_free;
+            const double len = hypot(x1 - x0, y1 - y0);
+            for (double s = 0.0; s <= len; s += 1e-4) {
+                const double x = x0 + (x1 - x0) * s / len, y = y0 + (y1 - y0) * s / len;
+                if (!(gmmrrt_world_exact_clearance(t.w, x, y) > 0.0))
+                    fail_msg("segment (%g,%g)-(%g,%g) called free but touches the box at (%g,%g), radius %g", x0,
+                             y0, x1, y1, x, y, radii[r]);
+            }
+        }
+        assert_true(called_free > 20); /* the lines well outside the corner are free */
+        free(t.mem);
+    }
+}
+
 static void test_people_are_discs_of_person_radius(void **state)
 {
     (void)state;
@@ -173,6 +219,7 @@ int main(void)
         cmocka_unit_test(test_grid_is_conservative_against_fcl),
         cmocka_unit_test(test_exact_clearance_matches_geometry),
         cmocka_unit_test(test_segments_through_obstacles_are_blocked_both_ways),
+        cmocka_unit_test(test_free_segments_never_cut_a_corner),
         cmocka_unit_test(test_people_are_discs_of_person_radius),
         cmocka_unit_test(test_bad_worlds_get_their_status),
     };
