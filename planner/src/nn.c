@@ -8,17 +8,19 @@
 
 #include <math.h>
 
+/* Adaptive layout: nodes per bucket right after a re-layout, and the first layout's count. */
+#define GMMRRT_NN_NODES_PER_CELL 1.0
+#define GMMRRT_NN_FIRST_LAYOUT 16
+
 int32_t gmmrrt_nn_capacity(int32_t max_nodes)
 {
     return max_nodes < 16 ? 16 : max_nodes;
 }
 
-void gmmrrt_nn_reset(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double min_cell_m)
+/* Lays an empty grid of buckets of edge >= cell over bounds, within nn->capacity buckets. */
+static void layout(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double cell)
 {
     const double w = bounds->xmax - bounds->xmin, h = bounds->ymax - bounds->ymin;
-    double cell = sqrt(w * h / (double)nn->capacity);
-    if (cell < min_cell_m)
-        cell = min_cell_m;
     int32_t nx, ny;
     for (;;) {
         const double fx = ceil(w / cell), fy = ceil(h / cell);
@@ -38,6 +40,34 @@ void gmmrrt_nn_reset(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double min_
         nn->heads[i] = -1;
 }
 
+void gmmrrt_nn_reset(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double min_cell_m)
+{
+    const double w = bounds->xmax - bounds->xmin, h = bounds->ymax - bounds->ymin;
+    double cell = sqrt(w * h / (double)nn->capacity);
+    if (cell < min_cell_m)
+        cell = min_cell_m;
+    nn->adaptive = 0;
+    nn->relayout_at = 0;
+    nn->bounds = *bounds;
+    layout(nn, bounds, cell);
+}
+
+/* Bucket edge for n nodes at GMMRRT_NN_NODES_PER_CELL per bucket. */
+static double cell_for(const gmmrrt_bounds_t *b, int32_t n)
+{
+    const double area = (b->xmax - b->xmin) * (b->ymax - b->ymin);
+    const double cell = sqrt(area * GMMRRT_NN_NODES_PER_CELL / (double)n);
+    return cell > 0.0 ? cell : 1.0; /* degenerate bounds: one row or column of buckets */
+}
+
+void gmmrrt_nn_reset_adaptive(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds)
+{
+    nn->adaptive = 1;
+    nn->relayout_at = GMMRRT_NN_FIRST_LAYOUT;
+    nn->bounds = *bounds;
+    layout(nn, bounds, cell_for(bounds, GMMRRT_NN_FIRST_LAYOUT));
+}
+
 static int32_t clampi(int32_t v, int32_t lo, int32_t hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
 static int32_t cell_of(double v, double v0, double cell, int32_t n)
@@ -50,13 +80,26 @@ static int32_t cell_of(double v, double v0, double cell, int32_t n)
     return (int32_t)f;
 }
 
-void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_node_t *nodes, int32_t idx)
+static void link(gmmrrt_nn_t *nn, gmmrrt_node_t *nodes, int32_t idx)
 {
     const int32_t i = cell_of(nodes[idx].x, nn->x0, nn->cell_m, nn->nx);
     const int32_t j = cell_of(nodes[idx].y, nn->y0, nn->cell_m, nn->ny);
     int32_t *head = &nn->heads[j * nn->nx + i];
     nodes[idx].next_in_bucket = *head;
     *head = idx;
+}
+
+void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_node_t *nodes, int32_t idx)
+{
+    if (nn->adaptive && idx + 1 >= nn->relayout_at) {
+        const int32_t n = idx + 1;
+        layout(nn, &nn->bounds, cell_for(&nn->bounds, n));
+        for (int32_t k = 0; k <= idx; ++k)
+            link(nn, nodes, k);
+        nn->relayout_at = n > INT32_MAX / 2 ? INT32_MAX : 2 * n;
+        return;
+    }
+    link(nn, nodes, idx);
 }
 
 static void scan_bucket(const gmmrrt_nn_t *nn, const gmmrrt_node_t *nodes, int32_t i, int32_t j, double x,
@@ -90,11 +133,23 @@ int32_t gmmrrt_nn_nearest(const gmmrrt_nn_t *nn, const gmmrrt_node_t *nodes, dou
                     scan_bucket(nn, nodes, i, j, x, y, &best, &best_d2);
             }
         }
-        /* Every bucket outside ring k lies at least k cells beyond the query's own
-         * bucket, so at least k * cell away (for queries inside the grid). */
-        const double reach = (double)k * nn->cell_m;
-        if (best >= 0 && best_d2 <= reach * reach)
-            break;
+        /* Every node not yet scanned lies outside the box of rings 0..k; on a side where
+         * that box has reached the grid's edge there is none. */
+        if (best >= 0) {
+            double reach = INFINITY;
+            if (i0 > 0)
+                reach = fmin(reach, x - (nn->x0 + (double)i0 * nn->cell_m));
+            if (i1 < nn->nx - 1)
+                reach = fmin(reach, nn->x0 + (double)(i1 + 1) * nn->cell_m - x);
+            if (j0 > 0)
+                reach = fmin(reach, y - (nn->y0 + (double)j0 * nn->cell_m));
+            if (j1 < nn->ny - 1)
+                reach = fmin(reach, nn->y0 + (double)(j1 + 1) * nn->cell_m - y);
+            if (reach >= 0.0 && best_d2 <= reach * reach)
+                break;
+            if (i0 <= 0 && i1 >= nn->nx - 1 && j0 <= 0 && j1 >= nn->ny - 1)
+                break;
+        }
     }
     return best;
 }

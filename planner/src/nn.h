@@ -28,6 +28,12 @@ typedef struct {
     int32_t nx, ny;
     double x0, y0;         /* m, lower corner of the grid */
     double cell_m;         /* bucket edge */
+    /* Adaptive layout (gmmrrt_nn_reset_adaptive; all zero = fixed layout): the grid is laid
+     * again for the current node count each time it doubles, so buckets hold ~1-2 nodes at
+     * any tree size. */
+    int32_t adaptive;
+    int32_t relayout_at;   /* node count that triggers the next layout */
+    gmmrrt_bounds_t bounds;
 } gmmrrt_nn_t;
 
 /* Bytes of bucket heads for a pool of max_nodes. */
@@ -37,7 +43,13 @@ int32_t gmmrrt_nn_capacity(int32_t max_nodes);
  * using at most nn->capacity buckets. */
 void gmmrrt_nn_reset(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double min_cell_m);
 
-/* Adds node `idx` (its x, y set) to the index. */
+/* Empties the index for a tree that grows by gmmrrt_nn_insert of nodes 0, 1, 2, ... in
+ * order: the bucket edge follows the node count (about GMMRRT_NN_NODES_PER_CELL nodes per
+ * bucket right after each re-layout, which happens when the count doubles and re-buckets
+ * nodes 0..idx: amortised O(1) per insert, no memory beyond the heads). */
+void gmmrrt_nn_reset_adaptive(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds);
+
+/* Adds node `idx` (its x, y set) to the index (adaptive: nodes 0..idx-1 already in). */
 void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_node_t *nodes, int32_t idx);
 
 /* Index of the node nearest to (x, y) (ties: the one found first), -1 when empty. */

@@ -32,7 +32,8 @@ double gmmrrt_task_cost_at(const struct gmmrrt_planner *p, double x, double y)
 
 double gmmrrt_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1)
 {
-    const double len = hypot(x1 - x0, y1 - y0);
+    const double dx = x1 - x0, dy = y1 - y0;
+    const double len = sqrt(dx * dx + dy * dy); /* plain sqrt: hypot is far slower; inputs are map coordinates */
     if (p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR)
         return len;
     if (!p->task_active || p->num_active == 0)

@@ -119,7 +119,7 @@ static void reset_tree(struct gmmrrt_planner *p)
     root->y = p->problem.start_y;
     root->cost = 0.0;
     root->parent = root->first_child = root->next_sibling = -1;
-    gmmrrt_nn_reset(&p->nn, &p->problem.obstacles.bounds, 0.25 * p->cfg.step_m);
+    gmmrrt_nn_reset_adaptive(&p->nn, &p->problem.obstacles.bounds);
     gmmrrt_nn_insert(&p->nn, p->nodes, 0);
     p->num_goal = 0;
     p->best_goal = -1;
@@ -385,7 +385,7 @@ static void iterate(struct gmmrrt_planner *p)
     const int32_t nearest = gmmrrt_nn_nearest(&p->nn, p->nodes, sx, sy);
     const gmmrrt_node_t *nn = &p->nodes[nearest];
     double dx = sx - nn->x, dy = sy - nn->y;
-    const double dist = hypot(dx, dy);
+    const double dist = sqrt(dx * dx + dy * dy); /* plain sqrt: hypot is far slower, no overflow here */
     if (dist <= GMMRRT_SAME_POINT_M)
         return;
     double x = sx, y = sy;
@@ -412,7 +412,8 @@ static void iterate(struct gmmrrt_planner *p)
     const int32_t count = near_set(p, x, y, nearest);
     for (int32_t k = 0; k < count; ++k) {
         const gmmrrt_node_t *c = &p->nodes[p->near_idx[k]];
-        p->near_len[k] = hypot(c->x - x, c->y - y);
+        const double ddx = c->x - x, ddy = c->y - y;
+        p->near_len[k] = sqrt(ddx * ddx + ddy * ddy);
         p->near_edge[k] = NAN;
         p->near_free[k] = -1;
     }
