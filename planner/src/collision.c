@@ -238,10 +238,20 @@ int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0,
         y0 = y1;
         y1 = t;
     }
-    if (!gmmrrt_world_point_free(world, x0, y0) || !gmmrrt_world_point_free(world, x1, y1))
+    if (!isfinite(x0) || !isfinite(y0) || !isfinite(x1) || !isfinite(y1) || !inside_bounds(world, x0, y0) ||
+        !inside_bounds(world, x1, y1))
         return 0;
-    const double len = hypot(x1 - x0, y1 - y0);
+    /* The end points' clearance bounds (as gmmrrt_world_point_free) are also the first probes. */
+    const double lb0 = clearance_lower_bound(world, x0, y0), lb1 = clearance_lower_bound(world, x1, y1);
+    if (!(lb0 > 0.0) || !(lb1 > 0.0))
+        return 0;
+    const double dx = x1 - x0, dy = y1 - y0;
+    const double len = sqrt(dx * dx + dy * dy); /* plain sqrt: map coordinates, no overflow */
     if (len == 0.0)
+        return 1;
+    /* Free discs of radius lb0 and lb1 around the ends that overlap cover the whole edge
+     * (same clearance floor as the walk below). */
+    if (lb0 > GMMRRT_EDGE_MIN_CLEARANCE_M && lb1 > GMMRRT_EDGE_MIN_CLEARANCE_M && lb0 + lb1 > len)
         return 1;
     const double ux = (x1 - x0) / len, uy = (y1 - y0) / len;
     /* Bounds are convex and both ends are inside, so every point between is inside. */
@@ -250,7 +260,11 @@ int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0,
      * not even a corner cut between probes. Edges that pass closer than GMMRRT_EDGE_MIN_CLEARANCE_M
      * are refused instead of walked in ever smaller steps; that bounds the probes per edge by
      * len / GMMRRT_EDGE_MIN_CLEARANCE_M. */
-    double s = 0.0;
+    if (!(lb0 > GMMRRT_EDGE_MIN_CLEARANCE_M))
+        return 0;
+    double s = lb0;
+    if (s >= len)
+        return 1;
     for (;;) {
         const double lb = clearance_lower_bound(world, x0 + s * ux, y0 + s * uy);
         if (!(lb > GMMRRT_EDGE_MIN_CLEARANCE_M))

@@ -9,7 +9,9 @@
 #include <math.h>
 
 /* Adaptive layout: nodes per bucket right after a re-layout, and the first layout's count. */
+#ifndef GMMRRT_NN_NODES_PER_CELL
 #define GMMRRT_NN_NODES_PER_CELL 1.0
+#endif
 #define GMMRRT_NN_FIRST_LAYOUT 16
 
 int32_t gmmrrt_nn_capacity(int32_t max_nodes)
@@ -163,15 +165,27 @@ int32_t gmmrrt_nn_near(const gmmrrt_nn_t *nn, const gmmrrt_node_t *nodes, double
     const int32_t j1 = clampi((int32_t)floor((y + radius_m - nn->y0) / nn->cell_m), 0, nn->ny - 1);
     const double r2 = radius_m * radius_m;
     int32_t count = 0;
-    for (int32_t j = j0; j <= j1; ++j)
-        for (int32_t i = i0; i <= i1; ++i)
+    for (int32_t j = j0; j <= j1; ++j) {
+        /* Only the buckets of this row that the disc's chord over the row reaches. */
+        const double row_lo = nn->y0 + (double)j * nn->cell_m, row_hi = row_lo + nn->cell_m;
+        const double dy = y < row_lo ? row_lo - y : (y > row_hi ? y - row_hi : 0.0);
+        int32_t a = i0, b = i1;
+        if (dy > 0.0 && j > 0 && j < nn->ny - 1) { /* edge rows also hold clamped nodes */
+            if (dy > radius_m)
+                continue;
+            const double half = sqrt(r2 - dy * dy);
+            a = clampi((int32_t)floor((x - half - nn->x0) / nn->cell_m), i0, i1);
+            b = clampi((int32_t)floor((x + half - nn->x0) / nn->cell_m), i0, i1);
+        }
+        for (int32_t i = a; i <= b; ++i)
             for (int32_t n = nn->heads[j * nn->nx + i]; n >= 0; n = nodes[n].next_in_bucket) {
-                const double dx = nodes[n].x - x, dy = nodes[n].y - y;
-                if (dx * dx + dy * dy <= r2) {
+                const double dx = nodes[n].x - x, ddy = nodes[n].y - y;
+                if (dx * dx + ddy * ddy <= r2) {
                     if (count >= cap)
                         return -1;
                     out[count++] = n;
                 }
             }
+    }
     return count;
 }

@@ -410,11 +410,15 @@ static void iterate(struct gmmrrt_planner *p)
      * Candidates are ranked by a lower bound until their exact cost is needed (lazy, so
      * the quadrature runs only for candidates that can still win). */
     const int32_t count = near_set(p, x, y, nearest);
+    /* Without a task term the edge cost is a fixed multiple of length: the lower bound is
+     * exact, so no candidate needs the quadrature. */
+    const int cost_is_length = p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR || !p->task_active ||
+                               p->num_active == 0;
     for (int32_t k = 0; k < count; ++k) {
         const gmmrrt_node_t *c = &p->nodes[p->near_idx[k]];
         const double ddx = c->x - x, ddy = c->y - y;
         p->near_len[k] = sqrt(ddx * ddx + ddy * ddy);
-        p->near_edge[k] = NAN;
+        p->near_edge[k] = cost_is_length ? gmmrrt_edge_cost_lower_bound(p, p->near_len[k]) : NAN;
         p->near_free[k] = -1;
     }
     int32_t parent_k = -1;

@@ -1,7 +1,8 @@
 /*
  * test_nn.c - planner.nn: the bucket-grid index (planner/src/nn.h) against a linear scan
  * (the nanoflann way): nearest and radius queries on random and clustered points, queries
- * on the bounds' edges, and the overflow report of a radius query.
+ * on the bounds' edges, in the fixed and the adaptive (re-laid as the tree doubles) layout,
+ * and the overflow report of a radius query.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -46,8 +47,11 @@ static void check_against_scan(int clustered, double min_cell)
     gmmrrt_rng_t rng;
     gmmrrt_rng_seed(&rng, clustered ? 5u : 3u);
     const gmmrrt_bounds_t b = {-7.0, -5.0, 7.0, 5.0};
-    gmmrrt_nn_t nn = {heads, N, 0, 0, 0.0, 0.0, 0.0};
-    gmmrrt_nn_reset(&nn, &b, min_cell);
+    gmmrrt_nn_t nn = {.heads = heads, .capacity = N};
+    if (min_cell > 0.0)
+        gmmrrt_nn_reset(&nn, &b, min_cell);
+    else /* min_cell <= 0: the adaptive layout the planner uses, re-laid as the tree doubles */
+        gmmrrt_nn_reset_adaptive(&nn, &b);
     assert_true(nn.nx * nn.ny <= N);
     static int32_t got[N], want[N];
     for (int32_t i = 0; i < N; ++i) {
@@ -63,7 +67,9 @@ static void check_against_scan(int clustered, double min_cell)
             nodes[i].y = b.ymin + gmmrrt_rng_uniform(&rng) * 10.0;
         }
         gmmrrt_nn_insert(&nn, nodes, i);
-        if (i % 97 != 0 && i > 20)
+        if (min_cell <= 0.0)
+            assert_true(nn.nx * nn.ny <= N);
+        if (i % 97 != 0 && i > 20 && (i & (i - 1)) != 0 && ((i + 1) & i) != 0) /* and around re-layouts */
             continue;
         for (int q = 0; q < 20; ++q) {
             const double qx = q == 0 ? b.xmin : (q == 1 ? b.xmax : b.xmin + gmmrrt_rng_uniform(&rng) * 14.0);
@@ -102,11 +108,18 @@ static void test_nearest_and_near_match_linear_scan_clustered(void **state)
     check_against_scan(1, 2.0); /* coarse buckets */
 }
 
+static void test_adaptive_layout_matches_linear_scan(void **state)
+{
+    (void)state;
+    check_against_scan(0, 0.0);
+    check_against_scan(1, 0.0);
+}
+
 static void test_near_reports_overflow(void **state)
 {
     (void)state;
     const gmmrrt_bounds_t b = {0.0, 0.0, 1.0, 1.0};
-    gmmrrt_nn_t nn = {heads, N, 0, 0, 0.0, 0.0, 0.0};
+    gmmrrt_nn_t nn = {.heads = heads, .capacity = N};
     gmmrrt_nn_reset(&nn, &b, 0.1);
     for (int32_t i = 0; i < 10; ++i) {
         nodes[i].x = 0.5 + 0.001 * i;
@@ -123,6 +136,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_nearest_and_near_match_linear_scan_uniform),
         cmocka_unit_test(test_nearest_and_near_match_linear_scan_clustered),
+        cmocka_unit_test(test_adaptive_layout_matches_linear_scan),
         cmocka_unit_test(test_near_reports_overflow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
