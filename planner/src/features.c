@@ -35,7 +35,8 @@ void gmmrrt_features_from_xy(const gmmrrt_pose_t *person, double x, double y, do
 {
     double xp, yp;
     gmmrrt_world_to_person(person, x, y, &xp, &yp);
-    *d_m = hypot(xp, yp);
+    /* plain sqrt on map-sized numbers (hypot is several times slower); hypot where x'^2 could overflow */
+    *d_m = (fabs(xp) < 1e150 && fabs(yp) < 1e150) ? sqrt(xp * xp + yp * yp) : hypot(xp, yp);
     /* atan2 gives [-pi, pi]; -pi (exactly behind, y' = -0) is folded onto +pi. */
     *theta_rad = (*d_m > 0.0) ? gmmrrt_wrap_angle(atan2(yp, xp)) : 0.0;
 }

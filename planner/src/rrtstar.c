@@ -290,7 +290,8 @@ static void consider_goal(struct gmmrrt_planner *p, int32_t i)
 {
     const gmmrrt_problem_t *pr = &p->problem;
     const gmmrrt_node_t *n = &p->nodes[i];
-    const double d = hypot(n->x - pr->goal_x, n->y - pr->goal_y);
+    const double gx = n->x - pr->goal_x, gy = n->y - pr->goal_y;
+    const double d = sqrt(gx * gx + gy * gy); /* plain sqrt: map coordinates */
     if (d > pr->goal_tolerance_m)
         return;
     if (d > GMMRRT_SAME_POINT_M && !gmmrrt_world_segment_free(p->world, n->x, n->y, pr->goal_x, pr->goal_y))
