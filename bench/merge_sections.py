@@ -11,6 +11,7 @@ the learner and daemon figures need not be measured again (issue 8; see docs/ben
 """
 import argparse
 import json
+import subprocess
 import sys
 from pathlib import Path
 
@@ -49,6 +50,19 @@ def main() -> int:
         else:
             carried.pop(s, None)
     merged["carried_over"] = carried
+    om = merged.get("ompl")
+    raw = args.partial.resolve().parent / "bench-raw"
+    if "ompl" in new and isinstance(om, dict) and "error" not in om and not om.get("figure"):
+        # The cost-over-time figure, as tools/bench.py makes it when it writes the report itself.
+        fig = args.doc.resolve().parent / "img" / "benchmarks-ompl-cost.png"
+        recs = [raw / "ompl_length.jsonl"] + ([raw / "ompl_task.jsonl"] if "error" not in om.get("task", {}) else [])
+        cmd = [sys.executable, str(ROOT / "tools" / "bench_plot.py")] + [str(r) for r in recs] + ["-o", str(fig)]
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+        if proc.returncode == 0:
+            om["figure"] = str(fig.relative_to(args.doc.resolve().parent))
+            om["figure_command"] = " ".join([".venv/bin/python"] + [str(Path(c).relative_to(ROOT)) if str(c).startswith(str(ROOT)) else c for c in cmd[1:]])
+        else:
+            print(f"merge_sections: figure not made: {proc.stderr.strip()[-300:]}", file=sys.stderr)
     merged["targets"] = evaluate_targets(merged)
     args.results.write_text(json.dumps(merged, indent=1, allow_nan=False))
     shown = args.results.resolve()
