@@ -96,9 +96,12 @@ static void resync_clock(gmmrrtd_t *d, int input, int64_t utime, int dir)
     const int64_t period_us = (int64_t)llround(1e6 / d->set.rate_hz);
     const int64_t step_us = utime - (dir > 0 ? expected_now_utime(d) : d->last_utime[input]);
     d->status.rejected[GMMRRT_PLANNER_STATUS_T_REJECT_CLOCK_RESYNC]++;
-    LOG_WARN("%s: %d consecutive messages %s the clock: adopting its time (step %+.3f s; resync %lld)",
-             k_input_names[input], (int)d->time_off_run[input], dir > 0 ? "ahead of" : "behind",
-             (double)step_us * 1e-6, (long long)d->status.rejected[GMMRRT_PLANNER_STATUS_T_REJECT_CLOCK_RESYNC]);
+    gmmrrtd_log_limited(&d->rl[input][GMMRRT_PLANNER_STATUS_T_REJECT_CLOCK_RESYNC], gmmrrtd_mono_us() / 1000,
+                        (int64_t)d->set.log_interval_ms, GMMRRTD_LOG_WARN,
+                        "%s: %d consecutive messages %s the clock: adopting its time (step %+.3f s; resync %lld)",
+                        k_input_names[input], (int)d->time_off_run[input], dir > 0 ? "ahead of" : "behind",
+                        (double)step_us * 1e-6,
+                        (long long)d->status.rejected[GMMRRT_PLANNER_STATUS_T_REJECT_CLOCK_RESYNC]);
     d->clock_utime = utime;
     d->clock_mono_us = gmmrrtd_mono_us();
     d->next_tick_utime = utime + period_us;
