@@ -58,6 +58,10 @@ typedef struct {
     int64_t clock_utime;
     int64_t clock_mono_us;
     int64_t next_tick_utime;     /* log mode: the next cycle's time */
+    /* Time guard (docs/daemon.md, "Clock steps"): per channel, the direction (+1 future,
+     * -1 backwards, 0 none) and length of the current run of messages off the clock. */
+    int time_off_dir[GMMRRTD_NUM_INPUTS];
+    int32_t time_off_run[GMMRRTD_NUM_INPUTS];
 
     /* Models by task; loaded at start, replaced on SIGHUP only when the new file is good. */
     gmmrrt_model_t model_avoid, model_approach, model_scratch;

@@ -1,7 +1,8 @@
 /*
  * inputs.c - gmmrrtd's inputs: every LCM message is decoded and validated through
  * lcmtypes/include/gmmrrt/msg_decode.h, checked against time (a channel's utime may not go
- * backwards), counted by reason in planner_status_t.rejected when bad, and only then
+ * backwards, nor run more than max_future_ms ahead of the clock; a channel that keeps
+ * disagreeing in one direction resynchronises the clock), counted by reason in planner_status_t.rejected when bad, and only then
  * becomes the latest value of its channel. In log-clock mode the cycles due before a
  * message's utime run before it is applied, so a replay is the same every time
  * (docs/daemon.md, "Clock").
@@ -77,6 +78,57 @@ static void advance_clock(gmmrrtd_t *d, int64_t utime)
     }
 }
 
+/* The clock's idea of "now" when a message arrives: the live clock runs on the monotonic
+ * clock since the newest accepted utime; the log clock stands at it. */
+static int64_t expected_now_utime(const gmmrrtd_t *d)
+{
+    if (d->clock_mode == GMMRRTD_CLOCK_LIVE)
+        return d->clock_utime + (gmmrrtd_mono_us() - d->clock_mono_us);
+    return d->clock_utime;
+}
+
+/* Adopts utime as the clock (a stepped clock, docs/daemon.md "Clock steps"): the clock and
+ * the log ticks restart there, and every channel's order restarts (their older utimes
+ * belong to the old time line). The data already held is kept; a pose from the old time line
+ * is judged by its age on the new clock like any other. */
+static void resync_clock(gmmrrtd_t *d, int input, int64_t utime, int dir)
+{
+    const int64_t period_us = (int64_t)llround(1e6 / d->set.rate_hz);
+    const int64_t step_us = utime - (dir > 0 ? expected_now_utime(d) : d->last_utime[input]);
+    d->status.rejected[GMMRRT_PLANNER_STATUS_T_REJECT_CLOCK_RESYNC]++;
+    gmmrrtd_log_limited(&d->rl[input][GMMRRT_PLANNER_STATUS_T_REJECT_CLOCK_RESYNC], gmmrrtd_mono_us() / 1000,
+                        (int64_t)d->set.log_interval_ms, GMMRRTD_LOG_WARN,
+                        "%s: %d consecutive messages %s the clock: adopting its time (step %+.3f s; resync %lld)",
+                        k_input_names[input], (int)d->time_off_run[input], dir > 0 ? "ahead of" : "behind",
+                        (double)step_us * 1e-6,
+                        (long long)d->status.rejected[GMMRRT_PLANNER_STATUS_T_REJECT_CLOCK_RESYNC]);
+    d->clock_utime = utime;
+    d->clock_mono_us = gmmrrtd_mono_us();
+    d->next_tick_utime = utime + period_us;
+    for (int i = 0; i < GMMRRTD_NUM_INPUTS; ++i) {
+        if (d->have[i] && d->last_utime[i] > utime)
+            d->last_utime[i] = utime;
+        d->time_off_dir[i] = 0;
+        d->time_off_run[i] = 0;
+    }
+}
+
+/* One more message of `input` off the clock in direction dir (+1 future, -1 backwards).
+ * 1 when the run has reached time_resync_count (the clock was resynchronised to utime),
+ * 0 when the message is to be rejected. */
+static int off_clock(gmmrrtd_t *d, int input, int64_t utime, int dir)
+{
+    if (d->time_off_dir[input] != dir) {
+        d->time_off_dir[input] = dir;
+        d->time_off_run[input] = 0;
+    }
+    d->time_off_run[input]++;
+    if (d->time_off_run[input] < d->set.time_resync_count)
+        return 0;
+    resync_clock(d, input, utime, dir);
+    return 1;
+}
+
 /* Common checks after a successful decode. 1 to apply the message, 0 when rejected. */
 static int accept_time(gmmrrtd_t *d, int input, int64_t utime)
 {
@@ -87,13 +139,36 @@ static int accept_time(gmmrrtd_t *d, int input, int64_t utime)
                        (long long)utime);
         return 0;
     }
-    if (d->have[input] && utime < d->last_utime[input]) {
-        gmmrrtd_reject(d, input, GMMRRT_PLANNER_STATUS_T_REJECT_TIME_BACKWARDS,
-                       "utime %lld is %.3f s older than the last accepted one", (long long)utime,
-                       (double)(d->last_utime[input] - utime) * 1e-6);
-        return 0;
+    int resynced = 0;
+    if (d->have_clock) {
+        /* Bounded future: one message stamped far ahead must not drag the clock (and with it
+         * every later message of its channel into "backwards") along. */
+        const double max_ms = d->clock_mode == GMMRRTD_CLOCK_LIVE ? d->set.max_future_ms : d->set.log_max_future_ms;
+        const int64_t ahead_us = utime - expected_now_utime(d);
+        if ((double)ahead_us > max_ms * 1e3) {
+            resynced = off_clock(d, input, utime, +1);
+            if (!resynced) {
+                gmmrrtd_reject(d, input, GMMRRT_PLANNER_STATUS_T_REJECT_TIME_FUTURE,
+                               "utime %lld is %.3f s ahead of the clock (limit %g ms)", (long long)utime,
+                               (double)ahead_us * 1e-6, max_ms);
+                return 0;
+            }
+        }
     }
-    advance_clock(d, utime);
+    if (!resynced && d->have[input] && utime < d->last_utime[input]) {
+        resynced = off_clock(d, input, utime, -1);
+        if (!resynced) {
+            gmmrrtd_reject(d, input, GMMRRT_PLANNER_STATUS_T_REJECT_TIME_BACKWARDS,
+                           "utime %lld is %.3f s older than the last accepted one", (long long)utime,
+                           (double)(d->last_utime[input] - utime) * 1e-6);
+            return 0;
+        }
+    }
+    if (!resynced) {
+        d->time_off_dir[input] = 0;
+        d->time_off_run[input] = 0;
+        advance_clock(d, utime);
+    }
     d->have[input] = 1;
     d->last_utime[input] = utime;
     return 1;

@@ -256,10 +256,11 @@ int main(int argc, char **argv)
 
     NOTIFY("STOPPING=1");
     const char *names[] = {"decode", "count", "not_finite", "backwards", "goal_coll", "unreachable", "pose_stale",
-                           "bad_value", "unknown_target", "start_coll", "model_reload"};
+                           "bad_value", "unknown_target", "start_coll", "model_reload", "time_future",
+                           "clock_resync"};
     char summary[512];
     int off = 0;
-    for (int i = 0; i < 11; ++i)
+    for (int i = 0; i < (int)(sizeof names / sizeof names[0]); ++i)
         off += snprintf(summary + off, sizeof summary - (size_t)off, " %s=%lld", names[i],
                         (long long)d->status.rejected[i]);
     LOG_INFO("exiting: %lld cycles, %lld plans, %lld warm starts, %lld missed deadlines; rejected:%s",

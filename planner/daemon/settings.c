@@ -54,6 +54,12 @@ static const key_t_ k_keys[] = {
     NUM("timing", "pose_timeout_ms", "pose-timeout-ms", K_F64, pose_timeout_ms, 1, 1e7, "stop when the pose is older, ms"),
     NUM("timing", "unreachable_after_cycles", "unreachable-after", K_I32, unreachable_after_cycles, 1, 1e6,
         "cycles without a path before a goal counts as unreachable"),
+    NUM("timing", "max_future_ms", "max-future-ms", K_F64, max_future_ms, 0, 1e9,
+        "live clock: reject a message further ahead of the clock, ms"),
+    NUM("timing", "log_max_future_ms", "log-max-future-ms", K_F64, log_max_future_ms, 0, 1e9,
+        "log clock: reject a message further ahead of the clock, ms"),
+    NUM("timing", "time_resync_count", "time-resync-count", K_I32, time_resync_count, 1, 1e6,
+        "consecutive off-clock messages of a channel before the clock adopts its time"),
     NUM("world", "bounds_margin_m", "bounds-margin", K_F64, bounds_margin_m, 0.1, 1e4, "planning bounds margin, m"),
     NUM("warm_start", "goal_shift_m", "warm-goal-shift", K_F64, warm_goal_shift_m, 0, 1e4, "warm start: goal moved less, m"),
     NUM("warm_start", "people_shift_m", "warm-people-shift", K_F64, warm_people_shift_m, 0, 1e4,
@@ -108,6 +114,9 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->budget_iterations = 0;
     s->pose_timeout_ms = 500.0;
     s->unreachable_after_cycles = 5;
+    s->max_future_ms = 2000.0;
+    s->log_max_future_ms = 60000.0;
+    s->time_resync_count = 10;
     s->bounds_margin_m = 3.0;
     s->warm_goal_shift_m = 0.25;
     s->warm_people_shift_m = 0.3;

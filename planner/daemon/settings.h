@@ -34,6 +34,10 @@ typedef struct {
     int64_t budget_iterations;   /* samples per cycle, >= 0; 0 = no cap. Deterministic replays use this */
     double pose_timeout_ms;      /* > 0: no pose newer than this -> stop */
     int32_t unreachable_after_cycles; /* consecutive cycles without a path before the goal counts unreachable */
+    double max_future_ms;        /* live clock: a message further ahead of the expected now -> REJECT_TIME_FUTURE */
+    double log_max_future_ms;    /* the same bound on the log clock (which does not run during input silence) */
+    int32_t time_resync_count;   /* this many consecutive messages of one channel off the clock in the same
+                                    direction (future or backwards): the clock adopts the channel's time */
     /* [world] */
     double bounds_margin_m;      /* planning bounds: box around robot, goal, people, obstacles + this */
     /* [warm_start]: the situation "has not changed much" when all hold */
