@@ -242,9 +242,9 @@ def analyse(scenario: Path, rec: Path) -> Tuple[dict, List[str], str]:
         lines.append("| " + " | ".join(cells) + " |")
     if statuses:
         st = statuses[-1]
-        reasons = ["decode", "count", "not_finite", "time_backwards", "goal_in_collision", "goal_unreachable",
-                   "pose_stale", "bad_value", "unknown_target", "start_in_collision", "model_reload"]
-        rej = ", ".join(f"{r}={st.rejected[i]}" for i, r in enumerate(reasons) if st.rejected[i]) or "none"
+        # Reason names come from the message's own REJECT_* constants, so a new reason shows up here.
+        reasons = {getattr(type(st), n): n[len("REJECT_"):].lower() for n in dir(type(st)) if n.startswith("REJECT_")}
+        rej = ", ".join(f"{reasons.get(i, f'reason_{i}')}={v}" for i, v in enumerate(st.rejected) if v) or "none"
         status = (f"{scenario.stem}: gmmrrtd published {st.plans_published} plans, {st.missed_deadlines} missed "
                   f"deadlines, rejected inputs: {rej}; last cycle {st.iterations} iterations, {st.plan_time_ms:.1f} ms")
     else:

@@ -222,7 +222,8 @@ def soak(args):
             failures.append("median status interval %.1f ms, promised 100 ms" % (statistics.median(gaps) * 1e3))
         message_level = [planner_status_t.REJECT_DECODE, planner_status_t.REJECT_COUNT_OVER_BOUND,
                          planner_status_t.REJECT_NOT_FINITE, planner_status_t.REJECT_TIME_BACKWARDS,
-                         planner_status_t.REJECT_BAD_VALUE, planner_status_t.REJECT_MODEL_RELOAD]
+                         planner_status_t.REJECT_BAD_VALUE, planner_status_t.REJECT_MODEL_RELOAD,
+                         planner_status_t.REJECT_TIME_FUTURE, planner_status_t.REJECT_CLOCK_RESYNC]
         summary["rejected_nonzero"] = {i: int(v) for i, v in enumerate(final.rejected) if v}
         if any(final.rejected[i] for i in message_level):
             failures.append("the daemon rejected clean input: %s" % list(final.rejected))

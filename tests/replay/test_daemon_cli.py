@@ -71,6 +71,19 @@ def test_flags_override_the_file_and_missing_model_is_fatal(gmmrrtd, models, tmp
     assert res.returncode == 1 and "nope.gmm" in res.stderr
 
 
+def test_the_shipped_example_ini_is_accepted(gmmrrtd, models, tmp_path):
+    """tools/systemd/gmmrrtd.ini is what users copy to /etc: every key in it must parse. Its model
+    paths point into /etc, so the flags override them (flags win over the file)."""
+    from conftest import ROOT
+    out = tmp_path / "out.lcmlog"
+    res = run(gmmrrtd, "--config", os.path.join(ROOT, "tools", "systemd", "gmmrrtd.ini"),
+              "--model-avoid", str(models["avoid"]), "--model-approach", str(models["approach"]),
+              "--lcm-url", "file://%s?speed=0" % os.path.join(SCENARIOS, "avoid_one_person.lcmlog"),
+              "--lcm-out-url", "file://%s?mode=w" % out, "--exit-at-eof")
+    assert res.returncode == 0, res.stderr
+    assert "error" not in res.stderr and out.stat().st_size > 0
+
+
 class StatusListener:
     def __init__(self, url):
         self.lc = lcm.LCM(url)
