@@ -413,10 +413,20 @@ def fig1_checkpoints(cap: int) -> List[int]:
     return [c for c in grid if c < cap] + [cap]
 
 
+def cost_at(history: Sequence[Sequence[float]], n: int) -> Optional[float]:
+    """The best cost after n iterations from a gmmrrt-plan cost history ([iteration, cost] at every
+    improvement, iterations increasing): the last entry with iteration <= n; None before the first."""
+    best = None
+    for it, c in history:
+        if it > n:
+            break
+        best = float(c)
+    return best
+
+
 def exp_fig1(ctx: Ctx) -> None:
-    """Best cost after N iterations, for N on a grid: one run per (trial seed, N). gmmrrt-plan --json
-    prints no cost history, so each point is its own seeded run capped at N iterations; with the same
-    seed a run capped at N draws the same first N samples as a longer one."""
+    """Best cost after N iterations, for N on a grid: one run per (bias, trial seed), capped at the largest
+    N, read at every N from its cost history (gmmrrt-plan --json stats.cost_history)."""
     s = ctx.s
     scene = task_scene(ctx, "avoid", homotopies(ctx, "avoid")[0])
     mdl = model(ctx, "avoid", "all", "features")
@@ -424,21 +434,28 @@ def exp_fig1(ctx: Ctx) -> None:
     jobs = []
     for bias in (1.0, 0.0):
         for i in range(s.trials):
-            for n in cps:
-                jobs.append(({"bias": bias, "iterations_cap": n},
-                             ctx.plan(scene, "gmm-rrt-star", s.seed + i, mdl, n, bias), s.seed + i))
+            jobs.append(({"bias": bias, "iterations_cap": s.fig1_iterations},
+                         ctx.plan(scene, "gmm-rrt-star", s.seed + i, mdl, s.fig1_iterations, bias), s.seed + i))
     results = ctx.run_plans(jobs, "fig1")
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     lines, records = [], []
     for t, r in results:
-        records.append(record(t, r, outcome=classify(r, scene)))
+        hist = r.stats.get("cost_history")
+        if hist is None and r.status == "ok":
+            raise R.ToolFailed("gmmrrt-plan --json printed no stats.cost_history: rebuild it (tools/run build)\n"
+                               f"  command: {shlex.join(r.argv)}")
+        if r.stats.get("cost_history_complete") is False:
+            raise R.ToolFailed(f"the cost history of seed {r.seed} is truncated (more improvements than the CLI "
+                               f"keeps): lower the iteration cap\n  command: {shlex.join(r.argv)}")
+        ok = classify(r, scene) == M.SUCCESS
+        records.append(record(t, r, outcome=classify(r, scene), cost_history=hist or [],
+                              cost_at={n: (cost_at(hist or [], n) if ok else None) for n in cps}))
     for bias, color in ((1.0, "tab:red"), (0.0, "tab:blue")):
         means, stds = [], []
         for n in cps:
-            costs = [r["best_cost"] for r in records if r["bias"] == bias and r["iterations_cap"] == n
-                     and r["outcome"] == M.SUCCESS and r["best_cost"] is not None]
+            costs = [r["cost_at"][n] for r in records if r["bias"] == bias and r["cost_at"][n] is not None]
             m_, s_ = M.mean_std(costs)
             means.append(m_)
             stds.append(s_)
@@ -454,9 +471,10 @@ def exp_fig1(ctx: Ctx) -> None:
     ax.grid(alpha=0.3, which="both")
     md = ctx.header("Fig. 1: solution cost vs iterations, mixture bias 100 % and 0 %",
                     "GMM-RRT* (length + task cost) on the avoid scene with the two-homotopy model; bias = fraction of "
-                    "samples drawn from the mixture, the rest uniform. Each point: the best cost of a run capped at "
-                    "that many iterations (the CLI prints no cost history, so every cap is its own seeded run; trial i "
-                    "uses seed base + i at every cap). Mean ± std over the trials that have a path; 'solved' = how many.")
+                    "samples drawn from the mixture, the rest uniform. One run per trial (seed base + i), capped at "
+                    f"{s.fig1_iterations} iterations; each point is that run's best cost after N iterations, read from "
+                    "its cost history (`gmmrrt-plan --json`, stats.cost_history). Mean ± std over the trials that have "
+                    "a path by N; 'solved' = how many.")
     md += "| bias | iterations | solved | best cost |\n|---|---|---|---|\n" + "\n".join(lines) + "\n"
     ctx.write("fig1", md, records, fig)
 

@@ -22,6 +22,11 @@
 
 static const char *prog = "gmmrrt-plan";
 
+/* Cost-history capacity of the CLI's planner (the library default is 1024): 4096 entries x 16 B.
+ * When it fills, the planner keeps the latest improvement in the last slot and --json says
+ * "cost_history_complete": false. */
+#define GMMRRT_CLI_MAX_HISTORY 4096
+
 static void usage(FILE *out)
 {
     fprintf(out,
@@ -29,12 +34,16 @@ static void usage(FILE *out)
             "       [--obstacle circle:x,y,r | box:cx,cy,w,h,yaw ...]\n"
             "       [--planner gmm-rrt-star|rrt-star|gmm-rrt] [--bias B] [--budget-ms N]\n"
             "       [--iterations N] [--seed S] [--robot-radius R] [--bounds xmin,ymin,xmax,ymax]\n"
-            "       [--task avoid|approach] [--target-person I] [--goal-tolerance M] [--json]\n"
+            "       [--task avoid|approach] [--target-person I] [--goal-tolerance M]\n"
+            "       [--delta D] [--w-task W] [--json]\n"
             "\n"
             "Plans a path with GMM-RRT* (the paper's planner), plain RRT* or the GMM-RRT baseline\n"
             "and prints it as x,y CSV (header line first), or with --json one object:\n"
             "  {\"status\": ..., \"path\": [[x, y], ...], \"stats\": {\"iterations\": ..., \"nodes\": ...,\n"
-            "   \"first_solution_ms\": ..., \"best_cost\": ..., \"time_ms\": ...}}\n"
+            "   \"first_solution_ms\": ..., \"best_cost\": ..., \"length_m\": ..., \"time_ms\": ...,\n"
+            "   \"cost_history\": [[iteration, best cost], ...], \"cost_history_complete\": true}}\n"
+            "cost_history lists every improvement of the best cost (iteration = samples drawn so far,\n"
+            "1-based); the best cost after N iterations is the last entry with iteration <= N.\n"
             "\n"
             "  --model FILE        mixture model (gmmrrt-learn); features kind for gmm-rrt-star,\n"
             "                      xy kind for gmm-rrt; optional for rrt-star\n"
@@ -52,6 +61,9 @@ static void usage(FILE *out)
             "  --task NAME         avoid or approach (default: the model's task, else avoid)\n"
             "  --target-person I   person index (0-based) for approach (default 0)\n"
             "  --goal-tolerance M  goal region radius [m] (default 0.1)\n"
+            "  --delta D           task-cost floor delta > 0 of c = delta / max(p, delta) (default: the\n"
+            "                      model file's delta)\n"
+            "  --w-task W          weight >= 0 of the task cost in the edge cost (default 2)\n"
             "  --json              print one JSON object instead of CSV\n"
             "  -h, --help          this text\n"
             "\n"
@@ -122,7 +134,8 @@ static void grow(gmmrrt_bounds_t *b, double x, double y, double r)
 int main(int argc, char **argv)
 {
     enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_PLANNER, OPT_BIAS, OPT_BUDGET,
-           OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON };
+           OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_DELTA,
+           OPT_WTASK };
     static const struct option opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
         {"goal", required_argument, NULL, OPT_GOAL},         {"person", required_argument, NULL, OPT_PERSON},
@@ -132,6 +145,7 @@ int main(int argc, char **argv)
         {"robot-radius", required_argument, NULL, OPT_RADIUS}, {"bounds", required_argument, NULL, OPT_BOUNDS},
         {"task", required_argument, NULL, OPT_TASK},         {"target-person", required_argument, NULL, OPT_TARGET},
         {"goal-tolerance", required_argument, NULL, OPT_TOL}, {"json", no_argument, NULL, OPT_JSON},
+        {"delta", required_argument, NULL, OPT_DELTA},       {"w-task", required_argument, NULL, OPT_WTASK},
         {"help", no_argument, NULL, 'h'},                    {NULL, 0, NULL, 0}};
 
     static gmmrrt_problem_t pr; /* large (obstacle arrays): static, zeroed */
@@ -257,6 +271,16 @@ int main(int argc, char **argv)
         case OPT_JSON:
             json = 1;
             break;
+        case OPT_DELTA:
+            if (!parse_numbers(optarg, v, 1) || v[0] <= 0.0)
+                return fail("--delta '%s': expected a density floor > 0%s", optarg, "");
+            cfg.delta = v[0];
+            break;
+        case OPT_WTASK:
+            if (!parse_numbers(optarg, v, 1) || v[0] < 0.0)
+                return fail("--w-task '%s': expected a weight >= 0%s", optarg, "");
+            cfg.w_task = v[0];
+            break;
         case ':':
             return fail("option '%s' needs a value (see --help)%s", argv[optind - 1], "");
         default:
@@ -317,6 +341,7 @@ int main(int argc, char **argv)
         return fail("--bounds: area too large for a %s m clearance grid%s", "0.05", "");
     cfg.grid_max_cells = (int32_t)cells < 1 ? 1 : (int32_t)cells;
 
+    cfg.history_capacity = GMMRRT_CLI_MAX_HISTORY;
     if (gmmrrt_planner_config_validate(&cfg, err, sizeof err) != GMMRRT_OK)
         return fail("%s%s", err, "");
     const size_t size = gmmrrt_planner_mem_size(&cfg);
@@ -339,6 +364,10 @@ int main(int argc, char **argv)
     st = gmmrrt_planner_run(p, &budget, &stats);
     static gmmrrt_path_t path;
     const gmmrrt_status_t ps = gmmrrt_planner_best_path(p, &path);
+    /* The history lives in the planner block: copy it out before the block is freed. */
+    static int64_t hist_iter[GMMRRT_CLI_MAX_HISTORY];
+    static double hist_cost[GMMRRT_CLI_MAX_HISTORY];
+    const int32_t num_hist = gmmrrt_planner_cost_history(p, hist_iter, hist_cost, GMMRRT_CLI_MAX_HISTORY);
     free(mem);
     const int found = ps == GMMRRT_OK;
     if (json) {
@@ -355,7 +384,13 @@ int main(int argc, char **argv)
         json_number(found ? path.length_m : NAN);
         printf(", \"time_ms\": ");
         json_number(stats.time_ms);
-        printf("}}\n");
+        printf(", \"cost_history\": [");
+        for (int32_t i = 0; i < num_hist; ++i) {
+            printf("%s[%lld, ", i ? ", " : "", (long long)hist_iter[i]);
+            json_number(hist_cost[i]);
+            printf("]");
+        }
+        printf("], \"cost_history_complete\": %s}}\n", num_hist < GMMRRT_CLI_MAX_HISTORY ? "true" : "false");
     } else if (found) {
         printf("x,y\n");
         for (int32_t i = 0; i < path.num_points; ++i)

@@ -105,3 +105,40 @@ def test_real_data_harness_scores_what_the_planner_returns(tmp_path):
     assert "--split train" in model_args and "--task avoid" in model_args
     assert (out / "real_upo_avoid-quick.png").stat().st_size > 1000
     assert (out / "real_ucy_approach-quick.md").is_file()
+
+
+FAKE_PLAN_HISTORY = FAKE_PLAN.replace(
+    '"best_cost": 1.0, "time_ms": 1.0}}))',
+    '"best_cost": 5.0, "time_ms": 1.0, "cost_history": [[50, 10.0 + int(get("--seed"))], [400, 5.0]], '
+    '"cost_history_complete": True}}))')
+
+
+def test_fig1_reads_each_runs_cost_history(tmp_path):
+    """Fig. 1 makes one run per (bias, trial) and reads its best cost at every checkpoint from
+    stats.cost_history: before the first entry there is no solution, between entries the earlier cost."""
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    _tool(bin_dir, "gmmrrt-plan", FAKE_PLAN_HISTORY)
+    _tool(bin_dir, "gmmrrt-learn", FAKE_LEARN)
+    proc = _run(["fig1", "--quick", "--seed", "3"], bin_dir, tmp_path)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    data = json.loads((tmp_path / "out" / "fig1-quick.json").read_text())
+    assert len(data["runs"]) == 2 * 5                       # two biases x 5 quick trials, one run each
+    assert {r["seed"] for r in data["runs"]} == {3, 4, 5, 6, 7}
+    md = (tmp_path / "out" / "fig1-quick.md").read_text()
+    # seeds 3..7: cost 13..17 from iteration 50 (mean 15, population std 1.414), 5 from iteration 400
+    assert "| 100% | 100 | 5/5 | 15.000 ± 1.414 |" in md
+    assert "| 0% | 300 | 5/5 | 15.000 ± 1.414 |" in md
+    assert "| 100% | 500 | 5/5 | 5.000 ± 0.000 |" in md
+    assert "| 0% | 2000 | 5/5 | 5.000 ± 0.000 |" in md
+
+
+def test_fig1_refuses_a_planner_without_cost_history(tmp_path):
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    _tool(bin_dir, "gmmrrt-plan", FAKE_PLAN)
+    _tool(bin_dir, "gmmrrt-learn", FAKE_LEARN)
+    proc = _run(["fig1", "--quick"], bin_dir, tmp_path)
+    assert proc.returncode != 0
+    assert "cost_history" in proc.stderr
+    assert not list((tmp_path / "out").glob("fig1*"))

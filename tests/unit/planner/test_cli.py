@@ -43,7 +43,8 @@ def test_help_lists_every_option():
     r = run("--help")
     assert r.returncode == 0
     for opt in ["--model", "--start", "--goal", "--person", "--obstacle", "--planner", "--bias",
-                "--budget-ms", "--iterations", "--seed", "--robot-radius", "--bounds", "--json"]:
+                "--budget-ms", "--iterations", "--seed", "--robot-radius", "--bounds", "--json", "--delta",
+                "--w-task", "cost_history"]:
         assert opt in r.stdout
 
 
@@ -105,6 +106,9 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0"], "--goal"),
     (["--start"], "needs a value"),
     (["--start", "0,0", "--goal", "1,1", "--frobnicate"], "unknown option"),
+    (["--start", "0,0", "--goal", "1,1", "--delta", "0"], "--delta"),
+    (["--start", "0,0", "--goal", "1,1", "--delta", "nan"], "--delta"),
+    (["--start", "0,0", "--goal", "1,1", "--w-task", "-1"], "--w-task"),
 ])
 def test_bad_input_is_refused_with_a_clear_error(args, message):
     r = run(*args)
@@ -141,3 +145,39 @@ def test_no_path_exits_3():
     out = json.loads(r.stdout)
     assert out["status"] != "ok" and out["path"] == [] and out["stats"]["best_cost"] is None
     assert "no path" in r.stderr
+
+
+def test_cost_history_is_the_best_cost_after_each_improvement():
+    """--json stats.cost_history: [iteration, best cost] at every improvement, iterations increasing
+    within the cap, costs decreasing, the last one the reported best cost; and the best cost of a run
+    capped at N equals the history of a longer run with the same seed read at N (what Fig. 1 uses)."""
+    r = run(*DISC, "--iterations", "3000", "--seed", "7", "--json")
+    assert r.returncode == 0, r.stderr
+    st = json.loads(r.stdout)["stats"]
+    hist = st["cost_history"]
+    assert st["cost_history_complete"] is True
+    assert len(hist) >= 2
+    its = [h[0] for h in hist]
+    costs = [h[1] for h in hist]
+    assert all(1 <= i <= 3000 for i in its) and its == sorted(set(its))
+    assert all(b < a for a, b in zip(costs, costs[1:]))
+    assert costs[-1] == st["best_cost"]
+    for cap in (its[0], its[len(its) // 2] + 1, 1500):
+        short = json.loads(run(*DISC, "--iterations", str(cap), "--seed", "7", "--json").stdout)["stats"]
+        expected = [c for i, c in hist if i <= cap][-1]
+        assert short["best_cost"] == expected, f"cap {cap}"
+
+
+def test_delta_and_w_task_change_the_objective(tmp_path):
+    """--w-task 0 leaves only length (best cost = path length); a larger --delta than the model's
+    0.001 pulls a 'left' model's path (components at d = 1.2 m) farther from the person."""
+    model = write_features_model(tmp_path / "left.gmm", [math.pi * i / 6 for i in range(1, 6)])
+    base = ["--model", str(model), "--start", "-4,0", "--goal", "4,0", "--person", "0,0,3.141592653589793",
+            "--iterations", "6000", "--json"]
+    st = json.loads(run(*base, "--w-task", "0").stdout)["stats"]
+    assert st["best_cost"] == pytest.approx(st["length_m"], rel=1e-6)
+
+    def closest(*extra):
+        out = json.loads(run(*base, *extra).stdout)
+        return min(math.hypot(x, y) for x, y in out["path"])
+    assert closest("--delta", "0.1") > closest() + 0.15

@@ -4,7 +4,7 @@
  * keep clear of them; a two-side model with an obstacle blocking one side takes the other
  * side (the paper's Fig. 5); the task cost alone (gmm_bias = 0) still picks the model's
  * side; a larger delta pulls the path towards the model's distance.
- * Tests with models learned from the demonstrations come with the learner's models.
+ * Tests with models learned from logs/demos/: test_learned.py (planner.learned_*).
  *
  * Scene: the person stands at the origin facing the robot's start (yaw = pi), the robot
  * goes from (-4, 0) to (4, 0). In that person's frame y' = -y, so their left is world y < 0.

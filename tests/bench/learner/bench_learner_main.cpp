@@ -1,0 +1,234 @@
+// bench_learner_main.cpp - gmmrrt-bench-learner: times the learner's EM fit (FitMixture) or its
+// BIC sweep (SweepBic) on the points of a CSV file, for the comparison with scikit-learn in
+// tools/bench_learner.py (issue 8; paper Sect. 3 and 5.1). Only the fit is timed, not the
+// reading. Prints one JSON object: the time, the learner's summary and the fitted mixture
+// (weights, means, covariances), so the peer script scores both mixtures with one evaluator.
+#include <getopt.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "gmmrrt_learner/bic.hpp"
+#include "gmmrrt_learner/em.hpp"
+
+using gmmrrt::learn::BicSweepResult;
+using gmmrrt::learn::FitOptions;
+using gmmrrt::learn::FitSummary;
+using gmmrrt::learn::Mixture;
+using gmmrrt::learn::Status;
+
+namespace {
+
+void Usage(FILE* f) {
+  std::fprintf(f,
+               "usage: gmmrrt-bench-learner --points FILE (--k K | --sweep KMIN:KMAX) [options]\n"
+               "Times the learner's EM fit or BIC sweep on the points of FILE (CSV, one header line,\n"
+               "one point per line, D numbers) and prints one JSON object.\n\n"
+               "  -i, --points FILE       the points (no angle dimensions)\n"
+               "  -k, --k K               fit K components\n"
+               "  -b, --sweep KMIN:KMAX   BIC sweep over K = KMIN..KMAX\n"
+               "  -s, --seed S            seed (default 1)\n"
+               "  -t, --tol T             convergence tolerance on the mean log-likelihood (default: learner's)\n"
+               "  -m, --max-iter N        EM iterations at most (default: learner's)\n"
+               "  -r, --restarts N        k-means++ seedings (default: learner's)\n"
+               "  -h, --help              this help\n");
+}
+
+bool ParseLong(const char* s, long* out) {
+  char* end = nullptr;
+  errno = 0;
+  long v = std::strtol(s, &end, 10);
+  if (errno || end == s || *end) return false;
+  *out = v;
+  return true;
+}
+
+bool ParseDouble(const char* s, double* out) {
+  char* end = nullptr;
+  errno = 0;
+  double v = std::strtod(s, &end);
+  if (errno || end == s || *end) return false;
+  *out = v;
+  return true;
+}
+
+// Reads the CSV into a D x N matrix; false with *error naming the file and line.
+bool ReadPoints(const std::string& path, Eigen::MatrixXd* points, std::string* error) {
+  std::ifstream in(path);
+  if (!in) {
+    *error = "cannot open '" + path + "'";
+    return false;
+  }
+  std::string line;
+  if (!std::getline(in, line)) {
+    *error = "'" + path + "' is empty (expected a header line)";
+    return false;
+  }
+  std::vector<double> values;
+  long dim = -1, line_no = 1;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty()) continue;
+    long count = 0;
+    const char* p = line.c_str();
+    for (;;) {
+      char* end = nullptr;
+      errno = 0;
+      double v = std::strtod(p, &end);
+      if (end == p || errno || !std::isfinite(v)) {
+        *error = path + ":" + std::to_string(line_no) + ": not a finite number";
+        return false;
+      }
+      values.push_back(v);
+      ++count;
+      if (*end == ',') {
+        p = end + 1;
+      } else if (*end == '\0' || *end == '\r') {
+        break;
+      } else {
+        *error = path + ":" + std::to_string(line_no) + ": unexpected character after a number";
+        return false;
+      }
+    }
+    if (dim < 0) dim = count;
+    if (count != dim) {
+      *error = path + ":" + std::to_string(line_no) + ": " + std::to_string(count) + " values, expected " +
+               std::to_string(dim);
+      return false;
+    }
+  }
+  if (dim < 1 || values.empty()) {
+    *error = "'" + path + "' holds no points";
+    return false;
+  }
+  const long n = static_cast<long>(values.size()) / dim;
+  *points = Eigen::Map<const Eigen::MatrixXd>(values.data(), dim, n);
+  return true;
+}
+
+void PrintMixture(const Mixture& m) {
+  std::printf("\"weights\":[");
+  for (int i = 0; i < m.k(); ++i) std::printf("%s%.17g", i ? "," : "", m.weights(i));
+  std::printf("],\"means\":[");
+  for (int i = 0; i < m.k(); ++i) {
+    std::printf("%s[", i ? "," : "");
+    for (int j = 0; j < m.dim; ++j) std::printf("%s%.17g", j ? "," : "", m.means(j, i));
+    std::printf("]");
+  }
+  std::printf("],\"covariances\":[");
+  for (int i = 0; i < m.k(); ++i) {
+    const Eigen::MatrixXd cov = m.chol[i] * m.chol[i].transpose();
+    std::printf("%s[", i ? "," : "");
+    for (int r = 0; r < m.dim; ++r) {
+      std::printf("%s[", r ? "," : "");
+      for (int c = 0; c < m.dim; ++c) std::printf("%s%.17g", c ? "," : "", cov(r, c));
+      std::printf("]");
+    }
+    std::printf("]");
+  }
+  std::printf("]");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string points_path;
+  long k = 0, k_min = 0, k_max = 0, seed = 1, max_iter = -1, restarts = -1;
+  double tol = -1.0;
+  static const option opts[] = {{"points", required_argument, nullptr, 'i'}, {"k", required_argument, nullptr, 'k'},
+                                {"sweep", required_argument, nullptr, 'b'},  {"seed", required_argument, nullptr, 's'},
+                                {"tol", required_argument, nullptr, 't'},    {"max-iter", required_argument, nullptr, 'm'},
+                                {"restarts", required_argument, nullptr, 'r'}, {"help", no_argument, nullptr, 'h'},
+                                {nullptr, 0, nullptr, 0}};
+  int c;
+  while ((c = getopt_long(argc, argv, "i:k:b:s:t:m:r:h", opts, nullptr)) != -1) {
+    bool ok = true;
+    switch (c) {
+      case 'i': points_path = optarg; break;
+      case 'k': ok = ParseLong(optarg, &k) && k >= 1; break;
+      case 'b': ok = std::sscanf(optarg, "%ld:%ld", &k_min, &k_max) == 2 && k_min >= 1 && k_max >= k_min; break;
+      case 's': ok = ParseLong(optarg, &seed) && seed >= 0; break;
+      case 't': ok = ParseDouble(optarg, &tol) && tol > 0; break;
+      case 'm': ok = ParseLong(optarg, &max_iter) && max_iter >= 1; break;
+      case 'r': ok = ParseLong(optarg, &restarts) && restarts >= 1; break;
+      case 'h': Usage(stdout); return 0;
+      default: Usage(stderr); return 2;
+    }
+    if (!ok) {
+      std::fprintf(stderr, "gmmrrt-bench-learner: bad value '%s' for option -%c (see --help)\n", optarg, c);
+      return 2;
+    }
+  }
+  if (points_path.empty() || (k == 0) == (k_min == 0)) {
+    std::fprintf(stderr, "gmmrrt-bench-learner: need --points and exactly one of --k or --sweep\n");
+    Usage(stderr);
+    return 2;
+  }
+  Eigen::MatrixXd points;
+  std::string error;
+  if (!ReadPoints(points_path, &points, &error)) {
+    std::fprintf(stderr, "gmmrrt-bench-learner: %s\n", error.c_str());
+    return 1;
+  }
+  FitOptions options;
+  options.seed = static_cast<uint64_t>(seed);
+  if (tol > 0) options.tolerance = tol;
+  if (max_iter > 0) options.max_iterations = static_cast<int>(max_iter);
+  if (restarts > 0) options.restarts = static_cast<int>(restarts);
+  if (k > 0) options.k = static_cast<int>(k);
+  if (!options.IsValid(&error)) {
+    std::fprintf(stderr, "gmmrrt-bench-learner: %s\n", error.c_str());
+    return 2;
+  }
+
+  using Clock = std::chrono::steady_clock;
+  if (k > 0) {
+    Mixture m;
+    FitSummary s;
+    const Clock::time_point t0 = Clock::now();
+    const Status st = gmmrrt::learn::FitMixture(points, 0u, options, &m, &s);
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    if (!st.ok()) {
+      std::fprintf(stderr, "gmmrrt-bench-learner: fit failed: %s\n", st.message.c_str());
+      return 1;
+    }
+    std::printf("{\"mode\":\"fit\",\"n\":%ld,\"dim\":%ld,\"k\":%ld,\"seed\":%ld,\"tol\":%.17g,\"max_iter\":%d,"
+                "\"restarts\":%d,\"fit_ms\":%.6f,\"mean_log_likelihood\":%.17g,\"iterations\":%d,\"converged\":%s,"
+                "\"k_final\":%d,\"bic\":%.17g,",
+                static_cast<long>(points.cols()), static_cast<long>(points.rows()), k, seed, options.tolerance,
+                options.max_iterations, options.restarts, ms, s.final_mean_log_likelihood, s.iterations,
+                s.converged ? "true" : "false", s.k_final, s.bic);
+    PrintMixture(m);
+    std::printf("}\n");
+    return 0;
+  }
+  BicSweepResult r;
+  const Clock::time_point t0 = Clock::now();
+  const Status st = gmmrrt::learn::SweepBic(points, 0u, options, static_cast<int>(k_min), static_cast<int>(k_max), &r);
+  const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  if (!st.ok()) {
+    std::fprintf(stderr, "gmmrrt-bench-learner: sweep failed: %s\n", st.message.c_str());
+    return 1;
+  }
+  std::printf("{\"mode\":\"sweep\",\"n\":%ld,\"dim\":%ld,\"k_min\":%ld,\"k_max\":%ld,\"seed\":%ld,\"tol\":%.17g,"
+              "\"max_iter\":%d,\"restarts\":%d,\"sweep_ms\":%.6f,\"best_k\":%d,\"rows\":[",
+              static_cast<long>(points.cols()), static_cast<long>(points.rows()), k_min, k_max, seed,
+              options.tolerance, options.max_iterations, options.restarts, ms, r.best_k);
+  for (size_t i = 0; i < r.rows.size(); ++i)
+    std::printf("%s{\"k\":%d,\"k_final\":%d,\"mean_log_likelihood\":%.17g,\"bic\":%.17g,\"iterations\":%d,"
+                "\"converged\":%s}",
+                i ? "," : "", r.rows[i].k, r.rows[i].k_final, r.rows[i].mean_log_likelihood, r.rows[i].bic,
+                r.rows[i].iterations, r.rows[i].converged ? "true" : "false");
+  std::string note;
+  for (char ch : r.note)
+    if (ch == '"' || ch == '\\') note += '\\', note += ch;
+    else if (static_cast<unsigned char>(ch) >= 0x20) note += ch;
+  std::printf("],\"note\":\"%s\"}\n", note.c_str());
+  return 0;
+}

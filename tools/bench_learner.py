@@ -1,0 +1,203 @@
+"""Learner against scikit-learn (issue 8): EM fit time and log-likelihood at N = 200 000,
+D = 2, K = 19, full covariances; and a BIC sweep over K = 1..30 on a mixture of known K.
+
+scikit-learn runs single-threaded (OMP/BLAS thread variables set to 1 before numpy loads, and
+threadpoolctl limits) with settings matched to ours: its defaults tol = 1e-3 and max_iter = 100
+(its tol is on the change of the mean log-likelihood per point, as ours), n_init = 1, k-means
+initialisation. Our learner keeps its own defaults otherwise (--restarts 4: candidate starts,
+k-means++ then a few screening EM steps each, best kept). Runs are
+interleaved (the order rotates each repetition; ours is also run with --restarts 1 (one candidate start),
+as context) and both fitted mixtures are scored by the same
+evaluator (scikit-learn's score on the same points), so "equal or better log-likelihood" is
+judged on one yardstick.
+"""
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS",
+             "NUMEXPR_NUM_THREADS", "VECLIB_MAXIMUM_THREADS"):
+    os.environ[_var] = "1"
+
+import json  # noqa: E402
+import subprocess  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+from typing import Dict, List, Optional  # noqa: E402
+
+import numpy as np  # noqa: E402
+from sklearn.mixture import GaussianMixture  # noqa: E402
+from threadpoolctl import threadpool_limits  # noqa: E402
+
+from bench_planner import BenchError  # noqa: E402
+from bench_stats import median, ratio  # noqa: E402
+
+SKLEARN_TOL = 1e-3
+SKLEARN_MAX_ITER = 100
+
+
+def make_mixture_points(n: int, k: int, seed: int, separation: float = 1.0) -> np.ndarray:
+    """n points (n x 2) from a random k-component 2-D mixture: means uniform in a square whose
+    side grows with separation, random full covariances, Dirichlet weights."""
+    rng = np.random.default_rng(seed)
+    half = 10.0 * separation
+    means = rng.uniform(-half, half, (k, 2))
+    a = rng.normal(0.0, 0.6, (k, 2, 2))
+    covs = a @ a.transpose(0, 2, 1) + 0.05 * np.eye(2)
+    w = rng.dirichlet(np.full(k, 5.0))
+    z = rng.choice(k, n, p=w)
+    chol = np.linalg.cholesky(covs)
+    return means[z] + np.einsum("nij,nj->ni", chol[z], rng.normal(size=(n, 2)))
+
+
+def make_separated_points(n: int, k: int, seed: int) -> np.ndarray:
+    """n points from k well-separated 2-D Gaussians (means on a circle of radius 10, sd ~0.7):
+    a mixture whose K a sound BIC sweep must recover."""
+    rng = np.random.default_rng(seed)
+    ang = 2 * np.pi * np.arange(k) / k
+    means = 10.0 * np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    a = rng.normal(0.0, 0.4, (k, 2, 2))
+    covs = a @ a.transpose(0, 2, 1) + 0.2 * np.eye(2)
+    z = rng.integers(0, k, n)
+    chol = np.linalg.cholesky(covs)
+    return means[z] + np.einsum("nij,nj->ni", chol[z], rng.normal(size=(n, 2)))
+
+
+def write_points_csv(points: np.ndarray, path: Path) -> None:
+    np.savetxt(path, points, delimiter=",", header="x0,x1", comments="", fmt="%.17g")
+
+
+def sklearn_score_of(mixture: dict, points: np.ndarray) -> float:
+    """Mean log-likelihood per point of a mixture {weights, means, covariances} by scikit-learn."""
+    k = len(mixture["weights"])
+    gm = GaussianMixture(k, covariance_type="full")
+    gm.weights_ = np.asarray(mixture["weights"], dtype=float)
+    gm.means_ = np.asarray(mixture["means"], dtype=float)
+    covs = np.asarray(mixture["covariances"], dtype=float)
+    gm.covariances_ = covs
+    prec_chol = np.empty_like(covs)
+    for i, c in enumerate(covs):
+        lower = np.linalg.cholesky(c)
+        prec_chol[i] = np.linalg.solve(lower, np.eye(c.shape[0])).T
+    gm.precisions_cholesky_ = prec_chol
+    gm.precisions_ = prec_chol @ prec_chol.transpose(0, 2, 1)
+    return float(gm.score(points))
+
+
+def fit_sklearn(points: np.ndarray, k: int, seed: int) -> dict:
+    gm = GaussianMixture(k, covariance_type="full", tol=SKLEARN_TOL, max_iter=SKLEARN_MAX_ITER, n_init=1,
+                         init_params="kmeans", random_state=seed)
+    with threadpool_limits(limits=1):
+        t0 = time.perf_counter()
+        gm.fit(points)
+        fit_ms = (time.perf_counter() - t0) * 1000.0
+        score = float(gm.score(points))
+    return {"fit_ms": fit_ms, "mean_log_likelihood": score, "iterations": int(gm.n_iter_),
+            "converged": bool(gm.converged_)}
+
+
+def fit_ours(exe: Path, csv: Path, points: np.ndarray, k: int, seed: int, restarts: Optional[int] = None) -> dict:
+    cmd = [str(exe), "--points", str(csv), "--k", str(k), "--seed", str(seed), "--tol", str(SKLEARN_TOL),
+           "--max-iter", str(SKLEARN_MAX_ITER)]
+    if restarts is not None:
+        cmd += ["--restarts", str(restarts)]
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=3600)
+    if proc.returncode != 0:
+        raise BenchError(f"{' '.join(cmd)} exited {proc.returncode}: {proc.stderr.strip()[-400:]}")
+    out = json.loads(proc.stdout)
+    return {"fit_ms": out["fit_ms"], "mean_log_likelihood": sklearn_score_of(out, points),
+            "mean_log_likelihood_own": out["mean_log_likelihood"], "iterations": out["iterations"],
+            "converged": out["converged"], "k_final": out["k_final"], "restarts": out["restarts"],
+            "command": " ".join(cmd)}
+
+
+def run_fit_comparison(exe: Path, work: Path, n: int, k: int, reps: int, seed: int) -> dict:
+    """Interleaved fits of ours and scikit-learn on the same n points; medians and the ratio."""
+    points = make_mixture_points(n, k, seed)
+    csv = work / f"fit_points_{n}.csv"
+    write_points_csv(points, csv)
+    ours: List[dict] = []
+    ours1: List[dict] = []  # one candidate start (--restarts 1), like scikit-learn's single k-means init
+    skl: List[dict] = []
+    for rep in range(reps):
+        order = ("ours", "ours1", "sklearn")[rep % 3:] + ("ours", "ours1", "sklearn")[:rep % 3]
+        for who in order:
+            if who == "ours":
+                ours.append(fit_ours(exe, csv, points, k, seed + rep))
+            elif who == "ours1":
+                ours1.append(fit_ours(exe, csv, points, k, seed + rep, restarts=1))
+            else:
+                skl.append(fit_sklearn(points, k, seed + rep))
+    o_ms = median(r["fit_ms"] for r in ours)
+    s_ms = median(r["fit_ms"] for r in skl)
+    o_ll = median(r["mean_log_likelihood"] for r in ours)
+    s_ll = median(r["mean_log_likelihood"] for r in skl)
+    return {
+        "n": n, "dim": 2, "k": k, "reps": reps,
+        "settings": {"tol": SKLEARN_TOL, "max_iter": SKLEARN_MAX_ITER, "sklearn_n_init": 1,
+                     "ours_restarts": ours[0]["restarts"] if ours else None},
+        "ours": {"fit_ms_median": o_ms, "mean_log_likelihood_median": o_ll,
+                 "iterations_median": median(r["iterations"] for r in ours), "runs": ours},
+        "ours_one_restart": {"fit_ms_median": median(r["fit_ms"] for r in ours1),
+                             "mean_log_likelihood_median": median(r["mean_log_likelihood"] for r in ours1),
+                             "iterations_median": median(r["iterations"] for r in ours1), "runs": ours1},
+        "sklearn": {"fit_ms_median": s_ms, "mean_log_likelihood_median": s_ll,
+                    "iterations_median": median(r["iterations"] for r in skl), "runs": skl},
+        "speedup": ratio(s_ms, o_ms),
+        "log_likelihood_gap": (o_ll - s_ll) if ours and skl else None,
+        "command_example": ours[0]["command"] if ours else None,
+    }
+
+
+def sweep_sklearn(points: np.ndarray, k_min: int, k_max: int, seed: int) -> dict:
+    rows = []
+    with threadpool_limits(limits=1):
+        t0 = time.perf_counter()
+        for k in range(k_min, k_max + 1):
+            gm = GaussianMixture(k, covariance_type="full", tol=SKLEARN_TOL, max_iter=SKLEARN_MAX_ITER,
+                                 n_init=1, init_params="kmeans", random_state=seed).fit(points)
+            rows.append({"k": k, "bic": float(gm.bic(points)), "mean_log_likelihood": float(gm.score(points)),
+                         "iterations": int(gm.n_iter_), "converged": bool(gm.converged_)})
+        ms = (time.perf_counter() - t0) * 1000.0
+    best = min(rows, key=lambda r: r["bic"])["k"]
+    return {"sweep_ms": ms, "best_k": best, "rows": rows}
+
+
+def sweep_ours(exe: Path, csv: Path, k_min: int, k_max: int, seed: int) -> dict:
+    cmd = [str(exe), "--points", str(csv), "--sweep", f"{k_min}:{k_max}", "--seed", str(seed),
+           "--tol", str(SKLEARN_TOL), "--max-iter", str(SKLEARN_MAX_ITER)]
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=7200)
+    if proc.returncode != 0:
+        raise BenchError(f"{' '.join(cmd)} exited {proc.returncode}: {proc.stderr.strip()[-400:]}")
+    out = json.loads(proc.stdout)
+    out["command"] = " ".join(cmd)
+    return out
+
+
+def run_sweep_comparison(exe: Path, work: Path, n: int, k_true: int, k_max: int, seed: int) -> dict:
+    """BIC sweep K = 1..k_max by both on n points of k_true well-separated components
+    (ours first, then scikit-learn; one run each: the sweep is long)."""
+    points = make_separated_points(n, k_true, seed)
+    csv = work / f"sweep_points_{n}_{k_true}.csv"
+    write_points_csv(points, csv)
+    ours = sweep_ours(exe, csv, 1, k_max, seed)
+    skl = sweep_sklearn(points, 1, k_max, seed)
+    return {
+        "n": n, "k_true": k_true, "k_range": [1, k_max],
+        "ours": {"sweep_ms": ours["sweep_ms"], "best_k": ours["best_k"], "rows": ours["rows"],
+                 "note": ours.get("note", ""), "command": ours["command"]},
+        "sklearn": skl,
+        "speedup": ratio(skl["sweep_ms"], ours["sweep_ms"]),
+    }
+
+
+def run_learner(bin_dir: Path, work: Path, quick: bool, seed: int = 1) -> Dict[str, Optional[dict]]:
+    exe = bin_dir / "gmmrrt-bench-learner"
+    if not exe.is_file():
+        raise BenchError(f"{exe} is missing: build with -DGMMRRT_BUILD_BENCH=ON (tools/run bench)")
+    work.mkdir(parents=True, exist_ok=True)
+    fit_n, reps, sweep_n = (20000, 1, 5000) if quick else (200000, 3, 20000)
+    return {
+        "fit": run_fit_comparison(exe, work, fit_n, 19, reps, seed),
+        "sweep": run_sweep_comparison(exe, work, sweep_n, 6, 30, seed),
+    }
