@@ -18,7 +18,7 @@
 // screen_iterations EM steps; the one with the highest mean log-likelihood runs to convergence.
 // On large data (N > screen_points) the candidates are built and screened on a seeded random
 // subsample and only the kept one runs on all points: the screening ranks starts, for which a
-// sample of 20 000 points is ample, and it was most of the run time.
+// sample of 10 000 points is enough, and screening on all points was most of the run time.
 //
 // A component is degenerate when its effective point count falls below D + 1, a variance
 // collapses onto the regularisation (raw variance <= reg_j) or its Cholesky fails: it is
@@ -44,11 +44,11 @@ namespace learn {
 struct FitOptions {
   int k = 19;                   // components (the paper's choice, Sect. 5.1), 1..GMMRRT_MAX_K
   uint64_t seed = 1;            // seeds k-means++; same seed -> same result
-  int restarts = 4;             // candidate starts: k-means++ seeding + Lloyd + screen_iterations
+  int restarts = 8;             // candidate starts: k-means++ seeding + Lloyd + screen_iterations
                                 // EM steps each; the highest log-likelihood continues (short-EM
                                 // selection, Biernacki et al. 2003)
   int screen_iterations = 20;   // EM steps per candidate before choosing (when restarts > 1)
-  int64_t screen_points = 20000;  // when N is larger, the candidates (k-means++, Lloyd and the
+  int64_t screen_points = 10000;  // when N is larger, the candidates (k-means++, Lloyd and the
                                 // screening steps) run on this many points drawn without
                                 // replacement (seeded), and only the kept candidate runs on all
                                 // N points; 0 screens on all points
