@@ -11,6 +11,8 @@
 // absolute floor so that data of tiny scale still gets a positive definite covariance. It is
 // kept small (1e-8 relative): with 1e-6 x the mean variance, a thin component of the peer test's
 // 8-component data stayed on a likelihood ridge and the fit ended 0.07 nats/point lower.
+// D = 2 without angle dimensions takes a fused, vectorised E-step (learner/src/estep_2d.cpp)
+// that computes the same quantities.
 // Convergence: |mean log-likelihood per point - previous| < tolerance (default 1e-6 nats),
 // capped by max_iterations M-steps.
 //
