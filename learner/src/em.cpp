@@ -259,6 +259,7 @@ struct EmRun {
   bool last_changed = true;
   bool pending = false;
   bool converged = false;
+  bool kept = false;  // the candidate chosen to run to convergence: progress after every step
   int iterations = 0;
 };
 
@@ -279,7 +280,7 @@ void Advance(const FitState& s, EmRun* run, int until) {
     const double ll = EStep(run->m, *s.xt, &run->stats, &run->score);
     run->ll.push_back(ll);
     run->pending = true;
-    if (o.progress && (o.restarts == 1 || until > o.screen_iterations)) o.progress(run->restart, t, ll);
+    if (o.progress && (o.restarts == 1 || run->kept)) o.progress(run->restart, t, ll);
     if (t >= 1 && !run->last_changed && std::fabs(ll - run->previous) < o.tolerance) {
       run->converged = true;
       run->pending = false;
@@ -404,6 +405,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   }
   if (best < 0) return Status::Error(StatusCode::kNumericalFailure, "every component degenerate in every restart");
   EmRun& run = runs[best];
+  run.kept = true;
   if (screen.xt != s.xt) {
     // The winner continues on all points from its screened mixture (a fresh E-step there).
     EmRun full;
@@ -411,6 +413,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     full.kmeans_inertia = run.kmeans_inertia;
     full.m = std::move(run.m);
     full.iterations = run.iterations;
+    full.kept = true;
     run = std::move(full);
     Advance(s, &run, std::max(0, options.max_iterations - run.iterations));
   } else {
