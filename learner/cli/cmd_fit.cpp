@@ -38,9 +38,14 @@ const char kFitHelp[] =
     "model:\n"
     "  -k, --k N|auto          components (default 19, the paper's); auto = BIC sweep\n"
     "  -r, --k-range A..B      range of the BIC sweep (default 1..30; implies --k auto)\n"
+    "  -P, --bic-patience N    stop the sweep once N K in a row have a BIC above the lowest\n"
+    "                          so far (default 3; 0 fits the whole range)\n"
     "  -S, --seed S            random seed (default 1); same seed, same model\n"
-    "  -R, --restarts N        candidate starts (k-means++ + Lloyd + 20 EM steps each); the\n"
-    "                          best log-likelihood is run to convergence (default 4)\n"
+    "  -R, --restarts N        candidate starts (k-means++ + Lloyd + 20 EM steps each, on a\n"
+    "                          seeded sample of 10 000 points when there are more); the best\n"
+    "                          log-likelihood is run to convergence on all points (default 8)\n"
+    "  -p, --screen-points N   sample size for the candidates when there are more points\n"
+    "                          (default 10000; 0 screens on all points)\n"
     "  -m, --max-iter N        EM iteration cap (default 500)\n"
     "  -T, --tol X             stop when the mean log-likelihood per point changes < X\n"
     "                          (default 1e-6)\n"
@@ -77,16 +82,17 @@ int RunFit(int argc, char** argv) {
       {"max-iter", required_argument, nullptr, 'm'}, {"tol", required_argument, nullptr, 'T'},
       {"delta", required_argument, nullptr, 'd'},    {"output", required_argument, nullptr, 'o'},
       {"quiet", no_argument, nullptr, 'q'},          {"help", no_argument, nullptr, 'h'},
+      {"bic-patience", required_argument, nullptr, 'P'}, {"screen-points", required_argument, nullptr, 'p'},
       {nullptr, 0, nullptr, 0}};
   DataSpec spec;
   FitOptions options;
   std::string output, task_name, homotopy_name = "all", kind_name, angle_dims, k_text;
-  int k_min = 1, k_max = 30;
+  int k_min = 1, k_max = 30, bic_patience = kBicStopAfterRises;
   bool auto_k = false, k_range_given = false;
   double delta = GMMRRT_MODEL_DEFAULT_DELTA;
   optind = 1;
   int c;
-  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:S:R:m:T:d:o:qh", kLong, nullptr)) != -1) {
+  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:p:S:R:m:T:d:o:qh", kLong, nullptr)) != -1) {
     const std::string arg = optarg ? optarg : "";
     long v = 0;
     switch (c) {
@@ -110,6 +116,15 @@ int RunFit(int argc, char** argv) {
           return UsageError(cmd, "--k-range '" + arg + "' is not A..B with 1 <= A <= B <= " +
                                      std::to_string(GMMRRT_MAX_K));
         k_range_given = true;
+        break;
+      case 'P':
+        if (!ParseInt(arg, 0, GMMRRT_MAX_K, &v))
+          return UsageError(cmd, "--bic-patience '" + arg + "' is not in 0.." + std::to_string(GMMRRT_MAX_K));
+        bic_patience = static_cast<int>(v);
+        break;
+      case 'p':
+        if (!ParseInt(arg, 0, 1000000000, &v)) return UsageError(cmd, "--screen-points '" + arg + "' is not in 0..1e9");
+        options.screen_points = v;
         break;
       case 'S':
         if (!ParseUint64(arg, &options.seed)) return UsageError(cmd, "--seed '" + arg + "' is not an unsigned integer");
@@ -194,7 +209,7 @@ int RunFit(int argc, char** argv) {
         std::fprintf(stderr, "K = %d: mean log-likelihood %.6f, BIC %.3f, %d iterations\n", r.k,
                      r.mean_log_likelihood, r.bic, r.iterations);
     };
-    if (!(s = SweepBic(points, mask, options, k_min, k_max, &sweep, on_row)).ok()) return Fail(cmd, s.message);
+    if (!(s = SweepBic(points, mask, options, k_min, k_max, &sweep, on_row, bic_patience)).ok()) return Fail(cmd, s.message);
     std::fputs(FormatBicTable(sweep).c_str(), stdout);
     std::printf("chosen K = %d (lowest BIC)\n", sweep.best_k);
     mixture = sweep.best;

@@ -10,13 +10,16 @@ namespace learn {
 
 Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
                 int k_min, int k_max, BicSweepResult* result,
-                const std::function<void(const BicRow&)>& on_row) {
+                const std::function<void(const BicRow&)>& on_row, int stop_after_rises) {
   if (k_min < 1 || k_max < k_min || k_max > GMMRRT_MAX_K)
     return Status::Error(StatusCode::kInvalidArgument,
                          "K range " + std::to_string(k_min) + ".." + std::to_string(k_max) +
                              " is not within 1.." + std::to_string(GMMRRT_MAX_K));
+  if (stop_after_rises < 0)
+    return Status::Error(StatusCode::kInvalidArgument, "stop_after_rises must be >= 0 (0: whole range)");
   *result = BicSweepResult();
   double best_bic = std::numeric_limits<double>::infinity();
+  int rises = 0;  // consecutive K with a BIC above best_bic
   for (int k = k_min; k <= k_max; ++k) {
     FitOptions o = options;
     o.k = k;
@@ -42,6 +45,12 @@ Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOpt
       result->best_k = k;
       result->best = m;
       result->best_summary = s;
+      rises = 0;
+    } else if (stop_after_rises > 0 && ++rises >= stop_after_rises && k < k_max) {
+      result->note = "sweep stopped at K = " + std::to_string(k) + ": BIC above its minimum (K = " +
+                     std::to_string(result->best_k) + ") for " + std::to_string(rises) +
+                     " K in a row (--bic-patience)";
+      break;
     }
   }
   return Status::Ok();

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "component_terms.hpp"
+#include "estep_2d.hpp"
 #include "gmmrrt/features.h"
 #include "gmmrrt_learner/kmeans.hpp"
 
@@ -34,6 +35,7 @@ bool FitOptions::IsValid(std::string* error) const {
   if (!(reg_relative >= 0.0) || !std::isfinite(reg_relative)) return fail("reg_relative must be finite and >= 0");
   if (!(reg_floor > 0.0) || !std::isfinite(reg_floor)) return fail("reg_floor must be finite and > 0");
   if (max_reseeds < -1) return fail("max_reseeds must be >= 0 (or -1 for 3 K)");
+  if (screen_points < 0) return fail("screen_points must be >= 0");
   return true;
 }
 
@@ -89,6 +91,19 @@ void ComputeDataInfo(const Eigen::MatrixXd& xt, uint32_t mask, const FitOptions&
 // One E-step over xt (points as rows, N x D): mean log-likelihood per point; statistics and
 // per-point log-likelihood out.
 double EStep(const Mixture& m, const Eigen::MatrixXd& xt, Stats* st, Eigen::VectorXd* point_ll) {
+  if (detail::EStep2dApplies(m)) {  // the fused kernel of estep_2d.cpp: same quantities
+    point_ll->resize(xt.rows());
+    detail::Moments2d mo;
+    const double ll = detail::EStep2d(m, xt.col(0).data(), xt.col(1).data(), xt.rows(), point_ll->data(), &mo);
+    st->Reset(2, m.k());
+    for (int i = 0; i < m.k(); ++i) {
+      st->nk[i] = mo.n[i];
+      st->s1(0, i) = mo.m0[i];
+      st->s1(1, i) = mo.m1[i];
+      st->s2[i] << mo.s00[i], mo.s01[i], mo.s01[i], mo.s11[i];
+    }
+    return ll;
+  }
   detail::PreparedMixture p;
   detail::Prepare(m, &p);
   const Eigen::Index n = xt.rows();
@@ -244,6 +259,7 @@ struct EmRun {
   bool last_changed = true;
   bool pending = false;
   bool converged = false;
+  bool kept = false;  // the candidate chosen to run to convergence: progress after every step
   int iterations = 0;
 };
 
@@ -264,7 +280,7 @@ void Advance(const FitState& s, EmRun* run, int until) {
     const double ll = EStep(run->m, *s.xt, &run->stats, &run->score);
     run->ll.push_back(ll);
     run->pending = true;
-    if (o.progress && (o.restarts == 1 || until > o.screen_iterations)) o.progress(run->restart, t, ll);
+    if (o.progress && (o.restarts == 1 || run->kept)) o.progress(run->restart, t, ll);
     if (t >= 1 && !run->last_changed && std::fabs(ll - run->previous) < o.tolerance) {
       run->converged = true;
       run->pending = false;
@@ -333,8 +349,26 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   }
 
   // Candidates: each restart is k-means++ + Lloyd, one M-step from the hard assignment, then
-  // screen_iterations EM steps; the best mean log-likelihood continues to convergence.
+  // screen_iterations EM steps; the best mean log-likelihood continues to convergence. On large
+  // data they are built on a seeded subsample (screen_xt) and the winner moves to all points.
   std::mt19937_64 rng(options.seed);
+  Eigen::MatrixXd sample_xt;
+  FitState screen = s;
+  if (options.screen_points > 0 && n > options.screen_points) {
+    std::vector<Eigen::Index> idx(n);
+    std::iota(idx.begin(), idx.end(), 0);
+    const Eigen::Index m_pts = static_cast<Eigen::Index>(std::max<int64_t>(options.screen_points, needed));
+    for (Eigen::Index i = 0; i < m_pts; ++i)  // partial Fisher-Yates with our own draw
+      std::swap(idx[i], idx[i + static_cast<Eigen::Index>(Uniform01(&rng) * static_cast<double>(n - i)) % (n - i)]);
+    idx.resize(m_pts);
+    std::sort(idx.begin(), idx.end());  // keep the data's order
+    sample_xt.resize(m_pts, d);
+    for (Eigen::Index i = 0; i < m_pts; ++i) sample_xt.row(i) = xt.row(idx[i]);
+    screen.xt = &sample_xt;
+  }
+  const Eigen::MatrixXd& screen_xt = *screen.xt;
+  const Eigen::Index n_screen = screen_xt.rows();
+  summary->screened_on = n_screen;
   KMeansOptions ko;
   ko.k = options.k;
   ko.restarts = 1;
@@ -343,7 +377,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   int best = -1;
   for (int r = 0; r < options.restarts; ++r) {
     KMeansResult km;
-    Status st = KMeans(xt, angle_mask, ko, &rng, &km);
+    Status st = KMeans(screen_xt, angle_mask, ko, &rng, &km);
     if (!st.ok()) return st;
     EmRun& run = runs[r];
     run.restart = r;
@@ -351,11 +385,11 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     run.m.dim = d;
     run.m.angle_mask = angle_mask;
     run.stats.Reset(d, options.k);
-    run.score.resize(n);
+    run.score.resize(n_screen);
     Eigen::VectorXd delta(d);
-    for (Eigen::Index c = 0; c < n; ++c) {
+    for (Eigen::Index c = 0; c < n_screen; ++c) {
       const int l = km.labels[c];
-      delta = x.col(c) - km.centers.col(l);
+      delta = screen_xt.row(c).transpose() - km.centers.col(l);
       for (int j = 0; j < d; ++j)
         if ((angle_mask >> j) & 1u) delta[j] = gmmrrt_wrap_angle(delta[j]);
       run.stats.nk[l] += 1.0;
@@ -363,15 +397,28 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
       run.stats.s2[l] += delta * delta.transpose();
       run.score[c] = -delta.squaredNorm();
     }
-    MStep(s, run.stats, km.centers, run.score, 0, &run.m);
-    if (run.m.k() > 0) Advance(s, &run, options.screen_iterations);
+    MStep(screen, run.stats, km.centers, run.score, 0, &run.m);
+    if (run.m.k() > 0) Advance(screen, &run, options.screen_iterations);
     if (run.m.k() > 0 && (best < 0 || run.ll.back() > runs[best].ll.back())) best = r;
     if (options.restarts > 1 && options.progress && run.m.k() > 0)
       options.progress(r, static_cast<int>(run.ll.size()) - 1, run.ll.back());
   }
   if (best < 0) return Status::Error(StatusCode::kNumericalFailure, "every component degenerate in every restart");
   EmRun& run = runs[best];
-  Advance(s, &run, options.max_iterations);
+  run.kept = true;
+  if (screen.xt != s.xt) {
+    // The winner continues on all points from its screened mixture (a fresh E-step there).
+    EmRun full;
+    full.restart = run.restart;
+    full.kmeans_inertia = run.kmeans_inertia;
+    full.m = std::move(run.m);
+    full.iterations = run.iterations;
+    full.kept = true;
+    run = std::move(full);
+    Advance(s, &run, std::max(0, options.max_iterations - run.iterations));
+  } else {
+    Advance(s, &run, options.max_iterations);
+  }
   if (run.m.k() == 0)
     return Status::Error(StatusCode::kNumericalFailure, "every component degenerate (all dropped)");
   Mixture m = std::move(run.m);

@@ -11,11 +11,16 @@
 // absolute floor so that data of tiny scale still gets a positive definite covariance. It is
 // kept small (1e-8 relative): with 1e-6 x the mean variance, a thin component of the peer test's
 // 8-component data stayed on a likelihood ridge and the fit ended 0.07 nats/point lower.
+// D = 2 without angle dimensions takes a fused, vectorised E-step (learner/src/estep_2d.cpp)
+// that computes the same quantities.
 // Convergence: |mean log-likelihood per point - previous| < tolerance (default 1e-6 nats),
 // capped by max_iterations M-steps.
 //
 // Restarts: `restarts` candidates, each k-means++ + Lloyd, one M-step from the hard labels and
 // screen_iterations EM steps; the one with the highest mean log-likelihood runs to convergence.
+// On large data (N > screen_points) the candidates are built and screened on a seeded random
+// subsample and only the kept one runs on all points: the screening ranks starts, for which a
+// sample of 10 000 points is enough, and screening on all points was most of the run time.
 //
 // A component is degenerate when its effective point count falls below D + 1, a variance
 // collapses onto the regularisation (raw variance <= reg_j) or its Cholesky fails: it is
@@ -41,10 +46,14 @@ namespace learn {
 struct FitOptions {
   int k = 19;                   // components (the paper's choice, Sect. 5.1), 1..GMMRRT_MAX_K
   uint64_t seed = 1;            // seeds k-means++; same seed -> same result
-  int restarts = 4;             // candidate starts: k-means++ seeding + Lloyd + screen_iterations
+  int restarts = 8;             // candidate starts: k-means++ seeding + Lloyd + screen_iterations
                                 // EM steps each; the highest log-likelihood continues (short-EM
                                 // selection, Biernacki et al. 2003)
   int screen_iterations = 20;   // EM steps per candidate before choosing (when restarts > 1)
+  int64_t screen_points = 10000;  // when N is larger, the candidates (k-means++, Lloyd and the
+                                // screening steps) run on this many points drawn without
+                                // replacement (seeded), and only the kept candidate runs on all
+                                // N points; 0 screens on all points
   int kmeans_max_iterations = 100;
   int max_iterations = 500;     // EM M-steps at most
   double tolerance = 1e-6;      // stop when |delta mean log-likelihood per point| < this [nats]
@@ -70,7 +79,9 @@ struct FitSummary {
   int iterations = 0;                   // M-steps of the kept candidate (screening included)
   bool converged = false;               // tolerance reached before max_iterations
   std::vector<double> log_likelihood;   // kept candidate: mean log-likelihood per point after each
-                                        // step (0 = seed)
+                                        // step (0 = seed); with a screening subsample, entry 0 is
+                                        // the screened mixture on all points
+  int64_t screened_on = 0;              // points the candidates were screened on (N or the sample)
   std::vector<int> reseed_iterations;   // iterations at which a component was re-seeded or dropped
   double final_mean_log_likelihood = 0.0;
   double bic = 0.0;                     // Bic(final mean LL, N, k_final, D)

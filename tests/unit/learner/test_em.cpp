@@ -172,11 +172,22 @@ void test_bic_picks_the_generating_k(void** state) {
                              {Vec({5.0, 5.0}), Diag({0.4, 0.4}), 300}};
   const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 8);
   BicSweepResult r;
-  assert_true(SweepBic(x, 0, Quiet(1, 1), 1, 8, &r).ok());
+  assert_true(SweepBic(x, 0, Quiet(1, 1), 1, 8, &r, nullptr, 0).ok());  // the whole range
   assert_int_equal(static_cast<int>(r.rows.size()), 8);
   assert_int_equal(r.best_k, 4);
   assert_int_equal(r.best.k(), 4);
   assert_true(FormatBicTable(r).find("  *") != std::string::npos);
+  assert_true(r.note.empty());
+  // The default stops once BIC has stayed above its minimum for kBicStopAfterRises K: the same
+  // choice and rows, the sweep ended at K = 4 + 3 with a note.
+  BicSweepResult early;
+  assert_true(SweepBic(x, 0, Quiet(1, 1), 1, 8, &early).ok());
+  assert_int_equal(early.best_k, 4);
+  assert_int_equal(static_cast<int>(early.rows.size()), 4 + kBicStopAfterRises);
+  for (size_t i = 0; i < early.rows.size(); ++i) assert_true(early.rows[i].bic == r.rows[i].bic);
+  assert_true(early.note.find("K = 7") != std::string::npos);
+  assert_int_equal(static_cast<int>(SweepBic(x, 0, Quiet(1, 1), 1, 8, &early, nullptr, -1).code),
+                   static_cast<int>(StatusCode::kInvalidArgument));
 }
 
 void test_bad_input_is_rejected(void** state) {

@@ -1,0 +1,42 @@
+// estep_2d.hpp (private to learner/src) - the E-step specialised for the common case of the
+// benchmark and of generic 2-D features without angles: D = 2, no wrapped dimension (paper
+// eq. 1). It returns the same quantities as the general E-step of em.cpp (component_terms.hpp):
+// per-point log-likelihood and the responsibility-weighted moments around the current means,
+// in one fused pass, without heap allocation and with a closed-form 2x2 Mahalanobis term.
+#ifndef GMMRRT_LEARNER_ESTEP_2D_HPP
+#define GMMRRT_LEARNER_ESTEP_2D_HPP
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "gmmrrt_learner/mixture.hpp"
+
+namespace gmmrrt {
+namespace learn {
+namespace detail {
+
+// Responsibility-weighted sums of one E-step, per component i, with y = x - mu_i:
+// n[i] = sum r, m0/m1 = sum r y_0 / y_1, s00/s01/s11 = sum r y_0 y_0 / y_0 y_1 / y_1 y_1.
+struct Moments2d {
+  std::vector<double> n, m0, m1, s00, s01, s11;
+};
+
+// True when EStep2d handles m (D = 2 and no angle dimension).
+inline bool EStep2dApplies(const Mixture& m) { return m.dim == 2 && m.angle_mask == 0u; }
+
+// x0, x1: the two coordinates of n_points points (contiguous arrays, caller-owned). m must be
+// valid and EStep2dApplies(m). Writes point_ll[p] = log sum_i w_i N(x_p; mu_i, Sigma_i)
+// (n_points entries, caller-owned) and *moments (resized to K); returns the mean of point_ll.
+// Deterministic: a fixed summation order (2 lanes, blocks of 512 points).
+double EStep2d(const Mixture& m, const double* x0, const double* x1, Eigen::Index n_points,
+               double* point_ll, Moments2d* moments);
+
+// exp(x) for 4 doubles at a time, as the kernel computes it (relative error < 1e-15 against
+// std::exp for x in [-700, 0]; x below -700 gives 0): exposed for the unit test.
+void VectorExp4(const double* x, double* out);
+
+}  // namespace detail
+}  // namespace learn
+}  // namespace gmmrrt
+
+#endif  // GMMRRT_LEARNER_ESTEP_2D_HPP

@@ -1,0 +1,176 @@
+// test_estep_2d.cpp - learner.estep_2d: the fused D = 2 E-step of learner/src/estep_2d.cpp (paper
+// eq. 1) against oracles: its vector exp against std::exp, its per-point log-likelihood against
+// LogDensity (the density that matches the C gmm.h), its moments against a direct computation of
+// the responsibilities from single-component densities, on an odd point count (tail lanes) and
+// with points far from every component (the negligible-term cut); and FitMixture's screening
+// subsample: deterministic, and the fit on all points still recovers the generating mixture.
+#include <cmath>
+#include <random>
+
+#include "estep_2d.hpp"
+#include "gmmrrt_learner/em.hpp"
+#include "gmmrrt_learner/mixture.hpp"
+#include "test_support.hpp"
+
+// cmocka last: its fail() macro would clash with the standard library.
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+extern "C" {
+#include <cmocka.h>
+}
+
+using namespace gmmrrt::learn;
+
+namespace {
+
+bool Close(double got, double want, double rel, double abs_floor) {
+  return std::fabs(got - want) <= rel * std::fabs(want) + abs_floor;
+}
+
+void test_vector_exp_matches_std_exp(void** state) {
+  (void)state;
+  double worst = 0.0;
+  for (int i = 0; i <= 200000; ++i) {
+    double x[4], e[4];
+    for (int q = 0; q < 4; ++q) x[q] = -700.0 * (i * 4 + q) / 800003.0;
+    detail::VectorExp4(x, e);
+    for (int q = 0; q < 4; ++q) worst = std::max(worst, std::fabs(e[q] - std::exp(x[q])) / std::exp(x[q]));
+  }
+  assert_true(worst < 1e-15);
+  const double big[4] = {-701.0, -800.0, -1e300, -HUGE_VAL};
+  double e[4];
+  detail::VectorExp4(big, e);
+  for (int q = 0; q < 4; ++q) assert_true(e[q] == 0.0);
+}
+
+Mixture RandomMixture(int k, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Mixture m;
+  m.dim = 2;
+  m.angle_mask = 0;
+  m.weights.resize(k);
+  m.means.resize(2, k);
+  m.chol.assign(k, Eigen::MatrixXd::Zero(2, 2));
+  for (int i = 0; i < k; ++i) {
+    m.weights[i] = 0.2 + std::fabs(normal(rng));
+    m.means(0, i) = 100.0 + 4.0 * normal(rng);  // away from the origin, as real positions are
+    m.means(1, i) = -50.0 + 4.0 * normal(rng);
+    m.chol[i](0, 0) = 0.3 + std::fabs(normal(rng));
+    m.chol[i](1, 1) = 0.3 + std::fabs(normal(rng));
+    m.chol[i](1, 0) = 0.5 * normal(rng);
+  }
+  m.weights /= m.weights.sum();
+  return m;
+}
+
+void test_fused_estep_matches_the_density_and_direct_moments(void** state) {
+  (void)state;
+  const int k = 7;
+  const Mixture m = RandomMixture(k, 5);
+  std::mt19937_64 rng(9);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const Eigen::Index n = 2001;  // odd: the last vector holds one point
+  Eigen::MatrixXd pts(2, n);
+  for (Eigen::Index c = 0; c < n; ++c) {
+    pts(0, c) = 100.0 + 6.0 * normal(rng);
+    pts(1, c) = -50.0 + 6.0 * normal(rng);
+  }
+  pts(0, 0) = 1e4;  // far from every component: only its nearest term is not negligible
+  const Eigen::VectorXd x0 = pts.row(0).transpose(), x1 = pts.row(1).transpose();
+  Eigen::VectorXd ll(n);
+  detail::Moments2d mo;
+  const double mean_ll = detail::EStep2d(m, x0.data(), x1.data(), n, ll.data(), &mo);
+
+  Eigen::VectorXd want_ll;
+  LogDensity(m, pts, &want_ll);
+  for (Eigen::Index c = 0; c < n; ++c) assert_true(Close(ll[c], want_ll[c], 1e-12, 1e-12));
+  assert_true(Close(mean_ll, want_ll.mean(), 1e-12, 1e-12));
+
+  // Responsibilities from one-component densities: r_i = w_i N_i / p.
+  for (int i = 0; i < k; ++i) {
+    Mixture one;
+    one.dim = 2;
+    one.angle_mask = 0;
+    one.weights = Eigen::VectorXd::Ones(1);
+    one.means = m.means.col(i);
+    one.chol = {m.chol[i]};
+    Eigen::VectorXd li;
+    LogDensity(one, pts, &li);
+    double nk = 0, m0 = 0, m1 = 0, s00 = 0, s01 = 0, s11 = 0;
+    for (Eigen::Index c = 0; c < n; ++c) {
+      const double r = std::exp(std::log(m.weights[i]) + li[c] - want_ll[c]);
+      const double y0 = pts(0, c) - m.means(0, i), y1 = pts(1, c) - m.means(1, i);
+      nk += r;
+      m0 += r * y0;
+      m1 += r * y1;
+      s00 += r * y0 * y0;
+      s01 += r * y0 * y1;
+      s11 += r * y1 * y1;
+    }
+    assert_true(Close(mo.n[i], nk, 1e-11, 1e-12));
+    assert_true(Close(mo.m0[i], m0, 1e-11, 1e-10));
+    assert_true(Close(mo.m1[i], m1, 1e-11, 1e-10));
+    assert_true(Close(mo.s00[i], s00, 1e-11, 1e-10));
+    assert_true(Close(mo.s01[i], s01, 1e-11, 1e-10));
+    assert_true(Close(mo.s11[i], s11, 1e-11, 1e-10));
+  }
+  double total = 0.0;
+  for (int i = 0; i < k; ++i) total += mo.n[i];
+  assert_true(Close(total, static_cast<double>(n), 1e-12, 0.0));
+}
+
+// Five separated blobs, 30 000 points: more than a 4 000-point screening sample.
+Eigen::MatrixXd FiveBlobs() {
+  using test_support::Diag;
+  using test_support::Vec;
+  return test_support::Sample({{Vec({0.0, 0.0}), Diag({0.5, 0.3}), 8000},
+                               {Vec({6.0, 0.0}), Diag({0.4, 0.6}), 7000},
+                               {Vec({0.0, 6.0}), Diag({0.3, 0.3}), 6000},
+                               {Vec({6.0, 6.0}), Diag({0.6, 0.4}), 5000},
+                               {Vec({3.0, 11.0}), Diag({0.5, 0.5}), 4000}},
+                              0u, 21);
+}
+
+void test_screening_on_a_sample_is_deterministic_and_recovers_the_mixture(void** state) {
+  (void)state;
+  const Eigen::MatrixXd x = FiveBlobs();
+  FitOptions o;
+  o.k = 5;
+  o.seed = 3;
+  o.screen_points = 4000;
+  Mixture a, b, all;
+  FitSummary sa, sb, sall;
+  assert_true(FitMixture(x, 0u, o, &a, &sa).ok());
+  assert_true(FitMixture(x, 0u, o, &b, &sb).ok());
+  assert_int_equal(sa.screened_on, 4000);
+  assert_true(a.means == b.means && a.weights == b.weights);
+  o.screen_points = 0;  // screening on all points: the same optimum
+  assert_true(FitMixture(x, 0u, o, &all, &sall).ok());
+  assert_int_equal(sall.screened_on, x.cols());
+  assert_true(std::fabs(sa.final_mean_log_likelihood - sall.final_mean_log_likelihood) < 1e-4);
+  const double want_w[5] = {8.0 / 30, 7.0 / 30, 6.0 / 30, 5.0 / 30, 4.0 / 30};
+  const double want_mu[5][2] = {{0, 0}, {6, 0}, {0, 6}, {6, 6}, {3, 11}};
+  for (int j = 0; j < 5; ++j) {
+    int best = 0;
+    for (int i = 1; i < 5; ++i)
+      if ((a.means.col(i) - Eigen::Vector2d(want_mu[j][0], want_mu[j][1])).norm() <
+          (a.means.col(best) - Eigen::Vector2d(want_mu[j][0], want_mu[j][1])).norm())
+        best = i;
+    assert_true((a.means.col(best) - Eigen::Vector2d(want_mu[j][0], want_mu[j][1])).norm() < 0.05);
+    assert_true(std::fabs(a.weights[best] - want_w[j]) < 0.01);
+  }
+}
+
+}  // namespace
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_vector_exp_matches_std_exp),
+      cmocka_unit_test(test_fused_estep_matches_the_density_and_direct_moments),
+      cmocka_unit_test(test_screening_on_a_sample_is_deterministic_and_recovers_the_mixture),
+  };
+  return cmocka_run_group_tests(tests, nullptr, nullptr);
+}
