@@ -45,9 +45,10 @@ const char kFitHelp[] =
     "  -m, --max-iter N        EM iteration cap (default 500)\n"
     "  -T, --tol X             stop when the mean log-likelihood per point changes < X\n"
     "                          (default 1e-6)\n"
-    "  -d, --delta X           default delta of the task cost stored in the model (default 0.001)\n"
-    "  -Q, --delta-quantile Q  store instead the Q-quantile (0..1) of the fitted density over the\n"
-    "                          training points (data-driven delta; docs/planner.md)\n"
+    "  -Q, --delta-quantile Q  the delta of the task cost stored in the model is the Q-quantile\n"
+    "                          (0..1) of the fitted density over the training points (default 0.25;\n"
+    "                          evidence in docs/planner.md, \"What delta does\")\n"
+    "  -d, --delta X           store this fixed delta instead (the paper's: --delta 0.001)\n"
     "  -o, --output MODEL      model file to write (required)\n"
     "  -q, --quiet             no progress on stderr\n"
     "  -h, --help              this text\n"
@@ -88,7 +89,9 @@ int RunFit(int argc, char** argv) {
   int k_min = 1, k_max = 30;
   bool auto_k = false, k_range_given = false;
   double delta = GMMRRT_MODEL_DEFAULT_DELTA;
-  double delta_quantile = -1.0;  // < 0: not asked for
+  // Data-driven delta by default (delta_quantile.hpp); --delta X stores a fixed one (the paper's 0.001).
+  constexpr double kDefaultDeltaQuantile = 0.25;
+  double delta_quantile = -1.0;  // < 0: not given
   bool delta_given = false;
   optind = 1;
   int c;
@@ -150,6 +153,7 @@ int RunFit(int argc, char** argv) {
 
   if (output.empty()) return UsageError(cmd, "no output model (-o MODEL)");
   if (delta_given && delta_quantile >= 0.0) return UsageError(cmd, "give --delta or --delta-quantile, not both");
+  if (!delta_given && delta_quantile < 0.0) delta_quantile = kDefaultDeltaQuantile;
   if (spec.inputs.empty() == spec.features_csv.empty())
     return UsageError(cmd, "give either --input FILE... or --features-csv FILE (exactly one kind of data)");
   if (!spec.split.empty() && spec.indexes.empty()) return UsageError(cmd, "--split needs --index FILE");

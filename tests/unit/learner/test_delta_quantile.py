@@ -1,4 +1,4 @@
-"""learner.delta_quantile: `gmmrrt-learn fit --delta-quantile Q` stores as the model's delta the
+"""learner.delta_quantile: `gmmrrt-learn fit --delta-quantile Q` (default Q = 0.25) stores as the model's delta the
 Q-quantile of the fitted density over the training points (learner/src/delta_quantile.cpp; the task
 cost c = delta / max(p, delta) of paper Sect. 4).
 
@@ -56,9 +56,14 @@ def test_stored_delta_is_the_density_quantile(points, tmp_path, q):
     assert stored_delta(out) != pytest.approx(0.001)
 
 
-def test_default_delta_unchanged(points, tmp_path):
+def test_default_is_the_quartile_and_delta_fixes_it(points, tmp_path):
+    """No option: the 0.25-quantile (the product default); --delta 0.001: the paper's fixed delta."""
+    csv, _ = points
     out = tmp_path / "m.gmm"
-    assert fit(points[0], out).returncode == 0
+    assert fit(csv, out).returncode == 0
+    dens = mixture.Model(str(out)).density(np.loadtxt(csv, delimiter=","))
+    assert stored_delta(out) == pytest.approx(float(np.quantile(dens, 0.25)), rel=1e-9)
+    assert fit(csv, out, "--delta", "0.001").returncode == 0
     assert stored_delta(out) == 0.001
 
 
