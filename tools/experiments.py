@@ -858,7 +858,8 @@ def _real_figure(eps, by_label, title, n=6):
 # ==================================================================== docs
 
 REPORT_ORDER = [("table1", "Table 1"), ("fig1", "Fig. 1"), ("fig3", "Fig. 3"), ("fig5", "Fig. 5"), ("fig6", "Fig. 6"),
-                ("real_upo_avoid", "Real data: UPO avoid"), ("real_ucy_approach", "Real data: UCY approach")]
+                ("real_upo_avoid", "Real data: UPO avoid"), ("real_ucy_approach", "Real data: UCY approach"),
+                ("delta", "The task-cost floor δ")]
 REPORT_MARK = "<!-- RESULTS (tools/experiments.py report writes everything below this line) -->"
 
 
