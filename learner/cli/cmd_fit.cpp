@@ -9,6 +9,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gmmrrt_learner/bic.hpp"
+#include "gmmrrt_learner/delta_quantile.hpp"
 #include "gmmrrt_learner/em.hpp"
 #include "gmmrrt_learner/episode_features.hpp"
 #include "gmmrrt_learner/features_csv.hpp"
@@ -49,7 +50,10 @@ const char kFitHelp[] =
     "  -m, --max-iter N        EM iteration cap (default 500)\n"
     "  -T, --tol X             stop when the mean log-likelihood per point changes < X\n"
     "                          (default 1e-6)\n"
-    "  -d, --delta X           default delta of the task cost stored in the model (default 0.001)\n"
+    "  -Q, --delta-quantile Q  the delta of the task cost stored in the model is the Q-quantile\n"
+    "                          (0..1) of the fitted density over the training points (default 0.25;\n"
+    "                          evidence in docs/planner.md, \"What delta does\")\n"
+    "  -d, --delta X           store this fixed delta instead (the paper's: --delta 0.001)\n"
     "  -o, --output MODEL      model file to write (required)\n"
     "  -q, --quiet             no progress on stderr\n"
     "  -h, --help              this text\n"
@@ -80,7 +84,8 @@ int RunFit(int argc, char** argv) {
       {"k", required_argument, nullptr, 'k'},        {"k-range", required_argument, nullptr, 'r'},
       {"seed", required_argument, nullptr, 'S'},     {"restarts", required_argument, nullptr, 'R'},
       {"max-iter", required_argument, nullptr, 'm'}, {"tol", required_argument, nullptr, 'T'},
-      {"delta", required_argument, nullptr, 'd'},    {"output", required_argument, nullptr, 'o'},
+      {"delta", required_argument, nullptr, 'd'},    {"delta-quantile", required_argument, nullptr, 'Q'},
+      {"output", required_argument, nullptr, 'o'},
       {"quiet", no_argument, nullptr, 'q'},          {"help", no_argument, nullptr, 'h'},
       {"bic-patience", required_argument, nullptr, 'P'}, {"screen-points", required_argument, nullptr, 'p'},
       {nullptr, 0, nullptr, 0}};
@@ -90,9 +95,13 @@ int RunFit(int argc, char** argv) {
   int k_min = 1, k_max = 30, bic_patience = kBicStopAfterRises;
   bool auto_k = false, k_range_given = false;
   double delta = GMMRRT_MODEL_DEFAULT_DELTA;
+  // Data-driven delta by default (delta_quantile.hpp); --delta X stores a fixed one (the paper's 0.001).
+  constexpr double kDefaultDeltaQuantile = 0.25;
+  double delta_quantile = -1.0;  // < 0: not given
+  bool delta_given = false;
   optind = 1;
   int c;
-  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:p:S:R:m:T:d:o:qh", kLong, nullptr)) != -1) {
+  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:p:S:R:m:T:d:Q:o:qh", kLong, nullptr)) != -1) {
     const std::string arg = optarg ? optarg : "";
     long v = 0;
     switch (c) {
@@ -143,6 +152,11 @@ int RunFit(int argc, char** argv) {
         break;
       case 'd':
         if (!ParseDouble(arg, &delta) || delta <= 0.0) return UsageError(cmd, "--delta '" + arg + "' is not a positive number");
+        delta_given = true;
+        break;
+      case 'Q':
+        if (!ParseDouble(arg, &delta_quantile) || !(delta_quantile >= 0.0 && delta_quantile <= 1.0))
+          return UsageError(cmd, "--delta-quantile '" + arg + "' is not a number in [0, 1]");
         break;
       case 'o': output = arg; break;
       case 'q': spec.quiet = true; break;
@@ -153,6 +167,8 @@ int RunFit(int argc, char** argv) {
   for (int a = optind; a < argc; ++a) spec.inputs.push_back(argv[a]);
 
   if (output.empty()) return UsageError(cmd, "no output model (-o MODEL)");
+  if (delta_given && delta_quantile >= 0.0) return UsageError(cmd, "give --delta or --delta-quantile, not both");
+  if (!delta_given && delta_quantile < 0.0) delta_quantile = kDefaultDeltaQuantile;
   if (spec.inputs.empty() == spec.features_csv.empty())
     return UsageError(cmd, "give either --input FILE... or --features-csv FILE (exactly one kind of data)");
   if (!spec.split.empty() && spec.indexes.empty()) return UsageError(cmd, "--split needs --index FILE");
@@ -220,6 +236,11 @@ int RunFit(int argc, char** argv) {
   if (kind == GMMRRT_MODEL_KIND_XY) SortComponentsByProgress(&mixture);
   if (!spec.quiet) std::fprintf(stderr, "gmmrrt-learn fit: %s\n", summary.BriefReport().c_str());
 
+  if (delta_quantile >= 0.0) {
+    if (!(s = DensityQuantile(mixture, points, delta_quantile, &delta)).ok()) return Fail(cmd, s.message);
+    if (!spec.quiet) std::fprintf(stderr, "gmmrrt-learn fit: delta = %.6g (the %g-quantile of the training densities)\n",
+                                  delta, delta_quantile);
+  }
   gmmrrt_model_t model;
   if (!(s = MixtureToModel(mixture, kind, spec.task, spec.homotopy, delta, &model)).ok()) return Fail(cmd, s.message);
   if (!(s = SaveModel(output, model)).ok()) return Fail(cmd, s.message);

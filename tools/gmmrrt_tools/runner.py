@@ -129,9 +129,11 @@ def learn(args: Sequence[str], bin_dir: Optional[str] = None, timeout_s: float =
 def fit_model(out: Path, task: str, inputs: Sequence[str], homotopy: str = "all", kind: str = "features",
               k: Optional[str] = None, seed: int = 1, index: Optional[str] = None,
               split: Optional[str] = None, bin_dir: Optional[str] = None) -> Path:
-    """`gmmrrt-learn fit` into `out` (skipped when `out` exists and is newer than every input)."""
+    """`gmmrrt-learn fit` into `out` (skipped when `out` exists and is newer than every input and than the
+    gmmrrt-learn executable, so a rebuilt learner with other defaults refits)."""
     out = Path(out)
-    if out.exists() and all(out.stat().st_mtime >= Path(i).stat().st_mtime for i in inputs):
+    learner = Path(find_tool("gmmrrt-learn", bin_dir))
+    if out.exists() and all(out.stat().st_mtime >= Path(i).stat().st_mtime for i in [*inputs, learner]):
         return out
     out.parent.mkdir(parents=True, exist_ok=True)
     args = ["fit", "--input", *inputs, "--task", task, "--homotopy", homotopy, "--kind", kind,
