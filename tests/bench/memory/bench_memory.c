@@ -19,52 +19,7 @@
 
 #include "gmmrrt/rrtstar.h"
 
-extern void *__libc_malloc(size_t);
-extern void *__libc_calloc(size_t, size_t);
-extern void *__libc_realloc(void *, size_t);
-extern void *__libc_memalign(size_t, size_t);
-extern void __libc_free(void *);
-
-static volatile int counting;
-static volatile long alloc_calls;
-
-void *malloc(size_t n)
-{
-    if (counting)
-        ++alloc_calls;
-    return __libc_malloc(n);
-}
-void *calloc(size_t n, size_t m)
-{
-    if (counting)
-        ++alloc_calls;
-    return __libc_calloc(n, m);
-}
-void *realloc(void *p, size_t n)
-{
-    if (counting)
-        ++alloc_calls;
-    return __libc_realloc(p, n);
-}
-void *aligned_alloc(size_t a, size_t n)
-{
-    if (counting)
-        ++alloc_calls;
-    return __libc_memalign(a, n);
-}
-int posix_memalign(void **out, size_t a, size_t n)
-{
-    if (counting)
-        ++alloc_calls;
-    *out = __libc_memalign(a, n);
-    return *out ? 0 : 12;
-}
-void free(void *p)
-{
-    if (counting && p)
-        ++alloc_calls;
-    __libc_free(p);
-}
+#include "alloc_counter.h" /* defines malloc & co. and the counters `counting`, `alloc_calls` */
 
 /* A (d, theta) avoid mixture: 10 components at 1.2 m around the person's sides. */
 static gmmrrt_status_t make_avoid_model(gmmrrt_model_t *m)

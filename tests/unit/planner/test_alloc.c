@@ -17,53 +17,11 @@
 
 #include "planner_fixtures.h"
 
+#ifndef GMMRRT_ALLOC_TEST_SKIP
+#include "alloc_counter.h" /* defines malloc & co. and the counters `counting`, `alloc_calls` */
+#else
 static volatile int counting;
 static volatile long alloc_calls;
-
-#ifndef GMMRRT_ALLOC_TEST_SKIP
-extern void *__libc_malloc(size_t);
-extern void *__libc_calloc(size_t, size_t);
-extern void *__libc_realloc(void *, size_t);
-extern void *__libc_memalign(size_t, size_t);
-extern void __libc_free(void *);
-
-void *malloc(size_t n)
-{
-    if (counting)
-        ++alloc_calls;
-    return __libc_malloc(n);
-}
-void *calloc(size_t n, size_t m)
-{
-    if (counting)
-        ++alloc_calls;
-    return __libc_calloc(n, m);
-}
-void *realloc(void *p, size_t n)
-{
-    if (counting)
-        ++alloc_calls;
-    return __libc_realloc(p, n);
-}
-void *aligned_alloc(size_t a, size_t n)
-{
-    if (counting)
-        ++alloc_calls;
-    return __libc_memalign(a, n);
-}
-int posix_memalign(void **out, size_t a, size_t n)
-{
-    if (counting)
-        ++alloc_calls;
-    *out = __libc_memalign(a, n);
-    return *out ? 0 : 12;
-}
-void free(void *p)
-{
-    if (counting && p)
-        ++alloc_calls;
-    __libc_free(p);
-}
 #endif
 
 static void make_xy_model(gmmrrt_model_t *m)
