@@ -170,7 +170,7 @@ class Ctx:
         tmp.replace(str(base) + ".md")
         jt = Path(str(base) + ".json.tmp")
         jt.write_text(json.dumps({"command": self.command, "commit": self.commit, "settings": asdict(self.s),
-                                  "runs": records}, indent=1, default=_json_default))
+                                  "runs": records}, separators=(",", ":"), default=_json_default))
         jt.replace(str(base) + ".json")
         print(f"wrote {base}.md" + (f", {base}.png" if fig is not None else "") + f", {base}.json")
 
