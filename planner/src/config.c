@@ -31,6 +31,8 @@ void gmmrrt_planner_config_default(gmmrrt_planner_config_t *cfg)
     cfg->goal_bias = 0.05;
     cfg->gmm_bias = 0.95;
     cfg->rewire_gamma = 15.0;
+    cfg->rewire_k_factor = 4.485; /* OMPL's k_rrg, 1.1 e (1 + 1/d), d = 2 */
+    cfg->informed_sampling = 1;
     cfg->w_length = 1.0;
     cfg->w_task = 2.0;
     cfg->delta = 0.0;
@@ -84,6 +86,9 @@ gmmrrt_status_t gmmrrt_planner_config_validate(const gmmrrt_planner_config_t *cf
     CHECK(isfinite(cfg->gmm_bias) && cfg->gmm_bias >= 0.0 && cfg->gmm_bias <= 1.0, "gmm_bias",
           "must be in [0, 1]");
     CHECK(isfinite(cfg->rewire_gamma) && cfg->rewire_gamma > 0.0, "rewire_gamma", "must be finite and > 0");
+    CHECK(isfinite(cfg->rewire_k_factor) && cfg->rewire_k_factor >= 0.0 && cfg->rewire_k_factor <= 64.0,
+          "rewire_k_factor", "must be in [0, 64] (0: radius rewiring)");
+    CHECK(cfg->informed_sampling == 0 || cfg->informed_sampling == 1, "informed_sampling", "must be 0 or 1");
     CHECK(isfinite(cfg->w_length) && cfg->w_length >= 0.0, "w_length", "must be finite and >= 0");
     CHECK(isfinite(cfg->w_task) && cfg->w_task >= 0.0, "w_task", "must be finite and >= 0");
     CHECK(cfg->w_length > 0.0 || cfg->w_task > 0.0, "w_length", "and w_task must not both be 0");

@@ -13,6 +13,10 @@
 #define GMMRRT_NN_NODES_PER_CELL 1.0
 #endif
 #define GMMRRT_NN_FIRST_LAYOUT 16
+/* Sorted re-layouts happen each time the tree grows by 1/GMMRRT_NN_SORTED_GROWTH_DIV. */
+#ifndef GMMRRT_NN_SORTED_GROWTH_DIV
+#define GMMRRT_NN_SORTED_GROWTH_DIV 4
+#endif
 
 int32_t gmmrrt_nn_capacity(int32_t max_nodes)
 {
@@ -82,33 +86,122 @@ static int32_t cell_of(double v, double v0, double cell, int32_t n)
     return (int32_t)f;
 }
 
-static void link(gmmrrt_nn_t *nn, gmmrrt_node_t *nodes, int32_t idx)
+static void link(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t idx)
 {
-    const int32_t i = cell_of(nodes[idx].x, nn->x0, nn->cell_m, nn->nx);
-    const int32_t j = cell_of(nodes[idx].y, nn->y0, nn->cell_m, nn->ny);
+    const int32_t i = cell_of(pool->xy[idx].x, nn->x0, nn->cell_m, nn->nx);
+    const int32_t j = cell_of(pool->xy[idx].y, nn->y0, nn->cell_m, nn->ny);
     int32_t *head = &nn->heads[j * nn->nx + i];
-    nodes[idx].next_in_bucket = *head;
+    pool->next_in_bucket[idx] = *head;
     *head = idx;
 }
 
-void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_node_t *nodes, int32_t idx)
+int gmmrrt_nn_relayout_due(const gmmrrt_nn_t *nn, int32_t n_next)
+{
+    return nn->adaptive && n_next >= nn->relayout_at;
+}
+
+static int32_t bucket_of(const gmmrrt_nn_t *nn, const gmmrrt_xy_t *node)
+{
+    return cell_of(node->y, nn->y0, nn->cell_m, nn->ny) * nn->nx + cell_of(node->x, nn->x0, nn->cell_m, nn->nx);
+}
+
+static int32_t renumbered(const gmmrrt_pool_t *pool, int32_t i) { return i < 0 ? i : pool->next_in_bucket[i]; }
+
+void gmmrrt_nn_relayout_sorted(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t n, int32_t *refs, int32_t n_refs)
+{
+    nn->relayout_at = n > INT32_MAX / 2 ? INT32_MAX : n + n / GMMRRT_NN_SORTED_GROWTH_DIV + 1;
+    /* Counting sort by bucket: heads[] counts, then running start offsets; each node's new
+     * index goes to its next_in_bucket (scratch until the lists are rebuilt). The bucket edge
+     * follows where the nodes are: when they crowd part of the bounds (informed or mixture
+     * sampling), the mean bucket load seen from a node, sum(count^2) / n (1 + lambda for
+     * Poisson buckets of mean lambda), says how much smaller buckets must be to hold
+     * GMMRRT_NN_NODES_PER_CELL there; the capacity limits it (layout). */
+    double cell = cell_for(&nn->bounds, n < 1 ? 1 : n);
+    int32_t cells = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+        layout(nn, &nn->bounds, cell);
+        cells = nn->nx * nn->ny;
+        for (int32_t c = 0; c < cells; ++c)
+            nn->heads[c] = 0;
+        for (int32_t i = 1; i < n; ++i)
+            ++nn->heads[bucket_of(nn, &pool->xy[i])];
+        if (pass > 0 || n < GMMRRT_NN_FIRST_LAYOUT)
+            break; /* (n - 1 >= 15 below) */
+        double load2 = 0.0;
+        for (int32_t c = 0; c < cells; ++c)
+            load2 += (double)nn->heads[c] * (double)nn->heads[c];
+        const double lambda = load2 / (double)(n - 1) - 1.0; /* mean load around a node */
+        if (!(lambda > 2.0 * GMMRRT_NN_NODES_PER_CELL))
+            break;
+        cell = nn->cell_m * sqrt(GMMRRT_NN_NODES_PER_CELL / lambda);
+    }
+    int32_t start = 1; /* node 0, the root, keeps its index */
+    for (int32_t c = 0; c < cells; ++c) {
+        const int32_t count = nn->heads[c];
+        nn->heads[c] = start;
+        start += count;
+    }
+    if (n > 0)
+        pool->next_in_bucket[0] = 0;
+    for (int32_t i = 1; i < n; ++i)
+        pool->next_in_bucket[i] = nn->heads[bucket_of(nn, &pool->xy[i])]++;
+    /* Links to new indices, then the records to their places (cycles of the permutation). */
+    for (int32_t i = 0; i < n; ++i) {
+        pool->link[i].parent = renumbered(pool, pool->link[i].parent);
+        pool->link[i].first_child = renumbered(pool, pool->link[i].first_child);
+        pool->link[i].next_sibling = renumbered(pool, pool->link[i].next_sibling);
+    }
+    for (int32_t r = 0; r < n_refs; ++r)
+        refs[r] = renumbered(pool, refs[r]);
+    for (int32_t i = 1; i < n; ++i) {
+        while (pool->next_in_bucket[i] != i) {
+            const int32_t to = pool->next_in_bucket[i];
+            const gmmrrt_xy_t txy = pool->xy[to];
+            const double tcost = pool->cost[to];
+            const gmmrrt_links_t tlink = pool->link[to];
+            const int32_t tnext = pool->next_in_bucket[to];
+            pool->xy[to] = pool->xy[i];
+            pool->cost[to] = pool->cost[i];
+            pool->link[to] = pool->link[i];
+            pool->next_in_bucket[to] = to;
+            pool->xy[i] = txy;
+            pool->cost[i] = tcost;
+            pool->link[i] = tlink;
+            pool->next_in_bucket[i] = tnext;
+        }
+    }
+    /* Bucket lists: each bucket's nodes are now one run of the pool. */
+    for (int32_t c = 0; c < cells; ++c)
+        nn->heads[c] = -1;
+    int32_t prev_bucket = -1;
+    for (int32_t i = n - 1; i >= 1; --i) {
+        const int32_t b = bucket_of(nn, &pool->xy[i]);
+        pool->next_in_bucket[i] = (b == prev_bucket) ? i + 1 : -1;
+        nn->heads[b] = i;
+        prev_bucket = b;
+    }
+    if (n > 0)
+        link(nn, pool, 0); /* the root heads its bucket's list */
+}
+
+void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t idx)
 {
     if (nn->adaptive && idx + 1 >= nn->relayout_at) {
         const int32_t n = idx + 1;
         layout(nn, &nn->bounds, cell_for(&nn->bounds, n));
         for (int32_t k = 0; k <= idx; ++k)
-            link(nn, nodes, k);
+            link(nn, pool, k);
         nn->relayout_at = n > INT32_MAX / 2 ? INT32_MAX : 2 * n;
         return;
     }
-    link(nn, nodes, idx);
+    link(nn, pool, idx);
 }
 
-static void scan_bucket(const gmmrrt_nn_t *nn, const gmmrrt_node_t *nodes, int32_t i, int32_t j, double x,
+static void scan_bucket(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, int32_t i, int32_t j, double x,
                         double y, int32_t *best, double *best_d2)
 {
-    for (int32_t n = nn->heads[j * nn->nx + i]; n >= 0; n = nodes[n].next_in_bucket) {
-        const double dx = nodes[n].x - x, dy = nodes[n].y - y;
+    for (int32_t n = nn->heads[j * nn->nx + i]; n >= 0; n = pool->next_in_bucket[n]) {
+        const double dx = pool->xy[n].x - x, dy = pool->xy[n].y - y;
         const double d2 = dx * dx + dy * dy;
         if (d2 < *best_d2) {
             *best_d2 = d2;
@@ -117,7 +210,7 @@ static void scan_bucket(const gmmrrt_nn_t *nn, const gmmrrt_node_t *nodes, int32
     }
 }
 
-int32_t gmmrrt_nn_nearest(const gmmrrt_nn_t *nn, const gmmrrt_node_t *nodes, double x, double y)
+int32_t gmmrrt_nn_nearest(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, double x, double y)
 {
     const int32_t ci = cell_of(x, nn->x0, nn->cell_m, nn->nx);
     const int32_t cj = cell_of(y, nn->y0, nn->cell_m, nn->ny);
@@ -132,7 +225,7 @@ int32_t gmmrrt_nn_nearest(const gmmrrt_nn_t *nn, const gmmrrt_node_t *nodes, dou
             const int edge_row = (j == j0 || j == j1);
             for (int32_t i = i0; i <= i1; i += (edge_row ? 1 : (i1 - i0 > 0 ? i1 - i0 : 1))) {
                 if (i >= 0 && i < nn->nx)
-                    scan_bucket(nn, nodes, i, j, x, y, &best, &best_d2);
+                    scan_bucket(nn, pool, i, j, x, y, &best, &best_d2);
             }
         }
         /* Every node not yet scanned lies outside the box of rings 0..k; on a side where
@@ -156,7 +249,158 @@ int32_t gmmrrt_nn_nearest(const gmmrrt_nn_t *nn, const gmmrrt_node_t *nodes, dou
     return best;
 }
 
-int32_t gmmrrt_nn_near(const gmmrrt_nn_t *nn, const gmmrrt_node_t *nodes, double x, double y,
+static void swap_entry(int32_t *idx, double *d2, int32_t i, int32_t j)
+{
+    const int32_t ti = idx[i];
+    const double td = d2[i];
+    idx[i] = idx[j];
+    d2[i] = d2[j];
+    idx[j] = ti;
+    d2[j] = td;
+}
+
+/* Quickselect (median-of-three pivots, no randomness): afterwards entries [0, k) of (idx, d2)
+ * hold the k smallest d2 of [0, n), in no set order. */
+static void select_k(int32_t *idx, double *d2, int32_t n, int32_t k)
+{
+    int32_t lo = 0, hi = n - 1;
+    while (hi > lo) {
+        const int32_t mid = lo + (hi - lo) / 2;
+        if (d2[mid] < d2[lo])
+            swap_entry(idx, d2, mid, lo);
+        if (d2[hi] < d2[lo])
+            swap_entry(idx, d2, hi, lo);
+        if (d2[hi] < d2[mid])
+            swap_entry(idx, d2, hi, mid);
+        const double pivot = d2[mid];
+        int32_t i = lo, j = hi;
+        while (i <= j) {
+            while (d2[i] < pivot)
+                ++i;
+            while (d2[j] > pivot)
+                --j;
+            if (i <= j)
+                swap_entry(idx, d2, i++, j--);
+        }
+        /* [lo, j] <= pivot <= [i, hi] */
+        if (k - 1 <= j)
+            hi = j;
+        else if (k - 1 >= i)
+            lo = i;
+        else
+            return;
+    }
+}
+
+/* Appends the nodes of buckets [a, b] of row j to (buf, buf_d2); when the buffer is full,
+ * keeps only its k nearest (nothing farther can be in the answer) and goes on. The first
+ * node of every bucket in the segment is prefetched before any is read: most buckets hold
+ * one or two nodes, so pool misses overlap instead of queueing one behind the other. */
+static void gather_row(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, int32_t j, int32_t a, int32_t b,
+                       double x, double y, int32_t k, int32_t *buf, double *buf_d2, int32_t cap, int32_t *count,
+                       int *trimmed)
+{
+    if (j < 0 || j >= nn->ny || a > b)
+        return;
+    const int32_t *heads = nn->heads + (size_t)j * (size_t)nn->nx;
+    for (int32_t i = a; i <= b; ++i)
+        if (heads[i] >= 0)
+            __builtin_prefetch(&pool->xy[heads[i]]);
+    int32_t c = *count;
+    for (int32_t i = a; i <= b; ++i)
+        for (int32_t n = heads[i]; n >= 0; n = pool->next_in_bucket[n]) {
+            if (c == cap) {
+                select_k(buf, buf_d2, c, k);
+                c = k;
+                *trimmed = 1;
+            }
+            const double dx = pool->xy[n].x - x, dy = pool->xy[n].y - y;
+            buf[c] = n;
+            buf_d2[c++] = dx * dx + dy * dy;
+        }
+    *count = c;
+}
+
+int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, double x, double y, int32_t k,
+                            int32_t kmax, int32_t *buf, double *buf_d2, int32_t cap)
+{
+    if (k <= 0 || kmax < k || cap < 2 * kmax)
+        return 0;
+    const int32_t ci = cell_of(x, nn->x0, nn->cell_m, nn->nx);
+    const int32_t cj = cell_of(y, nn->y0, nn->cell_m, nn->ny);
+    int32_t count = 0;
+    int trimmed = 0; /* the buffer overflowed: it holds the k nearest so far, not a disc */
+    /* First a box of rings 0..r0 that holds about k nodes at the layout's bucket load, row
+     * by row (each row a contiguous run of buckets); then one ring more at a time. */
+    int32_t r = (int32_t)ceil(sqrt((double)k / (M_PI * GMMRRT_NN_NODES_PER_CELL)));
+    for (int32_t j = cj - r; j <= cj + r; ++j)
+        gather_row(nn, pool, j, clampi(ci - r, 0, nn->nx - 1), clampi(ci + r, 0, nn->nx - 1), x, y, k, buf,
+                     buf_d2, cap, &count, &trimmed);
+    const int32_t max_ring = nn->nx > nn->ny ? nn->nx : nn->ny;
+    for (;;) {
+        const int32_t i0 = ci - r, i1 = ci + r, j0 = cj - r, j1 = cj + r;
+        if ((i0 <= 0 && i1 >= nn->nx - 1 && j0 <= 0 && j1 >= nn->ny - 1) || r > max_ring)
+            break; /* the whole grid is scanned */
+        if (count >= k) {
+            /* Every node not yet scanned lies outside the box of rings 0..r, farther than
+             * reach: done when k of those found are within it. */
+            double reach = INFINITY;
+            if (i0 > 0)
+                reach = fmin(reach, x - (nn->x0 + (double)i0 * nn->cell_m));
+            if (i1 < nn->nx - 1)
+                reach = fmin(reach, nn->x0 + (double)(i1 + 1) * nn->cell_m - x);
+            if (j0 > 0)
+                reach = fmin(reach, y - (nn->y0 + (double)j0 * nn->cell_m));
+            if (j1 < nn->ny - 1)
+                reach = fmin(reach, nn->y0 + (double)(j1 + 1) * nn->cell_m - y);
+            if (reach >= 0.0) {
+                const double reach2 = reach * reach;
+                int32_t within = 0;
+                for (int32_t c = 0; c < count; ++c)
+                    within += buf_d2[c] <= reach2;
+                if (within >= k && trimmed)
+                    break; /* the k nearest are in the buffer: selected below */
+                if (within >= k) {
+                    /* The answer: every node within reach (all of them are nearer than any
+                     * node outside it). Compacted in scan order, without branches. */
+                    int32_t w = 0;
+                    for (int32_t c = 0; c < count; ++c) {
+                        const int32_t keep = buf_d2[c] <= reach2;
+                        buf[w] = buf[c];
+                        buf_d2[w] = buf_d2[c];
+                        w += keep;
+                    }
+                    count = w;
+                    break;
+                }
+            }
+        }
+        ++r; /* the next ring: its top and bottom rows, then its side columns */
+        const int32_t a = clampi(ci - r, 0, nn->nx - 1), b = clampi(ci + r, 0, nn->nx - 1);
+        gather_row(nn, pool, cj - r, a, b, x, y, k, buf, buf_d2, cap, &count, &trimmed);
+        gather_row(nn, pool, cj + r, a, b, x, y, k, buf, buf_d2, cap, &count, &trimmed);
+        for (int32_t j = cj - r + 1; j <= cj + r - 1; ++j) {
+            if (ci - r >= 0)
+                gather_row(nn, pool, j, ci - r, ci - r, x, y, k, buf, buf_d2, cap, &count, &trimmed);
+            if (ci + r < nn->nx)
+                gather_row(nn, pool, j, ci + r, ci + r, x, y, k, buf, buf_d2, cap, &count, &trimmed);
+        }
+    }
+    if (count > kmax || (trimmed && count > k)) {
+        select_k(buf, buf_d2, count, k);
+        count = k;
+    }
+    /* The nearest first (of equally near nodes the lowest index). */
+    int32_t best = 0;
+    for (int32_t i = 1; i < count; ++i)
+        if (buf_d2[i] < buf_d2[best] || (buf_d2[i] == buf_d2[best] && buf[i] < buf[best]))
+            best = i;
+    if (best != 0)
+        swap_entry(buf, buf_d2, 0, best);
+    return count;
+}
+
+int32_t gmmrrt_nn_near(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, double x, double y,
                        double radius_m, int32_t *out, int32_t cap)
 {
     const int32_t i0 = clampi((int32_t)floor((x - radius_m - nn->x0) / nn->cell_m), 0, nn->nx - 1);
@@ -178,8 +422,8 @@ int32_t gmmrrt_nn_near(const gmmrrt_nn_t *nn, const gmmrrt_node_t *nodes, double
             b = clampi((int32_t)floor((x + half - nn->x0) / nn->cell_m), i0, i1);
         }
         for (int32_t i = a; i <= b; ++i)
-            for (int32_t n = nn->heads[j * nn->nx + i]; n >= 0; n = nodes[n].next_in_bucket) {
-                const double dx = nodes[n].x - x, ddy = nodes[n].y - y;
+            for (int32_t n = nn->heads[j * nn->nx + i]; n >= 0; n = pool->next_in_bucket[n]) {
+                const double dx = pool->xy[n].x - x, ddy = pool->xy[n].y - y;
                 if (dx * dx + ddy * ddy <= r2) {
                     if (count >= cap)
                         return -1;

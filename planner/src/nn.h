@@ -12,15 +12,26 @@
 
 #include "gmmrrt/collision.h"
 
-/* One tree node: 40 bytes; with its bucket head 44 bytes per node of capacity. */
+/* The tree's nodes as a structure of arrays, entry i of each array for node i: 40 bytes a
+ * node, 44 with its bucket head. Positions are apart from the rest because every spatial
+ * query scans them (16 bytes a node read, not the whole record); costs are apart because
+ * choose-parent and rewire read them only for the near set. */
 typedef struct {
     double x, y;           /* m, world */
-    double cost;           /* cost-to-come from the root */
+} gmmrrt_xy_t;
+
+typedef struct {
     int32_t parent;        /* -1 for the root */
     int32_t first_child;   /* -1 when a leaf */
     int32_t next_sibling;  /* next child of the same parent, -1 at the end */
-    int32_t next_in_bucket;/* spatial index list, -1 at the end */
-} gmmrrt_node_t;
+} gmmrrt_links_t;
+
+typedef struct {
+    gmmrrt_xy_t *xy;
+    double *cost;          /* cost-to-come from the root */
+    gmmrrt_links_t *link;
+    int32_t *next_in_bucket; /* spatial index list, -1 at the end */
+} gmmrrt_pool_t;
 
 typedef struct {
     int32_t *heads;        /* capacity buckets, owned by the planner block */
@@ -49,16 +60,42 @@ void gmmrrt_nn_reset(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double min_
  * nodes 0..idx: amortised O(1) per insert, no memory beyond the heads). */
 void gmmrrt_nn_reset_adaptive(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds);
 
+/* 1 when the adaptive grid wants laying again before a tree of n_next nodes is indexed. */
+int gmmrrt_nn_relayout_due(const gmmrrt_nn_t *nn, int32_t n_next);
+
+/* Lays the adaptive grid again for nodes 0..n-1 and renumbers nodes 1..n-1 in bucket order
+ * (row-major buckets, each bucket's nodes contiguous in the pool; node 0, the root, keeps
+ * its index and heads its bucket's list), so that a query's buckets
+ * are a few contiguous runs of memory instead of scattered pool entries: the pool outgrows
+ * the CPU caches long before planning ends, and the near-set scan is memory bound. Rewrites
+ * every tree link (parent, first_child, next_sibling) and the n_refs node indices in refs[]
+ * (the caller's other references into the pool, -1 entries left alone). Uses no memory but
+ * the pool and the bucket heads (next_in_bucket is the scratch). O(n). Any node index the
+ * caller keeps elsewhere is stale afterwards. */
+void gmmrrt_nn_relayout_sorted(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t n, int32_t *refs, int32_t n_refs);
+
 /* Adds node `idx` (its x, y set) to the index (adaptive: nodes 0..idx-1 already in). */
-void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_node_t *nodes, int32_t idx);
+void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t idx);
 
 /* Index of the node nearest to (x, y) (ties: the one found first), -1 when empty. */
-int32_t gmmrrt_nn_nearest(const gmmrrt_nn_t *nn, const gmmrrt_node_t *nodes, double x, double y);
+int32_t gmmrrt_nn_nearest(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, double x, double y);
+
+/* A near set of at least the k nearest nodes to (x, y): every node within the largest disc
+ * around (x, y) that the scanned buckets cover, which holds at least k nodes (all of them
+ * when the tree has fewer); when that is more than kmax, exactly the k nearest. Uses
+ * buf[cap] and buf_d2[cap] (cap >= 2 kmax) as scratch and returns the number of nodes,
+ * their indices in buf[0..) and squared distances (m^2) in buf_d2[0..). buf[0] is the
+ * nearest (of equally near nodes the lowest index); the others are in scan order. Grows
+ * square rings of buckets around (x, y) (OMPL's nearestK, here on the bucket grid; the
+ * disc usually holds a ring's worth more than k, which k-nearest RRT* allows: its bound is
+ * a lower one, Karaman & Frazzoli 2011). Returns 0 when k <= 0, kmax < k or cap < 2 kmax. */
+int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, double x, double y, int32_t k,
+                            int32_t kmax, int32_t *buf, double *buf_d2, int32_t cap);
 
 /* Writes the indices of nodes within radius_m of (x, y) (distance <= radius_m) into
  * out[cap]; returns their number, or -1 when there are more than cap (out then holds
  * a partial list). */
-int32_t gmmrrt_nn_near(const gmmrrt_nn_t *nn, const gmmrrt_node_t *nodes, double x, double y,
+int32_t gmmrrt_nn_near(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, double x, double y,
                        double radius_m, int32_t *out, int32_t cap);
 
 #endif /* GMMRRT_NN_H */

@@ -22,9 +22,9 @@ gmmrrt_status_t gmmrrt_planner_best_path(const gmmrrt_planner_t *p, gmmrrt_path_
     const int32_t leaf = p->goal_idx[p->best_goal];
 
     /* Total length: goal edge, then the tree edges up to the root. */
-    double total = hypot(pr->goal_x - p->nodes[leaf].x, pr->goal_y - p->nodes[leaf].y);
-    for (int32_t i = leaf; p->nodes[i].parent >= 0; i = p->nodes[i].parent) {
-        const gmmrrt_node_t *a = &p->nodes[p->nodes[i].parent], *b = &p->nodes[i];
+    double total = hypot(pr->goal_x - p->pool.xy[leaf].x, pr->goal_y - p->pool.xy[leaf].y);
+    for (int32_t i = leaf; p->pool.link[i].parent >= 0; i = p->pool.link[i].parent) {
+        const gmmrrt_xy_t *a = &p->pool.xy[p->pool.link[i].parent], *b = &p->pool.xy[i];
         total += hypot(b->x - a->x, b->y - a->y);
     }
     double spacing = p->cfg.waypoint_spacing_m;
@@ -50,16 +50,16 @@ gmmrrt_status_t gmmrrt_planner_best_path(const gmmrrt_planner_t *p, gmmrrt_path_
         double ax, ay;
         int32_t next;
         if (first) { /* the goal edge: leaf -> goal */
-            ax = p->nodes[leaf].x;
-            ay = p->nodes[leaf].y;
+            ax = p->pool.xy[leaf].x;
+            ay = p->pool.xy[leaf].y;
             next = leaf;
             first = 0;
         } else {
-            next = p->nodes[i].parent;
+            next = p->pool.link[i].parent;
             if (next < 0)
                 break;
-            ax = p->nodes[next].x;
-            ay = p->nodes[next].y;
+            ax = p->pool.xy[next].x;
+            ay = p->pool.xy[next].y;
         }
         const double len = hypot(bx - ax, by - ay);
         if (len > 0.0) {

@@ -15,6 +15,8 @@
 /* Near-set scratch: choose-parent and rewire look at no more than this many nodes; when the
  * rewiring disc holds more, the radius is halved until they fit (rrtstar.c). */
 #define GMMRRT_NEAR_CAP 256
+/* Scratch of the k-nearest query (>= 2 GMMRRT_NEAR_CAP): candidates gathered before selection. */
+#define GMMRRT_KNN_SCRATCH 1024
 /* Nodes within goal tolerance that are remembered as solution candidates; when full, a
  * new candidate replaces the worst one if it is better. */
 #define GMMRRT_GOAL_CAP 1024
@@ -27,16 +29,17 @@ struct gmmrrt_planner {
     gmmrrt_rng_t rng;
 
     /* Block layout (all inside the caller's memory). */
-    gmmrrt_node_t *nodes;          /* cfg.max_nodes */
+    gmmrrt_pool_t pool;            /* cfg.max_nodes of each array */
     gmmrrt_nn_t nn;                /* heads: gmmrrt_nn_capacity(max_nodes) */
     void *world_mem;
     size_t world_size;
     gmmrrt_world_t *world;         /* NULL until set_problem succeeds */
     int64_t *hist_iter;            /* cfg.history_capacity */
     double *hist_cost;
-    int32_t near_idx[GMMRRT_NEAR_CAP + 1];
+    int32_t near_idx[GMMRRT_KNN_SCRATCH];  /* near set (first GMMRRT_NEAR_CAP + 1); k-nearest scratch */
     double near_edge[GMMRRT_NEAR_CAP + 1]; /* exact edge cost, NAN until needed */
     double near_len[GMMRRT_NEAR_CAP + 1];  /* m */
+    double near_d2[GMMRRT_KNN_SCRATCH];    /* m^2, squared distances of near_idx */
     int8_t near_free[GMMRRT_NEAR_CAP + 1];
     int32_t goal_idx[GMMRRT_GOAL_CAP];
     double goal_edge[GMMRRT_GOAL_CAP];
@@ -49,6 +52,9 @@ struct gmmrrt_planner {
     int32_t num_active;            /* people the task is about */
     int32_t active[GMMRRT_MAX_PEOPLE];
     int32_t focus_person;          /* GMM-RRT: the person whose frame the xy model lives in */
+
+    /* Informed sampling (sampler.c): the ellipse's centre, axis direction and focal distance. */
+    double inf_cx, inf_cy, inf_cos, inf_sin, inf_cmin;
 
     /* GMM-RRT baseline: components in order of mean progress s, the current stage, and the
      * inverse of each component's (x', y') marginal covariance. */

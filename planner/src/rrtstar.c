@@ -27,15 +27,22 @@
 static size_t align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
 
 typedef struct {
-    size_t nodes, heads, hist_iter, hist_cost, world, total;
+    size_t xy, cost, link, next, heads, hist_iter, hist_cost, world, total;
 } layout_t;
 
 static layout_t layout_of(const gmmrrt_planner_config_t *cfg)
 {
     layout_t l;
     size_t off = align8(sizeof(struct gmmrrt_planner));
-    l.nodes = off;
-    off += align8((size_t)cfg->max_nodes * sizeof(gmmrrt_node_t));
+    const size_t n = (size_t)cfg->max_nodes;
+    l.xy = off;
+    off += align8(n * sizeof(gmmrrt_xy_t));
+    l.cost = off;
+    off += align8(n * sizeof(double));
+    l.link = off;
+    off += align8(n * sizeof(gmmrrt_links_t));
+    l.next = off;
+    off += align8(n * sizeof(int32_t));
     l.heads = off;
     off += align8((size_t)gmmrrt_nn_capacity(cfg->max_nodes) * sizeof(int32_t));
     l.hist_iter = off;
@@ -70,7 +77,10 @@ gmmrrt_status_t gmmrrt_planner_init(gmmrrt_planner_t **out, void *mem, size_t si
     struct gmmrrt_planner *p = mem;
     memset(p, 0, sizeof *p);
     p->cfg = *cfg;
-    p->nodes = (gmmrrt_node_t *)(void *)(base + l.nodes);
+    p->pool.xy = (gmmrrt_xy_t *)(void *)(base + l.xy);
+    p->pool.cost = (double *)(void *)(base + l.cost);
+    p->pool.link = (gmmrrt_links_t *)(void *)(base + l.link);
+    p->pool.next_in_bucket = (int32_t *)(void *)(base + l.next);
     p->nn.heads = (int32_t *)(void *)(base + l.heads);
     p->nn.capacity = gmmrrt_nn_capacity(cfg->max_nodes);
     p->hist_iter = (int64_t *)(void *)(base + l.hist_iter);
@@ -114,13 +124,12 @@ static void update_best(struct gmmrrt_planner *p);
 static void reset_tree(struct gmmrrt_planner *p)
 {
     p->num_nodes = 1;
-    gmmrrt_node_t *root = &p->nodes[0];
-    root->x = p->problem.start_x;
-    root->y = p->problem.start_y;
-    root->cost = 0.0;
-    root->parent = root->first_child = root->next_sibling = -1;
+    p->pool.xy[0].x = p->problem.start_x;
+    p->pool.xy[0].y = p->problem.start_y;
+    p->pool.cost[0] = 0.0;
+    p->pool.link[0].parent = p->pool.link[0].first_child = p->pool.link[0].next_sibling = -1;
     gmmrrt_nn_reset_adaptive(&p->nn, &p->problem.obstacles.bounds);
-    gmmrrt_nn_insert(&p->nn, p->nodes, 0);
+    gmmrrt_nn_insert(&p->nn, &p->pool, 0);
     p->num_goal = 0;
     p->best_goal = -1;
     p->best_cost = INFINITY;
@@ -227,60 +236,59 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
 
 static void attach(struct gmmrrt_planner *p, int32_t child, int32_t parent)
 {
-    gmmrrt_node_t *c = &p->nodes[child];
+    gmmrrt_links_t *c = &p->pool.link[child];
     c->parent = parent;
-    c->next_sibling = p->nodes[parent].first_child;
-    p->nodes[parent].first_child = child;
+    c->next_sibling = p->pool.link[parent].first_child;
+    p->pool.link[parent].first_child = child;
 }
 
 static void detach(struct gmmrrt_planner *p, int32_t child)
 {
-    const int32_t parent = p->nodes[child].parent;
-    int32_t *link = &p->nodes[parent].first_child;
+    const int32_t parent = p->pool.link[child].parent;
+    int32_t *link = &p->pool.link[parent].first_child;
     while (*link != child)
-        link = &p->nodes[*link].next_sibling;
-    *link = p->nodes[child].next_sibling;
-    p->nodes[child].next_sibling = -1;
-    p->nodes[child].parent = -1;
+        link = &p->pool.link[*link].next_sibling;
+    *link = p->pool.link[child].next_sibling;
+    p->pool.link[child].next_sibling = -1;
+    p->pool.link[child].parent = -1;
 }
 
 /* Adds delta to the cost of every descendant of `top` (not top itself). */
 static void shift_subtree(struct gmmrrt_planner *p, int32_t top, double delta)
 {
-    int32_t cur = p->nodes[top].first_child;
+    int32_t cur = p->pool.link[top].first_child;
     while (cur >= 0) {
-        p->nodes[cur].cost += delta;
-        if (p->nodes[cur].first_child >= 0) {
-            cur = p->nodes[cur].first_child;
+        p->pool.cost[cur] += delta;
+        if (p->pool.link[cur].first_child >= 0) {
+            cur = p->pool.link[cur].first_child;
             continue;
         }
-        while (cur != top && p->nodes[cur].next_sibling < 0)
-            cur = p->nodes[cur].parent;
+        while (cur != top && p->pool.link[cur].next_sibling < 0)
+            cur = p->pool.link[cur].parent;
         if (cur == top)
             break;
-        cur = p->nodes[cur].next_sibling;
+        cur = p->pool.link[cur].next_sibling;
     }
 }
 
 static void reparent(struct gmmrrt_planner *p, int32_t node, int32_t new_parent, double new_cost)
 {
-    const double delta = new_cost - p->nodes[node].cost;
+    const double delta = new_cost - p->pool.cost[node];
     detach(p, node);
     attach(p, node, new_parent);
-    p->nodes[node].cost = new_cost;
+    p->pool.cost[node] = new_cost;
     shift_subtree(p, node, delta);
 }
 
 static int32_t add_node(struct gmmrrt_planner *p, double x, double y, int32_t parent, double cost)
 {
     const int32_t i = p->num_nodes++;
-    gmmrrt_node_t *n = &p->nodes[i];
-    n->x = x;
-    n->y = y;
-    n->cost = cost;
-    n->first_child = -1;
+    p->pool.xy[i].x = x;
+    p->pool.xy[i].y = y;
+    p->pool.cost[i] = cost;
+    p->pool.link[i].first_child = -1;
     attach(p, i, parent);
-    gmmrrt_nn_insert(&p->nn, p->nodes, i);
+    gmmrrt_nn_insert(&p->nn, &p->pool, i);
     gmmrrt_sampler_node_added(p, x, y);
     return i;
 }
@@ -289,7 +297,8 @@ static int32_t add_node(struct gmmrrt_planner *p, double x, double y, int32_t pa
 static void consider_goal(struct gmmrrt_planner *p, int32_t i)
 {
     const gmmrrt_problem_t *pr = &p->problem;
-    const gmmrrt_node_t *n = &p->nodes[i];
+    const gmmrrt_xy_t *n = &p->pool.xy[i];
+    const double n_cost = p->pool.cost[i];
     const double gx = n->x - pr->goal_x, gy = n->y - pr->goal_y;
     const double d = sqrt(gx * gx + gy * gy); /* plain sqrt: map coordinates */
     if (d > pr->goal_tolerance_m)
@@ -301,10 +310,10 @@ static void consider_goal(struct gmmrrt_planner *p, int32_t i)
     if (slot >= GMMRRT_GOAL_CAP) {
         int32_t worst = 0;
         for (int32_t s = 1; s < p->num_goal; ++s)
-            if (p->nodes[p->goal_idx[s]].cost + p->goal_edge[s] >
-                p->nodes[p->goal_idx[worst]].cost + p->goal_edge[worst])
+            if (p->pool.cost[p->goal_idx[s]] + p->goal_edge[s] >
+                p->pool.cost[p->goal_idx[worst]] + p->goal_edge[worst])
                 worst = s;
-        if (worst == p->best_goal || p->nodes[p->goal_idx[worst]].cost + p->goal_edge[worst] <= n->cost + edge)
+        if (worst == p->best_goal || p->pool.cost[p->goal_idx[worst]] + p->goal_edge[worst] <= n_cost + edge)
             return;
         slot = worst;
     } else {
@@ -320,7 +329,7 @@ static void update_best(struct gmmrrt_planner *p)
     int32_t best = -1;
     double best_cost = INFINITY;
     for (int32_t s = 0; s < p->num_goal; ++s) {
-        const double c = p->nodes[p->goal_idx[s]].cost + p->goal_edge[s];
+        const double c = p->pool.cost[p->goal_idx[s]] + p->goal_edge[s];
         if (c < best_cost) {
             best_cost = c;
             best = s;
@@ -345,7 +354,7 @@ static void update_best(struct gmmrrt_planner *p)
 static int edge_free_cached(struct gmmrrt_planner *p, int32_t k, double x, double y)
 {
     if (p->near_free[k] < 0) {
-        const gmmrrt_node_t *n = &p->nodes[p->near_idx[k]];
+        const gmmrrt_xy_t *n = &p->pool.xy[p->near_idx[k]];
         p->near_free[k] = (int8_t)gmmrrt_world_segment_free(p->world, n->x, n->y, x, y);
     }
     return p->near_free[k];
@@ -353,7 +362,7 @@ static int edge_free_cached(struct gmmrrt_planner *p, int32_t k, double x, doubl
 
 static void near_exact(struct gmmrrt_planner *p, int32_t k, double x, double y)
 {
-    const gmmrrt_node_t *n = &p->nodes[p->near_idx[k]];
+    const gmmrrt_xy_t *n = &p->pool.xy[p->near_idx[k]];
     p->near_edge[k] = gmmrrt_edge_cost(p, n->x, n->y, x, y);
 }
 
@@ -367,7 +376,7 @@ static int32_t near_set(struct gmmrrt_planner *p, double x, double y, int32_t ne
             r = ball;
     }
     int32_t count;
-    while ((count = gmmrrt_nn_near(&p->nn, p->nodes, x, y, r, p->near_idx, GMMRRT_NEAR_CAP)) < 0)
+    while ((count = gmmrrt_nn_near(&p->nn, &p->pool, x, y, r, p->near_idx, GMMRRT_NEAR_CAP)) < 0)
         r *= 0.5;
     int found = 0;
     for (int32_t k = 0; k < count; ++k)
@@ -377,48 +386,87 @@ static int32_t near_set(struct gmmrrt_planner *p, double x, double y, int32_t ne
     return count;
 }
 
+/* k of the k-nearest near set for the current tree: ceil(rewire_k_factor ln(n + 1)). */
+static int32_t near_k(const struct gmmrrt_planner *p)
+{
+    const double k = ceil(p->cfg.rewire_k_factor * log((double)p->num_nodes + 1.0));
+    return k < 1.0 ? 1 : (k > (double)GMMRRT_NEAR_CAP ? GMMRRT_NEAR_CAP : (int32_t)k);
+}
+
 static void iterate(struct gmmrrt_planner *p)
 {
     double sx, sy;
+    if (gmmrrt_nn_relayout_due(&p->nn, p->num_nodes + 1)) /* no node index is held here */
+        gmmrrt_nn_relayout_sorted(&p->nn, &p->pool, p->num_nodes, p->goal_idx, p->num_goal);
     ++p->iterations;
-    if (!gmmrrt_sample(p, &sx, &sy))
+    /* SampleFree (Karaman & Frazzoli 2011, Alg. 6): a sample in collision is dropped before
+     * any tree query (the iteration is spent, as OMPL counts). */
+    if (!gmmrrt_sample(p, &sx, &sy) || !gmmrrt_world_point_free(p->world, sx, sy))
         return;
-    const int32_t nearest = gmmrrt_nn_nearest(&p->nn, p->nodes, sx, sy);
-    const gmmrrt_node_t *nn = &p->nodes[nearest];
+    /* k-nearest RRT*: one query at the sample gives the nearest node and, unless steering
+     * moves the new point, the near set too. */
+    const int knn = p->cfg.rewire_k_factor > 0.0 && p->cfg.planner != GMMRRT_PLANNER_GMM_RRT;
+    int32_t count = 0;
+    int32_t nearest;
+    if (knn) {
+        count = gmmrrt_nn_nearest_k(&p->nn, &p->pool, sx, sy, near_k(p), GMMRRT_NEAR_CAP, p->near_idx,
+                                    p->near_d2, GMMRRT_KNN_SCRATCH);
+        nearest = p->near_idx[0];
+    } else {
+        nearest = gmmrrt_nn_nearest(&p->nn, &p->pool, sx, sy);
+    }
+    const gmmrrt_xy_t *nn = &p->pool.xy[nearest];
     double dx = sx - nn->x, dy = sy - nn->y;
     const double dist = sqrt(dx * dx + dy * dy); /* plain sqrt: hypot is far slower, no overflow here */
     if (dist <= GMMRRT_SAME_POINT_M)
         return;
     double x = sx, y = sy;
-    if (dist > p->cfg.step_m) {
+    const int steered = dist > p->cfg.step_m;
+    if (steered) {
         x = nn->x + dx * (p->cfg.step_m / dist);
         y = nn->y + dy * (p->cfg.step_m / dist);
     }
-    if (!gmmrrt_world_point_free(p->world, x, y))
+    if (steered && !gmmrrt_world_point_free(p->world, x, y))
         return;
 
     if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT) {
         if (!gmmrrt_world_segment_free(p->world, nn->x, nn->y, x, y))
             return;
-        const double c = nn->cost + gmmrrt_edge_cost(p, nn->x, nn->y, x, y);
+        const double c = p->pool.cost[nearest] + gmmrrt_edge_cost(p, nn->x, nn->y, x, y);
         const int32_t i = add_node(p, x, y, nearest, c);
         consider_goal(p, i);
         update_best(p);
         return;
     }
 
+    if (!knn) {
+        count = near_set(p, x, y, nearest);
+        for (int32_t k = 0; k < count; ++k) {
+            const gmmrrt_xy_t *c = &p->pool.xy[p->near_idx[k]];
+            const double ddx = c->x - x, ddy = c->y - y;
+            p->near_d2[k] = ddx * ddx + ddy * ddy;
+        }
+    } else if (steered) {
+        count = gmmrrt_nn_nearest_k(&p->nn, &p->pool, x, y, near_k(p), GMMRRT_NEAR_CAP, p->near_idx, p->near_d2,
+                                    GMMRRT_KNN_SCRATCH);
+        int found = 0;
+        for (int32_t k = 0; k < count; ++k)
+            found |= (p->near_idx[k] == nearest);
+        if (!found) { /* the extend step's parent is always a candidate */
+            p->near_idx[count] = nearest;
+            p->near_d2[count++] = p->cfg.step_m * p->cfg.step_m;
+        }
+    }
+
     /* Choose parent: cheapest candidate by cost-to-come + edge cost whose edge is free.
      * Candidates are ranked by a lower bound until their exact cost is needed (lazy, so
      * the quadrature runs only for candidates that can still win). */
-    const int32_t count = near_set(p, x, y, nearest);
     /* Without a task term the edge cost is a fixed multiple of length: the lower bound is
      * exact, so no candidate needs the quadrature. */
     const int cost_is_length = p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR || !p->task_active ||
                                p->num_active == 0;
     for (int32_t k = 0; k < count; ++k) {
-        const gmmrrt_node_t *c = &p->nodes[p->near_idx[k]];
-        const double ddx = c->x - x, ddy = c->y - y;
-        p->near_len[k] = sqrt(ddx * ddx + ddy * ddy);
+        p->near_len[k] = sqrt(p->near_d2[k]);
         p->near_edge[k] = cost_is_length ? gmmrrt_edge_cost_lower_bound(p, p->near_len[k]) : NAN;
         p->near_free[k] = -1;
     }
@@ -431,7 +479,7 @@ static void iterate(struct gmmrrt_planner *p)
                 continue;
             const double edge = isnan(p->near_edge[k]) ? gmmrrt_edge_cost_lower_bound(p, p->near_len[k])
                                                        : p->near_edge[k];
-            const double c = p->nodes[p->near_idx[k]].cost + edge;
+            const double c = p->pool.cost[p->near_idx[k]] + edge;
             if (c < pick_cost) {
                 pick_cost = c;
                 pick = k;
@@ -449,20 +497,20 @@ static void iterate(struct gmmrrt_planner *p)
         }
     }
     const int32_t parent = p->near_idx[parent_k];
-    const int32_t added = add_node(p, x, y, parent, p->nodes[parent].cost + p->near_edge[parent_k]);
+    const int32_t added = add_node(p, x, y, parent, p->pool.cost[parent] + p->near_edge[parent_k]);
 
     /* Rewire: near nodes that get cheaper through the new node. */
     for (int32_t k = 0; k < count; ++k) {
         const int32_t m = p->near_idx[k];
         if (m == parent)
             continue;
-        const double base = p->nodes[added].cost;
-        if (!(base + gmmrrt_edge_cost_lower_bound(p, p->near_len[k]) < p->nodes[m].cost))
+        const double base = p->pool.cost[added];
+        if (!(base + gmmrrt_edge_cost_lower_bound(p, p->near_len[k]) < p->pool.cost[m]))
             continue;
         if (isnan(p->near_edge[k]))
             near_exact(p, k, x, y);
         const double c = base + p->near_edge[k];
-        if (c < p->nodes[m].cost && edge_free_cached(p, k, x, y))
+        if (c < p->pool.cost[m] && edge_free_cached(p, k, x, y))
             reparent(p, m, added, c);
     }
     consider_goal(p, added);
@@ -542,14 +590,15 @@ gmmrrt_status_t gmmrrt_planner_seed_path(gmmrrt_planner_t *p, const double *x, c
             return GMMRRT_ERR_INVALID_ARGUMENT;
     int32_t prev = 0;
     for (int32_t i = 0; i < n; ++i) {
-        const gmmrrt_node_t *pn = &p->nodes[prev];
+        const gmmrrt_xy_t *pn = &p->pool.xy[prev];
+        const double pn_cost = p->pool.cost[prev];
         if (hypot(x[i] - pn->x, y[i] - pn->y) <= GMMRRT_SAME_POINT_M)
             continue;
         if (p->num_nodes >= p->cfg.max_nodes)
             return GMMRRT_POOL_FULL;
         if (!gmmrrt_world_segment_free(p->world, pn->x, pn->y, x[i], y[i]))
             break; /* the rest of the old path starts from a blocked edge */
-        const double c = pn->cost + gmmrrt_edge_cost(p, pn->x, pn->y, x[i], y[i]);
+        const double c = pn_cost + gmmrrt_edge_cost(p, pn->x, pn->y, x[i], y[i]);
         prev = add_node(p, x[i], y[i], prev, c);
         consider_goal(p, prev);
     }
@@ -576,15 +625,14 @@ gmmrrt_status_t gmmrrt_planner_node(const gmmrrt_planner_t *p, int32_t i, double
 {
     if (!p || !p->has_problem || i < 0 || i >= p->num_nodes)
         return GMMRRT_ERR_INVALID_ARGUMENT;
-    const gmmrrt_node_t *n = &p->nodes[i];
     if (x)
-        *x = n->x;
+        *x = p->pool.xy[i].x;
     if (y)
-        *y = n->y;
+        *y = p->pool.xy[i].y;
     if (parent)
-        *parent = n->parent;
+        *parent = p->pool.link[i].parent;
     if (cost)
-        *cost = n->cost;
+        *cost = p->pool.cost[i];
     return GMMRRT_OK;
 }
 

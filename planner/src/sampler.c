@@ -13,6 +13,14 @@
  *   a node lands inside the component's 90 % ellipse (Mahalanobis^2 <= 4.605); after the
  *   last component those draws go to the goal.
  * A mixture sample outside the bounds is discarded: the iteration is spent.
+ *
+ * Informed sampling (cfg.informed_sampling; Gammell, Srinivasa & Barfoot 2014): once a path
+ * of cost c exists, a cheaper path has length L < c / u, u = gmmrrt_edge_cost_lower_bound
+ * per metre (every edge costs at least u times its length), so all its points lie in the
+ * ellipse { x : |x - start| + |x - goal| < c / u }. Uniform draws then come from that
+ * ellipse (when it is smaller than the bounds), and mixture draws outside it are dropped
+ * (the iteration is spent): no node outside it can be on a cheaper path, nor make one by
+ * rewiring, since a path through it costs at least u times its length.
  */
 #include <math.h>
 
@@ -35,8 +43,46 @@ static void uniform(struct gmmrrt_planner *p, double *x, double *y)
     *y = b->ymin + gmmrrt_rng_uniform(&p->rng) * (b->ymax - b->ymin);
 }
 
+/* Transverse diameter of the informed ellipse (m), or INFINITY while there is no path or
+ * informed sampling is off. */
+static double informed_diameter(const struct gmmrrt_planner *p)
+{
+    if (!p->cfg.informed_sampling || !isfinite(p->best_cost))
+        return INFINITY;
+    const double u = gmmrrt_edge_cost_lower_bound(p, 1.0);
+    return u > 0.0 ? p->best_cost / u : INFINITY;
+}
+
+static int in_ellipse(const struct gmmrrt_planner *p, double diameter, double x, double y)
+{
+    const double ax = x - p->problem.start_x, ay = y - p->problem.start_y;
+    const double bx = x - p->problem.goal_x, by = y - p->problem.goal_y;
+    return sqrt(ax * ax + ay * ay) + sqrt(bx * bx + by * by) <= diameter;
+}
+
+/* Uniform in the informed ellipse of the given diameter (> focal distance): a uniform point
+ * of the unit disc, scaled to the semi-axes, turned along start -> goal, moved to the centre.
+ * Returns 0 when it falls outside the bounds. */
+static int informed_uniform(struct gmmrrt_planner *p, double diameter, double *x, double *y)
+{
+    const double a = 0.5 * diameter;
+    const double b = 0.5 * sqrt(fmax(diameter * diameter - p->inf_cmin * p->inf_cmin, 0.0));
+    const double r = sqrt(gmmrrt_rng_uniform(&p->rng));
+    const double phi = 2.0 * M_PI * gmmrrt_rng_uniform(&p->rng);
+    const double ex = a * r * cos(phi), ey = b * r * sin(phi);
+    *x = p->inf_cx + p->inf_cos * ex - p->inf_sin * ey;
+    *y = p->inf_cy + p->inf_sin * ex + p->inf_cos * ey;
+    return in_bounds(p, *x, *y);
+}
+
 void gmmrrt_sampler_prepare(struct gmmrrt_planner *p)
 {
+    const double gx = p->problem.goal_x - p->problem.start_x, gy = p->problem.goal_y - p->problem.start_y;
+    p->inf_cmin = sqrt(gx * gx + gy * gy);
+    p->inf_cx = 0.5 * (p->problem.start_x + p->problem.goal_x);
+    p->inf_cy = 0.5 * (p->problem.start_y + p->problem.goal_y);
+    p->inf_cos = p->inf_cmin > 0.0 ? gx / p->inf_cmin : 1.0;
+    p->inf_sin = p->inf_cmin > 0.0 ? gy / p->inf_cmin : 0.0;
     p->stage = 0;
     if (p->cfg.planner != GMMRRT_PLANNER_GMM_RRT || !p->problem.model)
         return;
@@ -95,7 +141,15 @@ int gmmrrt_sample(struct gmmrrt_planner *p, double *x, double *y)
     }
     const int use_model = p->task_active && p->cfg.gmm_bias > 0.0 &&
                           (p->cfg.gmm_bias >= 1.0 || gmmrrt_rng_uniform(&p->rng) < p->cfg.gmm_bias);
+    const double diameter = informed_diameter(p);
     if (!use_model) {
+        if (isfinite(diameter)) {
+            const gmmrrt_bounds_t *b = &pr->obstacles.bounds;
+            const double a = 0.5 * diameter;
+            const double bb = 0.5 * sqrt(fmax(diameter * diameter - p->inf_cmin * p->inf_cmin, 0.0));
+            if (M_PI * a * bb < (b->xmax - b->xmin) * (b->ymax - b->ymin))
+                return informed_uniform(p, diameter, x, y);
+        }
         uniform(p, x, y);
         return 1;
     }
@@ -118,5 +172,7 @@ int gmmrrt_sample(struct gmmrrt_planner *p, double *x, double *y)
         gmmrrt_gmm_sample(pr->model, &p->rng, f);
         gmmrrt_features_to_xy(&pr->obstacles.people[p->active[who]], f[0], f[1], x, y);
     }
+    if (isfinite(diameter) && !in_ellipse(p, diameter, *x, *y))
+        return 0;
     return in_bounds(p, *x, *y);
 }

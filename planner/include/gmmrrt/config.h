@@ -41,7 +41,17 @@ typedef struct {
     double step_m;             /* > 0, steering: longest new edge */
     double goal_bias;          /* [0, 1), probability of sampling the goal */
     double gmm_bias;           /* [0, 1], probability of a mixture sample (paper: 0.95) */
-    double rewire_gamma;       /* > 0, near radius r = min(step, gamma (log n / n)^(1/2)) */
+    double rewire_gamma;       /* > 0, near radius r = min(step, gamma (log n / n)^(1/2)), used when
+                                  rewire_k_factor is 0 */
+    double rewire_k_factor;    /* >= 0; > 0: choose-parent and rewire look at the k nearest nodes,
+                                  k = ceil(rewire_k_factor ln(n + 1)) (k-nearest RRT*, Karaman &
+                                  Frazzoli 2011; OMPL's default k_rrg = 1.1 e (1 + 1/2) = 4.485);
+                                  0: the radius of rewire_gamma */
+    int32_t informed_sampling; /* 1: once a path of cost c exists, uniform samples come from the
+                                  ellipse with foci start and goal holding every point of a
+                                  cheaper path (Informed RRT*, Gammell et al. 2014; bound in
+                                  docs/planner.md), and mixture samples outside it are dropped;
+                                  0: off */
     double w_length;           /* >= 0, weight of length in the edge cost */
     double w_task;             /* >= 0, weight of the task cost c(f) (paper Sect. 4) */
     double delta;              /* > 0 overrides the model's delta; 0 uses the model's */

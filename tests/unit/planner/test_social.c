@@ -154,7 +154,10 @@ static void test_mirrored_model_passes_on_the_right(void **state)
     assert_int_equal(plan(&m, 2, 0.95, 2.0, 0, &path), GMMRRT_OK);
     double cross, dmin;
     path_side(&path, &cross, &dmin);
-    assert_true(cross > 0.7);
+    printf("mirrored model, seed 2: crosses x = 0 at y = %.2f, closest %.2f m\n", cross, dmin);
+    /* the mirror image of the left model's contract */
+    assert_true(cross > 0.65);
+    assert_true(dmin > 0.65);
 }
 
 static void test_two_side_model_takes_the_free_side_when_one_is_blocked(void **state)
