@@ -10,7 +10,7 @@
 
 /* Adaptive layout: nodes per bucket right after a re-layout, and the first layout's count. */
 #ifndef GMMRRT_NN_NODES_PER_CELL
-#define GMMRRT_NN_NODES_PER_CELL 1.0
+#define GMMRRT_NN_NODES_PER_CELL 1.5
 #endif
 #define GMMRRT_NN_FIRST_LAYOUT 16
 /* Sorted re-layouts happen each time the tree grows by 1/GMMRRT_NN_SORTED_GROWTH_DIV. */
@@ -332,7 +332,7 @@ int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, do
     int trimmed = 0; /* the buffer overflowed: it holds the k nearest so far, not a disc */
     /* First a box of rings 0..r0 that holds about k nodes at the layout's bucket load, row
      * by row (each row a contiguous run of buckets); then one ring more at a time. */
-    int32_t r = (int32_t)ceil(sqrt((double)k / (M_PI * GMMRRT_NN_NODES_PER_CELL)));
+    int32_t r = (int32_t)floor(sqrt((double)k / (M_PI * GMMRRT_NN_NODES_PER_CELL)));
     for (int32_t j = cj - r; j <= cj + r; ++j)
         gather_row(nn, pool, j, clampi(ci - r, 0, nn->nx - 1), clampi(ci + r, 0, nn->nx - 1), x, y, k, buf,
                      buf_d2, cap, &count, &trimmed);
@@ -363,15 +363,20 @@ int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, do
                 if (within >= k) {
                     /* The answer: every node within reach (all of them are nearer than any
                      * node outside it). Compacted in scan order, without branches. */
-                    int32_t w = 0;
+                    int32_t w = 0, best = 0;
                     for (int32_t c = 0; c < count; ++c) {
                         const int32_t keep = buf_d2[c] <= reach2;
                         buf[w] = buf[c];
                         buf_d2[w] = buf_d2[c];
+                        best = (keep && buf_d2[c] < buf_d2[best]) ? w : best;
                         w += keep;
                     }
                     count = w;
-                    break;
+                    if (count > kmax)
+                        break; /* too many: the k nearest, selected below */
+                    if (best != 0)
+                        swap_entry(buf, buf_d2, 0, best);
+                    return count;
                 }
             }
         }
@@ -390,11 +395,10 @@ int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, do
         select_k(buf, buf_d2, count, k);
         count = k;
     }
-    /* The nearest first (of equally near nodes the lowest index). */
+    /* The nearest first (of equally near nodes the first found). */
     int32_t best = 0;
     for (int32_t i = 1; i < count; ++i)
-        if (buf_d2[i] < buf_d2[best] || (buf_d2[i] == buf_d2[best] && buf[i] < buf[best]))
-            best = i;
+        best = buf_d2[i] < buf_d2[best] ? i : best;
     if (best != 0)
         swap_entry(buf, buf_d2, 0, best);
     return count;

@@ -85,7 +85,7 @@ int32_t gmmrrt_nn_nearest(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, doub
  * when the tree has fewer); when that is more than kmax, exactly the k nearest. Uses
  * buf[cap] and buf_d2[cap] (cap >= 2 kmax) as scratch and returns the number of nodes,
  * their indices in buf[0..) and squared distances (m^2) in buf_d2[0..). buf[0] is the
- * nearest (of equally near nodes the lowest index); the others are in scan order. Grows
+ * nearest (of equally near nodes the first found); the others are in scan order. Grows
  * square rings of buckets around (x, y) (OMPL's nearestK, here on the bucket grid; the
  * disc usually holds a ring's worth more than k, which k-nearest RRT* allows: its bound is
  * a lower one, Karaman & Frazzoli 2011). Returns 0 when k <= 0, kmax < k or cap < 2 kmax. */

@@ -85,7 +85,8 @@ struct gmmrrt_planner {
 double gmmrrt_task_cost_at(const struct gmmrrt_planner *p, double x, double y);
 double gmmrrt_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1);
 /* A lower bound of gmmrrt_edge_cost for an edge of len_m (c > 0 is bounded below by 0), so
- * the loop can skip the quadrature for candidates that cannot win. */
+ * the loop can skip the quadrature for candidates that cannot win. Linear in len_m (the
+ * loop and informed sampling rely on it: bound(len) = len * bound(1)). */
 double gmmrrt_edge_cost_lower_bound(const struct gmmrrt_planner *p, double len_m);
 
 /* sampler.c: draws one sample; returns 0 when the draw fell outside the bounds (the

@@ -465,9 +465,11 @@ static void iterate(struct gmmrrt_planner *p)
      * exact, so no candidate needs the quadrature. */
     const int cost_is_length = p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR || !p->task_active ||
                                p->num_active == 0;
+    /* The lower bound is linear in length (objective.c): its slope once per iteration. */
+    const double unit = gmmrrt_edge_cost_lower_bound(p, 1.0);
     for (int32_t k = 0; k < count; ++k) {
         p->near_len[k] = sqrt(p->near_d2[k]);
-        p->near_edge[k] = cost_is_length ? gmmrrt_edge_cost_lower_bound(p, p->near_len[k]) : NAN;
+        p->near_edge[k] = cost_is_length ? unit * p->near_len[k] : NAN;
         p->near_free[k] = -1;
     }
     int32_t parent_k = -1;
@@ -477,8 +479,7 @@ static void iterate(struct gmmrrt_planner *p)
         for (int32_t k = 0; k < count; ++k) {
             if (p->near_free[k] == 0)
                 continue;
-            const double edge = isnan(p->near_edge[k]) ? gmmrrt_edge_cost_lower_bound(p, p->near_len[k])
-                                                       : p->near_edge[k];
+            const double edge = isnan(p->near_edge[k]) ? unit * p->near_len[k] : p->near_edge[k];
             const double c = p->pool.cost[p->near_idx[k]] + edge;
             if (c < pick_cost) {
                 pick_cost = c;
@@ -505,7 +506,7 @@ static void iterate(struct gmmrrt_planner *p)
         if (m == parent)
             continue;
         const double base = p->pool.cost[added];
-        if (!(base + gmmrrt_edge_cost_lower_bound(p, p->near_len[k]) < p->pool.cost[m]))
+        if (!(base + unit * p->near_len[k] < p->pool.cost[m]))
             continue;
         if (isnan(p->near_edge[k]))
             near_exact(p, k, x, y);
