@@ -126,48 +126,68 @@ def summarize_ompl(trials: List[dict], time_ms: float) -> dict:
         }
     o, g = by.get("ompl_rrtstar", []), by.get("gmmrrt_rrtstar", [])
     if o and g:
-        po, pg = out["planners"]["ompl_rrtstar"], out["planners"]["gmmrrt_rrtstar"]
-        # Paired by trial index: neighbours in time, so they saw the same machine load.
-        pairs = {}
-        for r in o:
-            pairs.setdefault(r["trial"], {})["o"] = r
-        for r in g:
-            pairs.setdefault(r["trial"], {})["g"] = r
-        paired = [p["g"]["iterations"] / p["g"]["time_ms"] / (p["o"]["iterations"] / p["o"]["time_ms"])
-                  for p in pairs.values() if "o" in p and "g" in p and p["o"]["iterations"] > 0]
-        t_ref = min(1000.0, time_ms)
-        ompl_ref_cost = median(cost_at(r["history"], t_ref) for r in o)
-        ours_times = [time_to_cost(r["history"], ompl_ref_cost) for r in g]
-        t_ours = median(ours_times)
-        out["ratios"] = {
-            "iterations_per_s": ratio(pg["iterations_per_s_median"], po["iterations_per_s_median"]),
-            "iterations_per_s_paired_median": median(paired) if paired else None,
-            "iterations_per_cpu_s": ratio(pg["iterations_per_cpu_s_median"], po["iterations_per_cpu_s_median"]),
-            "first_solution_speedup": ratio(po["first_solution_ms_median"], pg["first_solution_ms_median"]),
-        }
-        out["ompl_reference"] = {
-            "time_ms": t_ref,
-            "ompl_median_cost": ompl_ref_cost,
-            "ours_median_time_to_that_cost_ms": t_ours,
-            "ours_reached": sum(1 for t in ours_times if math.isfinite(t)),
-            "speedup": ratio(t_ref, t_ours),
-        }
+        out["ratios"], out["ompl_reference"] = _compare(o, g, out["planners"]["ompl_rrtstar"],
+                                                        out["planners"]["gmmrrt_rrtstar"], time_ms)
+    # Extra pairs, when those planners ran: ours without informed sampling against OMPL's
+    # default (the same algorithm as OMPL's RRTstar), and ours against OMPL's RRTstar with
+    # informed sampling (the same trick on both sides).
+    extra = {}
+    for key, (peer, mine) in {"plain_vs_ompl": ("ompl_rrtstar", "gmmrrt_rrtstar_plain"),
+                              "ours_vs_ompl_informed": ("ompl_rrtstar_informed", "gmmrrt_rrtstar")}.items():
+        po_rs, pg_rs = by.get(peer, []), by.get(mine, [])
+        if po_rs and pg_rs:
+            ratios, ref = _compare(po_rs, pg_rs, out["planners"][peer], out["planners"][mine], time_ms)
+            extra[key] = {"peer": peer, "ours": mine, "ratios": ratios, "reference": ref}
+    if extra:
+        out["pairs"] = extra
     return out
+
+
+def _compare(o: List[dict], g: List[dict], po: dict, pg: dict, time_ms: float):
+    """Ratios of planner g's trials against peer o's, and g's time to o's median cost at 1 s."""
+    # Paired by trial index: neighbours in time, so they saw the same machine load.
+    pairs: Dict[int, dict] = {}
+    for r in o:
+        pairs.setdefault(r["trial"], {})["o"] = r
+    for r in g:
+        pairs.setdefault(r["trial"], {})["g"] = r
+    paired = [p["g"]["iterations"] / p["g"]["time_ms"] / (p["o"]["iterations"] / p["o"]["time_ms"])
+              for p in pairs.values() if "o" in p and "g" in p and p["o"]["iterations"] > 0]
+    t_ref = min(1000.0, time_ms)
+    ompl_ref_cost = median(cost_at(r["history"], t_ref) for r in o)
+    ours_times = [time_to_cost(r["history"], ompl_ref_cost) for r in g]
+    t_ours = median(ours_times)
+    ratios = {
+        "iterations_per_s": ratio(pg["iterations_per_s_median"], po["iterations_per_s_median"]),
+        "iterations_per_s_paired_median": median(paired) if paired else None,
+        "iterations_per_cpu_s": ratio(pg["iterations_per_cpu_s_median"], po["iterations_per_cpu_s_median"]),
+        "first_solution_speedup": ratio(po["first_solution_ms_median"], pg["first_solution_ms_median"]),
+    }
+    reference = {
+        "time_ms": t_ref,
+        "ompl_median_cost": ompl_ref_cost,
+        "ours_median_time_to_that_cost_ms": t_ours,
+        "ours_reached": sum(1 for t in ours_times if math.isfinite(t)),
+        "speedup": ratio(t_ref, t_ours),
+    }
+    return ratios, reference
 
 
 def run_ompl_comparison(bin_dir: Path, objective: str, trials: int, time_ms: float, seed: int,
                         model: Optional[str], raw_out: Path, ompl_log: Optional[Path]) -> dict:
-    """Runs gmmrrt-bench-ompl once (interleaved trials) and summarises it."""
+    """Runs gmmrrt-bench-ompl once (interleaved trials) and summarises it. The length
+    objective also runs ours without informed sampling and OMPL's RRTstar with it."""
     exe = bin_dir / "gmmrrt-bench-ompl"
     if not exe.is_file():
         raise BenchError(f"{exe} is missing: OMPL (libompl-dev) not found at configure time, or not built")
+    lineup = "ompl,gmmrrt,gmmrrt-plain,ompl-informed" if objective == "length" else "ompl,gmmrrt"
     cmd = [str(exe), "--objective", objective, "--trials", str(trials), "--time-ms", str(time_ms),
-           "--seed", str(seed), "--out", str(raw_out)]
+           "--seed", str(seed), "--planners", lineup, "--out", str(raw_out)]
     if model:
         cmd += ["--model", model]
     if ompl_log:
         cmd += ["--ompl-log", str(ompl_log)]
-    budget_s = 120 + trials * time_ms / 1000.0 * (4 if ompl_log else 2) * 3
+    budget_s = 120 + trials * time_ms / 1000.0 * (len(lineup.split(",")) + (2 if ompl_log else 0)) * 3
     _run(cmd, timeout_s=budget_s)
     records = _json_lines(raw_out.read_text())
     summary = summarize_ompl(records, time_ms)

@@ -35,7 +35,7 @@ static void usage(FILE *out)
             "       [--planner gmm-rrt-star|rrt-star|gmm-rrt] [--bias B] [--budget-ms N]\n"
             "       [--iterations N] [--seed S] [--robot-radius R] [--bounds xmin,ymin,xmax,ymax]\n"
             "       [--task avoid|approach] [--target-person I] [--goal-tolerance M]\n"
-            "       [--delta D] [--w-task W] [--json]\n"
+            "       [--delta D] [--w-task W] [--rewire-k F] [--informed 0|1] [--json]\n"
             "\n"
             "Plans a path with GMM-RRT* (the paper's planner), plain RRT* or the GMM-RRT baseline\n"
             "and prints it as x,y CSV (header line first), or with --json one object:\n"
@@ -64,6 +64,9 @@ static void usage(FILE *out)
             "  --delta D           task-cost floor delta > 0 of c = delta / max(p, delta) (default: the\n"
             "                      model file's delta)\n"
             "  --w-task W          weight >= 0 of the task cost in the edge cost (default 2)\n"
+            "  --rewire-k F        near set: at least the F ln(n+1) nearest nodes (default 4.485,\n"
+            "                      OMPL's k_rrg); 0: the radius 15 sqrt(ln n / n)\n"
+            "  --informed 0|1      informed sampling once a path exists (default 1)\n"
             "  --json              print one JSON object instead of CSV\n"
             "  -h, --help          this text\n"
             "\n"
@@ -135,7 +138,7 @@ int main(int argc, char **argv)
 {
     enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_PLANNER, OPT_BIAS, OPT_BUDGET,
            OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_DELTA,
-           OPT_WTASK };
+           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED };
     static const struct option opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
         {"goal", required_argument, NULL, OPT_GOAL},         {"person", required_argument, NULL, OPT_PERSON},
@@ -146,6 +149,7 @@ int main(int argc, char **argv)
         {"task", required_argument, NULL, OPT_TASK},         {"target-person", required_argument, NULL, OPT_TARGET},
         {"goal-tolerance", required_argument, NULL, OPT_TOL}, {"json", no_argument, NULL, OPT_JSON},
         {"delta", required_argument, NULL, OPT_DELTA},       {"w-task", required_argument, NULL, OPT_WTASK},
+        {"rewire-k", required_argument, NULL, OPT_REWIRE_K}, {"informed", required_argument, NULL, OPT_INFORMED},
         {"help", no_argument, NULL, 'h'},                    {NULL, 0, NULL, 0}};
 
     static gmmrrt_problem_t pr; /* large (obstacle arrays): static, zeroed */
@@ -280,6 +284,16 @@ int main(int argc, char **argv)
             if (!parse_numbers(optarg, v, 1) || v[0] < 0.0)
                 return fail("--w-task '%s': expected a weight >= 0%s", optarg, "");
             cfg.w_task = v[0];
+            break;
+        case OPT_REWIRE_K:
+            if (!parse_numbers(optarg, v, 1) || v[0] < 0.0 || v[0] > 64.0)
+                return fail("--rewire-k '%s': expected a factor in [0, 64] (0: radius rewiring)%s", optarg, "");
+            cfg.rewire_k_factor = v[0];
+            break;
+        case OPT_INFORMED:
+            if (strcmp(optarg, "0") != 0 && strcmp(optarg, "1") != 0)
+                return fail("--informed '%s': expected 0 or 1%s", optarg, "");
+            cfg.informed_sampling = optarg[0] == '1';
             break;
         case ':':
             return fail("option '%s' needs a value (see --help)%s", argv[optind - 1], "");

@@ -94,6 +94,8 @@ def _exe(name):
     (["--time-ms", "nan"], "--time-ms"),
     (["--objective", "task"], "--model"),
     (["--objective", "task", "--model", "/nonexistent.gmm"], "/nonexistent.gmm"),
+    (["--planners", "ompl,rrtx"], "rrtx"),
+    (["--objective", "task", "--planners", "ompl-informed"], "ompl-informed"),
 ])
 def test_bench_ompl_rejects_bad_flags_by_name(args, needle):
     proc = subprocess.run([_exe("gmmrrt-bench-ompl")] + args, capture_output=True, text=True, timeout=30)

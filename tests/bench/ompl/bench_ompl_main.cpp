@@ -4,6 +4,7 @@
  * one JSON object per trial on stdout or --out. tools/bench.py takes medians and ratios.
  * Optionally also writes an ompl::tools::Benchmark log of both planners (--ompl-log).
  */
+#include <algorithm>
 #include <getopt.h>
 
 #include <cerrno>
@@ -37,7 +38,11 @@ static void usage(FILE *f)
                  "  -t, --time-ms MS             planning time per trial, ms (default 1000)\n"
                  "  -s, --seed S                 base seed (default 1); trial i uses S + i\n"
                  "  -N, --max-nodes N            our node pool (default 2000000)\n"
-                 "  -p, --planners LIST          ompl,gmmrrt (default both)\n"
+                 "  -p, --planners LIST          comma-separated, of ompl (RRTstar, defaults), gmmrrt\n"
+                 "                               (ours, defaults), gmmrrt-plain (ours without informed\n"
+                 "                               sampling), ompl-informed (RRTstar with informed sampling,\n"
+                 "                               length only); default ompl,gmmrrt. Each trial runs them\n"
+                 "                               in turn, the order rotated from trial to trial\n"
                  "      --out FILE               JSON lines to FILE instead of stdout\n"
                  "      --ompl-log FILE          also run ompl::tools::Benchmark on both planners\n"
                  "                               (not interleaved) and save its log to FILE\n"
@@ -124,11 +129,25 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "gmmrrt-bench-ompl: --objective must be 'length' or 'task', got '%s'\n", objective.c_str());
         return 2;
     }
-    const bool run_ompl = planners.find("ompl") != std::string::npos;
-    const bool run_ours = planners.find("gmmrrt") != std::string::npos;
-    if (!run_ompl && !run_ours) {
-        std::fprintf(stderr, "gmmrrt-bench-ompl: --planners must name ompl and/or gmmrrt, got '%s'\n", planners.c_str());
-        return 2;
+    std::vector<std::string> lineup;
+    {
+        std::string rest = planners + ",";
+        for (size_t at; (at = rest.find(',')) != std::string::npos; rest.erase(0, at + 1)) {
+            const std::string name = rest.substr(0, at);
+            if (name != "ompl" && name != "gmmrrt" && name != "gmmrrt-plain" && name != "ompl-informed") {
+                std::fprintf(stderr,
+                             "gmmrrt-bench-ompl: --planners: unknown planner '%s' (ompl, gmmrrt, gmmrrt-plain, "
+                             "ompl-informed)\n",
+                             name.c_str());
+                return 2;
+            }
+            if (name == "ompl-informed" && objective != "length") {
+                std::fprintf(stderr, "gmmrrt-bench-ompl: ompl-informed needs --objective length (OMPL samples "
+                                     "the informed set of path length only)\n");
+                return 2;
+            }
+            lineup.push_back(name);
+        }
     }
 
     gmmrrt_model_t model;
@@ -165,21 +184,19 @@ int main(int argc, char **argv)
     ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(seed + 1));
 
     std::vector<unsigned char> block;
+    const size_t m = lineup.size();
     for (long long i = 0; i < trials; ++i) {
-        for (int k = 0; k < 2; ++k) {
-            const bool ompl_turn = (k == 0) == (i % 2 == 0);
+        for (size_t k = 0; k < m; ++k) {
+            const std::string &name = lineup[(k + static_cast<size_t>(i)) % m]; /* rotated per trial */
             TrialResult r;
-            if (ompl_turn) {
-                if (!run_ompl)
-                    continue;
-                r = run_ompl_trial(objective, task.model ? &task : nullptr, time_ms, static_cast<int>(i));
+            if (name == "ompl" || name == "ompl-informed") {
+                r = run_ompl_trial(objective, task.model ? &task : nullptr, time_ms, static_cast<int>(i),
+                                   name == "ompl-informed");
             } else {
-                if (!run_ours)
-                    continue;
                 std::string err;
                 if (!run_gmmrrt_trial(objective, task.model ? &task : nullptr, time_ms, static_cast<int>(i),
                                       static_cast<uint64_t>(seed + i), static_cast<int32_t>(max_nodes), &block, &r,
-                                      &err)) {
+                                      &err, name == "gmmrrt-plain")) {
                     std::fprintf(stderr, "gmmrrt-bench-ompl: %s\n", err.c_str());
                     return 1;
                 }

@@ -76,15 +76,17 @@ gmmrrt_problem_t gmmrrt_bench_problem(const std::string &objective, const TaskSe
 
 bool run_gmmrrt_trial(const std::string &objective, const TaskSettings *task, double time_ms, int trial,
                       uint64_t seed, int32_t max_nodes, std::vector<unsigned char> *block, TrialResult *out,
-                      std::string *err)
+                      std::string *err, bool plain)
 {
     TrialResult r;
-    r.planner = "gmmrrt_rrtstar";
+    r.planner = plain ? "gmmrrt_rrtstar_plain" : "gmmrrt_rrtstar";
     r.objective = objective;
     r.trial = trial;
     r.seed = seed;
 
-    const gmmrrt_planner_config_t cfg = gmmrrt_bench_config(objective, task, max_nodes, seed);
+    gmmrrt_planner_config_t cfg = gmmrrt_bench_config(objective, task, max_nodes, seed);
+    if (plain)
+        cfg.informed_sampling = 0;
     const size_t need = gmmrrt_planner_mem_size(&cfg);
     if (need == 0) {
         *err = "gmmrrt_planner_mem_size rejected the benchmark configuration";

@@ -29,10 +29,12 @@ gmmrrt_problem_t gmmrrt_bench_problem(const std::string &objective, const TaskSe
 /* One timed run for time_ms, the planner block allocated before timing starts. The run is
  * cut into ~100 geometrically spaced slices (anytime calls to gmmrrt_planner_run) to read the
  * best cost over time; the cost history then gives each improvement's iteration, whose time
- * is interpolated between slices. Returns false with *err on a setup error. */
+ * is interpolated between slices. With plain, informed sampling is off (planner
+ * "gmmrrt_rrtstar_plain": configured like OMPL's default RRTstar, k-nearest and uniform
+ * sampling only). Returns false with *err on a setup error. */
 bool run_gmmrrt_trial(const std::string &objective, const TaskSettings *task, double time_ms, int trial,
                       uint64_t seed, int32_t max_nodes, std::vector<unsigned char> *block, TrialResult *out,
-                      std::string *err);
+                      std::string *err, bool plain = false);
 
 } // namespace gmmrrt_bench
 

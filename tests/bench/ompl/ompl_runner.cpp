@@ -72,10 +72,11 @@ ob::OptimizationObjectivePtr make_objective(const ob::SpaceInformationPtr &si, c
     return obj;
 }
 
-TrialResult run_ompl_trial(const std::string &objective, const TaskSettings *task, double time_ms, int trial)
+TrialResult run_ompl_trial(const std::string &objective, const TaskSettings *task, double time_ms, int trial,
+                           bool informed)
 {
     TrialResult r;
-    r.planner = "ompl_rrtstar";
+    r.planner = informed ? "ompl_rrtstar_informed" : "ompl_rrtstar";
     r.objective = objective;
     r.trial = trial;
 
@@ -90,6 +91,8 @@ TrialResult run_ompl_trial(const std::string &objective, const TaskSettings *tas
     pdef->setStartAndGoalStates(start, goal, kGoalTolerance);
     pdef->setOptimizationObjective(make_objective(si, objective, task));
     auto planner = std::make_shared<og::RRTstar>(si);
+    if (informed)
+        planner->setInformedSampling(true);
     planner->setProblemDefinition(pdef);
     planner->setup();
 

@@ -42,8 +42,11 @@ ompl::base::SpaceInformationPtr make_space_information();
 ompl::base::OptimizationObjectivePtr make_objective(const ompl::base::SpaceInformationPtr &si,
                                                     const std::string &objective, const TaskSettings *task);
 
-/* One timed run of OMPL RRTstar (fresh planner, default settings) for time_ms. */
-TrialResult run_ompl_trial(const std::string &objective, const TaskSettings *task, double time_ms, int trial);
+/* One timed run of OMPL RRTstar (fresh planner, default settings) for time_ms; with
+ * informed, RRTstar's informed sampling switched on (planner "ompl_rrtstar_informed";
+ * path-length objective only). */
+TrialResult run_ompl_trial(const std::string &objective, const TaskSettings *task, double time_ms, int trial,
+                           bool informed = false);
 
 } // namespace gmmrrt_bench
 

@@ -93,6 +93,27 @@ def test_ompl_summary_ratios_and_reference_cost():
     assert ref["ours_reached"] == 2
 
 
+def test_ompl_summary_extra_pairs():
+    # OMPL default 1000 it/s, reaching 13 at 1 s; OMPL informed 2000 it/s, reaching 11 at 1 s;
+    # ours plain 5000 it/s reaching 13 at 100 ms; ours 10000 it/s reaching 11 at 10 ms.
+    o = [_trial("ompl_rrtstar", 0, 1000, 1000.0, [[500.0, 500, 13.0]])]
+    oi = [_trial("ompl_rrtstar_informed", 0, 2000, 1000.0, [[500.0, 500, 11.0]])]
+    gp = [_trial("gmmrrt_rrtstar_plain", 0, 5000, 1000.0, [[100.0, 500, 13.0]])]
+    g = [_trial("gmmrrt_rrtstar", 0, 10000, 1000.0, [[1.0, 5, 13.0], [10.0, 50, 11.0]])]
+    s = summarize_ompl(o + oi + gp + g, 1000.0)
+    assert s["ratios"]["iterations_per_s"] == pytest.approx(10.0)
+    assert s["ompl_reference"]["speedup"] == pytest.approx(1000.0)
+    plain = s["pairs"]["plain_vs_ompl"]
+    assert plain["ratios"]["iterations_per_s"] == pytest.approx(5.0)
+    assert plain["reference"]["speedup"] == pytest.approx(10.0)
+    inf = s["pairs"]["ours_vs_ompl_informed"]
+    assert inf["ratios"]["iterations_per_s"] == pytest.approx(5.0)
+    assert inf["reference"]["ompl_median_cost"] == pytest.approx(11.0)
+    assert inf["reference"]["speedup"] == pytest.approx(100.0)
+    # without the extra planners there are no pairs
+    assert "pairs" not in summarize_ompl(o + g, 1000.0)
+
+
 def test_ompl_summary_without_solutions_reports_never():
     o = [_trial("ompl_rrtstar", 0, 100, 50.0, [], first=None)]
     g = [_trial("gmmrrt_rrtstar", 0, 1000, 50.0, [], first=None)]
