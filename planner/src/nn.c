@@ -322,10 +322,11 @@ static void gather_row(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, int32_t
 }
 
 int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, double x, double y, int32_t k,
-                            int32_t kmax, int32_t *buf, double *buf_d2, int32_t cap)
+                            int32_t kmax, double max_d, int32_t *buf, double *buf_d2, int32_t cap)
 {
-    if (k <= 0 || kmax < k || cap < 2 * kmax)
+    if (k <= 0 || kmax < k || cap < 2 * kmax || !(max_d > 0.0))
         return 0;
+    const double max_d2 = max_d * max_d;
     const int32_t ci = cell_of(x, nn->x0, nn->cell_m, nn->nx);
     const int32_t cj = cell_of(y, nn->y0, nn->cell_m, nn->ny);
     int32_t count = 0;
@@ -360,12 +361,26 @@ int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, do
                     within += buf_d2[c] <= reach2;
                 if (within >= k && trimmed)
                     break; /* the k nearest are in the buffer: selected below */
-                if (within >= k) {
-                    /* The answer: every node within reach (all of them are nearer than any
-                     * node outside it). Compacted in scan order, without branches. */
+                if (within >= k || (within > 0 && reach2 >= max_d2)) {
+                    /* The answer: every node within reach and max_d (all of them are nearer
+                     * than any node outside), or the nearest alone when none is within max_d.
+                     * Compacted in scan order, without branches. */
+                    const double lim2 = reach2 < max_d2 ? reach2 : max_d2;
                     int32_t w = 0, best = 0;
+                    double best_d2 = INFINITY;
+                    for (int32_t c = 0; c < count; ++c)
+                        if (buf_d2[c] < best_d2) {
+                            best_d2 = buf_d2[c];
+                            best = c;
+                        }
+                    if (best_d2 > lim2) {
+                        buf[0] = buf[best];
+                        buf_d2[0] = best_d2;
+                        return 1;
+                    }
+                    best = 0;
                     for (int32_t c = 0; c < count; ++c) {
-                        const int32_t keep = buf_d2[c] <= reach2;
+                        const int32_t keep = buf_d2[c] <= lim2;
                         buf[w] = buf[c];
                         buf_d2[w] = buf_d2[c];
                         best = (keep && buf_d2[c] < buf_d2[best]) ? w : best;
@@ -395,12 +410,22 @@ int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, do
         select_k(buf, buf_d2, count, k);
         count = k;
     }
-    /* The nearest first (of equally near nodes the first found). */
-    int32_t best = 0;
-    for (int32_t i = 1; i < count; ++i)
-        best = buf_d2[i] < buf_d2[best] ? i : best;
-    if (best != 0)
-        swap_entry(buf, buf_d2, 0, best);
+    /* Here the whole grid was scanned, or the k nearest were selected: the nearest first
+     * (of equally near nodes the first found), then drop those beyond max_d but it. */
+    {
+        int32_t w = 0, best = 0;
+        for (int32_t c = 0; c < count; ++c)
+            best = buf_d2[c] < buf_d2[best] ? c : best;
+        if (count > 0)
+            swap_entry(buf, buf_d2, 0, best);
+        for (int32_t c = 0; c < count; ++c) {
+            const int32_t keep = c == 0 || buf_d2[c] <= max_d2;
+            buf[w] = buf[c];
+            buf_d2[w] = buf_d2[c];
+            w += keep;
+        }
+        count = w;
+    }
     return count;
 }
 

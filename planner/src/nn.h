@@ -80,17 +80,19 @@ void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t idx);
 /* Index of the node nearest to (x, y) (ties: the one found first), -1 when empty. */
 int32_t gmmrrt_nn_nearest(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, double x, double y);
 
-/* A near set of at least the k nearest nodes to (x, y): every node within the largest disc
- * around (x, y) that the scanned buckets cover, which holds at least k nodes (all of them
- * when the tree has fewer); when that is more than kmax, exactly the k nearest. Uses
- * buf[cap] and buf_d2[cap] (cap >= 2 kmax) as scratch and returns the number of nodes,
+/* A near set of at least the k nearest nodes to (x, y) within max_d (m): every node within
+ * the largest disc around (x, y) that the scanned buckets cover, which holds at least k
+ * nodes (all of them when the tree has fewer), cut to radius max_d; when that is more than
+ * kmax, exactly the k nearest (cut to max_d). The nearest node is always in it, however far.
+ * Uses buf[cap] and buf_d2[cap] (cap >= 2 kmax) as scratch and returns the number of nodes,
  * their indices in buf[0..) and squared distances (m^2) in buf_d2[0..). buf[0] is the
  * nearest (of equally near nodes the first found); the others are in scan order. Grows
  * square rings of buckets around (x, y) (OMPL's nearestK, here on the bucket grid; the
  * disc usually holds a ring's worth more than k, which k-nearest RRT* allows: its bound is
- * a lower one, Karaman & Frazzoli 2011). Returns 0 when k <= 0, kmax < k or cap < 2 kmax. */
+ * a lower one, Karaman & Frazzoli 2011) and stops early once max_d is covered. Returns 0
+ * when k <= 0, kmax < k, cap < 2 kmax or max_d <= 0. */
 int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, double x, double y, int32_t k,
-                            int32_t kmax, int32_t *buf, double *buf_d2, int32_t cap);
+                            int32_t kmax, double max_d, int32_t *buf, double *buf_d2, int32_t cap);
 
 /* Writes the indices of nodes within radius_m of (x, y) (distance <= radius_m) into
  * out[cap]; returns their number, or -1 when there are more than cap (out then holds

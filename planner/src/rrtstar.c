@@ -404,12 +404,15 @@ static void iterate(struct gmmrrt_planner *p)
     if (!gmmrrt_sample(p, &sx, &sy) || !gmmrrt_world_point_free(p->world, sx, sy))
         return;
     /* k-nearest RRT*: one query at the sample gives the nearest node and, unless steering
-     * moves the new point, the near set too. */
+     * moves the new point, the near set too: the k nearest within step_m (as the radius of
+     * the radius mode is at most step_m), so early sparse trees do not get long edges whose
+     * task-cost quadrature and collision checks are costly. */
     const int knn = p->cfg.rewire_k_factor > 0.0 && p->cfg.planner != GMMRRT_PLANNER_GMM_RRT;
     int32_t count = 0;
     int32_t nearest;
     if (knn) {
-        count = gmmrrt_nn_nearest_k(&p->nn, &p->pool, sx, sy, near_k(p), GMMRRT_NEAR_CAP, p->near_idx,
+        count = gmmrrt_nn_nearest_k(&p->nn, &p->pool, sx, sy, near_k(p), GMMRRT_NEAR_CAP, p->cfg.step_m,
+                                    p->near_idx,
                                     p->near_d2, GMMRRT_KNN_SCRATCH);
         nearest = p->near_idx[0];
     } else {
@@ -447,8 +450,8 @@ static void iterate(struct gmmrrt_planner *p)
             p->near_d2[k] = ddx * ddx + ddy * ddy;
         }
     } else if (steered) {
-        count = gmmrrt_nn_nearest_k(&p->nn, &p->pool, x, y, near_k(p), GMMRRT_NEAR_CAP, p->near_idx, p->near_d2,
-                                    GMMRRT_KNN_SCRATCH);
+        count = gmmrrt_nn_nearest_k(&p->nn, &p->pool, x, y, near_k(p), GMMRRT_NEAR_CAP, p->cfg.step_m,
+                                    p->near_idx, p->near_d2, GMMRRT_KNN_SCRATCH);
         int found = 0;
         for (int32_t k = 0; k < count; ++k)
             found |= (p->near_idx[k] == nearest);

@@ -137,19 +137,31 @@ static void test_near_reports_overflow(void **state)
     assert_int_equal(gmmrrt_nn_near(&nn, &pool, 0.5, 0.5, 0.0025, out, 4), 3);
 }
 
-/* gmmrrt_nn_nearest_k's contract against a linear scan over nodes 0..n-1: at least
- * min(k, n) nodes, distinct, exactly the nodes of a disc (every node left out is at least as
- * far as every node returned), at most kmax unless exactly k, the nearest first, and the
- * distances it reports are the true ones. */
-static void near_k_against_scan(const gmmrrt_nn_t *nn, int32_t n, double qx, double qy, int32_t k, int32_t kmax)
+/* gmmrrt_nn_nearest_k's contract against a linear scan over nodes 0..n-1, with M the nodes
+ * within max_d: the true nearest first; the rest distinct and within max_d; when M >= k, at
+ * least k of them (exactly k when more than kmax) forming a disc (every node left out is at
+ * least as far as every node returned); when M < k, all M (the nearest alone when M = 0);
+ * and the distances it reports are the true ones. */
+static void near_k_against_scan(const gmmrrt_nn_t *nn, int32_t n, double qx, double qy, int32_t k, int32_t kmax,
+                                double max_d)
 {
     static int32_t buf[2048];
     static double buf_d2[2048];
     static unsigned char in_set[N];
-    const int32_t got = gmmrrt_nn_nearest_k(nn, &pool, qx, qy, k, kmax, buf, buf_d2, 2048);
-    const int32_t want_min = k < n ? k : n;
-    assert_true(got >= want_min);
-    assert_true(got <= kmax || got == k);
+    const int32_t got = gmmrrt_nn_nearest_k(nn, &pool, qx, qy, k, kmax, max_d, buf, buf_d2, 2048);
+    int32_t m = 0;
+    double true_min = INFINITY;
+    for (int32_t i = 0; i < n; ++i) {
+        const double dx = xy[i].x - qx, dy = xy[i].y - qy;
+        m += dx * dx + dy * dy <= max_d * max_d;
+        true_min = fmin(true_min, dx * dx + dy * dy);
+    }
+    assert_true(got >= 1);
+    assert_true(buf_d2[0] == true_min);
+    if (m >= k)
+        assert_true((got >= k && got <= kmax) || got == k);
+    else
+        assert_int_equal(got, m > 0 ? m : 1);
     memset(in_set, 0, sizeof in_set);
     double max_in = -1.0;
     for (int32_t i = 0; i < got; ++i) {
@@ -158,9 +170,10 @@ static void near_k_against_scan(const gmmrrt_nn_t *nn, int32_t n, double qx, dou
         in_set[buf[i]] = 1;
         const double dx = xy[buf[i]].x - qx, dy = xy[buf[i]].y - qy;
         assert_true(buf_d2[i] == dx * dx + dy * dy);
+        if (i > 0)
+            assert_true(buf_d2[i] <= max_d * max_d);
         if (buf_d2[i] > max_in)
             max_in = buf_d2[i];
-        assert_true(buf_d2[0] <= buf_d2[i]); /* the nearest first */
     }
     for (int32_t i = 0; i < n; ++i) {
         if (in_set[i])
@@ -189,10 +202,13 @@ static void test_nearest_k_matches_linear_scan(void **state)
             for (int q = 0; q < 25; ++q) {
                 const double qx = q == 0 ? b.xmin : (q == 1 ? b.xmax + 3.0 : b.xmin + gmmrrt_rng_uniform(&rng) * 14.0);
                 const double qy = q == 0 ? b.ymin : (q == 1 ? b.ymax : b.ymin + gmmrrt_rng_uniform(&rng) * 10.0);
-                near_k_against_scan(&nn, i + 1, qx, qy, 1, 1);
-                near_k_against_scan(&nn, i + 1, qx, qy, 40, 256);
-                near_k_against_scan(&nn, i + 1, qx, qy, 40, 40);   /* exactly k */
-                near_k_against_scan(&nn, i + 1, 1.0, -2.0, 200, 256); /* inside the blob */
+                near_k_against_scan(&nn, i + 1, qx, qy, 1, 1, 100.0);
+                near_k_against_scan(&nn, i + 1, qx, qy, 40, 256, 100.0);
+                near_k_against_scan(&nn, i + 1, qx, qy, 40, 40, 100.0);     /* exactly k */
+                near_k_against_scan(&nn, i + 1, qx, qy, 40, 256, 0.3);      /* cut to 0.3 m */
+                near_k_against_scan(&nn, i + 1, qx, qy, 40, 40, 0.05);      /* often the nearest alone */
+                near_k_against_scan(&nn, i + 1, 1.0, -2.0, 200, 256, 100.0); /* inside the blob */
+                near_k_against_scan(&nn, i + 1, 1.0, -2.0, 200, 256, 0.02);
             }
         }
     }
@@ -202,9 +218,10 @@ static void test_nearest_k_matches_linear_scan(void **state)
     gmmrrt_nn_reset_adaptive(&nn, &b);
     int32_t buf[8];
     double d2[8];
-    assert_int_equal(gmmrrt_nn_nearest_k(&nn, &pool, 0.5, 0.5, 0, 4, buf, d2, 8), 0);
-    assert_int_equal(gmmrrt_nn_nearest_k(&nn, &pool, 0.5, 0.5, 4, 3, buf, d2, 8), 0);
-    assert_int_equal(gmmrrt_nn_nearest_k(&nn, &pool, 0.5, 0.5, 4, 5, buf, d2, 8), 0); /* cap < 2 kmax */
+    assert_int_equal(gmmrrt_nn_nearest_k(&nn, &pool, 0.5, 0.5, 0, 4, 1.0, buf, d2, 8), 0);
+    assert_int_equal(gmmrrt_nn_nearest_k(&nn, &pool, 0.5, 0.5, 4, 3, 1.0, buf, d2, 8), 0);
+    assert_int_equal(gmmrrt_nn_nearest_k(&nn, &pool, 0.5, 0.5, 4, 5, 1.0, buf, d2, 8), 0); /* cap < 2 kmax */
+    assert_int_equal(gmmrrt_nn_nearest_k(&nn, &pool, 0.5, 0.5, 4, 4, 0.0, buf, d2, 8), 0); /* max_d <= 0 */
 }
 
 /* The sorted re-layout renumbers nodes and rewrites every tree link and reference: the tree
@@ -289,7 +306,8 @@ static void test_sorted_relayout_keeps_the_tree(void **state)
         (void)linear_nearest(M, qx, qy, &d2);
         const int32_t idx = gmmrrt_nn_nearest(&nn, &pool, qx, qy);
         assert_true((xy[idx].x - qx) * (xy[idx].x - qx) + (xy[idx].y - qy) * (xy[idx].y - qy) == d2);
-        near_k_against_scan(&nn, M, qx, qy, 30, 256);
+        near_k_against_scan(&nn, M, qx, qy, 30, 256, 100.0);
+        near_k_against_scan(&nn, M, qx, qy, 30, 256, 0.4);
     }
     /* Inserting after a sorted re-layout keeps working. */
     xy[M].x = 0.25;
