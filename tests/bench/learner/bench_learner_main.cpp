@@ -40,6 +40,8 @@ void Usage(FILE* f) {
                "  -t, --tol T             convergence tolerance on the mean log-likelihood (default: learner's)\n"
                "  -m, --max-iter N        EM iterations at most (default: learner's)\n"
                "  -r, --restarts N        k-means++ seedings (default: learner's)\n"
+               "  -p, --screen-points N   sample size for screening the candidates (default: learner's;\n"
+               "                          0 screens on all points)\n"
                "  -h, --help              this help\n");
 }
 
@@ -149,15 +151,16 @@ double ProcessCpuMs() {
 
 int main(int argc, char** argv) {
   std::string points_path;
-  long k = 0, k_min = 0, k_max = 0, seed = 1, max_iter = -1, restarts = -1;
+  long k = 0, k_min = 0, k_max = 0, seed = 1, max_iter = -1, restarts = -1, screen_points = -1;
   double tol = -1.0;
   static const option opts[] = {{"points", required_argument, nullptr, 'i'}, {"k", required_argument, nullptr, 'k'},
                                 {"sweep", required_argument, nullptr, 'b'},  {"seed", required_argument, nullptr, 's'},
                                 {"tol", required_argument, nullptr, 't'},    {"max-iter", required_argument, nullptr, 'm'},
                                 {"restarts", required_argument, nullptr, 'r'}, {"help", no_argument, nullptr, 'h'},
+                                {"screen-points", required_argument, nullptr, 'p'},
                                 {nullptr, 0, nullptr, 0}};
   int c;
-  while ((c = getopt_long(argc, argv, "i:k:b:s:t:m:r:h", opts, nullptr)) != -1) {
+  while ((c = getopt_long(argc, argv, "i:k:b:s:t:m:r:p:h", opts, nullptr)) != -1) {
     bool ok = true;
     switch (c) {
       case 'i': points_path = optarg; break;
@@ -167,6 +170,7 @@ int main(int argc, char** argv) {
       case 't': ok = ParseDouble(optarg, &tol) && tol > 0; break;
       case 'm': ok = ParseLong(optarg, &max_iter) && max_iter >= 1; break;
       case 'r': ok = ParseLong(optarg, &restarts) && restarts >= 1; break;
+      case 'p': ok = ParseLong(optarg, &screen_points) && screen_points >= 0; break;
       case 'h': Usage(stdout); return 0;
       default: Usage(stderr); return 2;
     }
@@ -191,6 +195,7 @@ int main(int argc, char** argv) {
   if (tol > 0) options.tolerance = tol;
   if (max_iter > 0) options.max_iterations = static_cast<int>(max_iter);
   if (restarts > 0) options.restarts = static_cast<int>(restarts);
+  if (screen_points >= 0) options.screen_points = screen_points;
   if (k > 0) options.k = static_cast<int>(k);
   if (!options.IsValid(&error)) {
     std::fprintf(stderr, "gmmrrt-bench-learner: %s\n", error.c_str());
