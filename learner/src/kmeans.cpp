@@ -25,6 +25,22 @@ double Uniform01(std::mt19937_64* rng) {
   return static_cast<double>((*rng)() >> 11) * (1.0 / 9007199254740992.0);
 }
 
+namespace {
+
+// gmmrrt_wrap_angle (features.c) without the call for the differences of two wrapped angles,
+// |v| < 2 pi: the same operations, so the same bits. There fmod(v + pi, 2 pi) is v + pi, or
+// v + pi - 2 pi when v + pi >= 2 pi (exact: Sterbenz). Other v take the library function.
+inline double Wrap(double v) {
+  if (v > -M_PI && v <= M_PI) return v;
+  if (!(v > -2.0 * M_PI && v < 2.0 * M_PI)) return gmmrrt_wrap_angle(v);
+  double a = v + M_PI;
+  if (a >= 2.0 * M_PI) a -= 2.0 * M_PI;
+  if (a <= 0.0) a += 2.0 * M_PI;
+  return a - M_PI;
+}
+
+}  // namespace
+
 void SquaredDistances(const Eigen::MatrixXd& points, const Eigen::VectorXd& center,
                       uint32_t angle_mask, Eigen::ArrayXd* d2) {
   const Eigen::Index n = points.rows();
@@ -39,7 +55,7 @@ void SquaredDistances(const Eigen::MatrixXd& points, const Eigen::VectorXd& cent
   for (Eigen::Index c = 0; c < points.cols(); ++c) {
     diff = points.col(c).array() - center[c];
     if (c < 32 && ((angle_mask >> c) & 1u))
-      for (Eigen::Index p = 0; p < n; ++p) diff[p] = gmmrrt_wrap_angle(diff[p]);
+      for (Eigen::Index p = 0; p < n; ++p) diff[p] = Wrap(diff[p]);
     *d2 += diff.square();
   }
 }
@@ -89,9 +105,11 @@ void SeedPlusPlus(const Eigen::MatrixXd& x, uint32_t mask, int k, std::mt19937_6
 double Assign(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::MatrixXd& centers,
               Eigen::ArrayXi* labels, Eigen::ArrayXd* best) {
   const Eigen::Index n = x.rows();
-  if (x.cols() == 2 && mask == 0u) {
-    // D = 2 without angles (the benchmark's case): one pass over the points per center, no
-    // temporaries; the same distances and ties (strict <: the lower index wins) as below.
+  if (x.cols() == 2 && (mask == 0u || mask == 2u)) {
+    // D = 2, plain or with the angle on dimension 1 (the benchmark's and the planner's (d, theta)
+    // features): one pass over the points per center, no temporaries; the same distances and
+    // ties (strict <: the lower index wins) as below.
+    const bool angle = mask == 2u;
     labels->resize(n);
     best->resize(n);
     const double* x0 = x.col(0).data();
@@ -101,7 +119,7 @@ double Assign(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::MatrixXd& ce
     {
       const double c0 = centers(0, 0), c1 = centers(1, 0);
       for (Eigen::Index p = 0; p < n; ++p) {
-        const double a = x0[p] - c0, b = x1[p] - c1;
+        const double a = x0[p] - c0, b = angle ? Wrap(x1[p] - c1) : x1[p] - c1;
         bst[p] = a * a + b * b;
         lab[p] = 0;
       }
@@ -110,7 +128,7 @@ double Assign(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::MatrixXd& ce
       const double c0 = centers(0, c), c1 = centers(1, c);
       const int ci = static_cast<int>(c);
       for (Eigen::Index p = 0; p < n; ++p) {
-        const double a = x0[p] - c0, b = x1[p] - c1;
+        const double a = x0[p] - c0, b = angle ? Wrap(x1[p] - c1) : x1[p] - c1;
         const double d = a * a + b * b;
         const bool closer = d < bst[p];
         bst[p] = closer ? d : bst[p];
@@ -143,7 +161,7 @@ double Update(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::ArrayXi& lab
     for (Eigen::Index p = 0; p < n; ++p) {
       const int l = labels[p];
       const double diff = x(p, c) - (*centers)(c, l);
-      shift(c, l) += angle ? gmmrrt_wrap_angle(diff) : diff;
+      shift(c, l) += angle ? Wrap(diff) : diff;
     }
   }
   std::vector<bool> taken(n, false);
