@@ -10,6 +10,7 @@
 
 #include "gmmrrt/features.h"
 #include "gmmrrt_learner/mixture.hpp"
+#include "wrap_difference.hpp"
 
 namespace gmmrrt {
 namespace learn {
@@ -27,17 +28,7 @@ double Uniform01(std::mt19937_64* rng) {
 
 namespace {
 
-// gmmrrt_wrap_angle (features.c) without the call for the differences of two wrapped angles,
-// |v| < 2 pi: the same operations, so the same bits. There fmod(v + pi, 2 pi) is v + pi, or
-// v + pi - 2 pi when v + pi >= 2 pi (exact: Sterbenz). Other v take the library function.
-inline double Wrap(double v) {
-  if (v > -M_PI && v <= M_PI) return v;
-  if (!(v > -2.0 * M_PI && v < 2.0 * M_PI)) return gmmrrt_wrap_angle(v);
-  double a = v + M_PI;
-  if (a >= 2.0 * M_PI) a -= 2.0 * M_PI;
-  if (a <= 0.0) a += 2.0 * M_PI;
-  return a - M_PI;
-}
+inline double Wrap(double v) { return detail::WrapDifference(v); }
 
 }  // namespace
 
