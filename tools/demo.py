@@ -146,7 +146,7 @@ def run_daemon(scenario: Path, models: Dict[str, Path], out: Path, bin_dir: Opti
     if transport == "file":
         say(f"deterministic replay: gmmrrtd reads {scenario.name} via file:// and writes {rec.name}")
         argv = [gmmrrtd, "--lcm-url", f"file://{scenario}?speed=0", "--lcm-out-url", f"file://{rec}?mode=w",
-                "--exit-at-eof", "--budget-iterations", str(iterations), *common]
+                "--exit-at-eof", "--budget-iterations", str(iterations), "--budget-ms", "0", *common]
         proc = subprocess.run(argv, stdout=daemon_log, stderr=subprocess.STDOUT, timeout=600)
         daemon_log.close()
         if proc.returncode != 0:

@@ -8,29 +8,13 @@
 
 #include <errno.h>
 #include <fcntl.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-static gmmrrt_status_t fail(gmmrrt_status_t status, char *err, size_t errcap, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
-#endif
-    ;
-
-static gmmrrt_status_t fail(gmmrrt_status_t status, char *err, size_t errcap, const char *fmt, ...)
-{
-    if (err != NULL && errcap > 0) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(err, errcap, fmt, ap);
-        va_end(ap);
-    }
-    return status;
-}
+#include "error_text.h" /* planner/src, private include */
 
 /* Reads up to cap bytes (fewer at end of file) into buf; -1 with errno on a read error. */
 static ssize_t read_up_to(int fd, uint8_t *buf, size_t cap)
@@ -52,35 +36,36 @@ static ssize_t read_up_to(int fd, uint8_t *buf, size_t cap)
 
 gmmrrt_status_t gmmrrt_model_load_file(const char *path, gmmrrt_model_t *model, char *err, size_t errcap)
 {
-    if (err != NULL && errcap > 0)
-        err[0] = '\0';
+    gmmrrt_clear_error(err, errcap);
     if (path == NULL || model == NULL)
-        return fail(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model path or model is NULL");
+        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model path or model is NULL");
 
     const size_t cap = gmmrrt_model_max_encoded_size() + 1; /* one more: detects oversized files */
     uint8_t *buf = malloc(cap);
     gmmrrt_model_t *scratch = malloc(sizeof *scratch);
     gmmrrt_status_t st = GMMRRT_OK;
     if (buf == NULL || scratch == NULL) {
-        st = fail(GMMRRT_ERR_IO, err, errcap, "%s: out of memory reading the model", path);
+        st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: out of memory reading the model", path);
         goto done;
     }
     const int fd = open(path, O_RDONLY | O_CLOEXEC);
     if (fd < 0) {
-        st = fail(GMMRRT_ERR_IO, err, errcap, "%s: cannot open model file: %s", path, strerror(errno));
+        st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: cannot open model file: %s", path,
+                              strerror(errno));
         goto done;
     }
     struct stat sb;
     if (fstat(fd, &sb) == 0 && S_ISDIR(sb.st_mode)) {
         close(fd);
-        st = fail(GMMRRT_ERR_IO, err, errcap, "%s: is a directory, not a model file", path);
+        st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: is a directory, not a model file", path);
         goto done;
     }
     const ssize_t n = read_up_to(fd, buf, cap);
     const int read_errno = errno;
     close(fd);
     if (n < 0) {
-        st = fail(GMMRRT_ERR_IO, err, errcap, "%s: cannot read model file: %s", path, strerror(read_errno));
+        st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: cannot read model file: %s", path,
+                              strerror(read_errno));
         goto done;
     }
 
@@ -88,9 +73,9 @@ gmmrrt_status_t gmmrrt_model_load_file(const char *path, gmmrrt_model_t *model, 
     st = gmmrrt_model_decode(buf, (size_t)n, scratch, why, sizeof why);
     if (st != GMMRRT_OK) {
         if ((size_t)n == cap)
-            fail(st, err, errcap, "%s: more than %zu bytes: %s", path, cap - 1, why);
+            gmmrrt_set_error(st, err, errcap, "%s: more than %zu bytes: %s", path, cap - 1, why);
         else
-            fail(st, err, errcap, "%s: %s", path, why);
+            gmmrrt_set_error(st, err, errcap, "%s: %s", path, why);
         goto done;
     }
     memcpy(model, scratch, sizeof *model);
@@ -132,12 +117,11 @@ static void dir_of(const char *path, char *dir, size_t cap)
 gmmrrt_status_t gmmrrt_model_save_file(const char *path, const gmmrrt_model_t *model, char *err,
                                        size_t errcap)
 {
-    if (err != NULL && errcap > 0)
-        err[0] = '\0';
+    gmmrrt_clear_error(err, errcap);
     if (path == NULL || model == NULL)
-        return fail(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model path or model is NULL");
+        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model path or model is NULL");
     if (path[0] == '\0')
-        return fail(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model path is empty");
+        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model path is empty");
 
     const size_t cap = gmmrrt_model_max_encoded_size();
     uint8_t *buf = malloc(cap);
@@ -148,7 +132,7 @@ gmmrrt_status_t gmmrrt_model_save_file(const char *path, const gmmrrt_model_t *m
     int fd = -1;
     int tmp_exists = 0;
     if (buf == NULL || tmp == NULL || dir == NULL) {
-        st = fail(GMMRRT_ERR_IO, err, errcap, "%s: out of memory writing the model", path);
+        st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: out of memory writing the model", path);
         goto done;
     }
 
@@ -156,31 +140,33 @@ gmmrrt_status_t gmmrrt_model_save_file(const char *path, const gmmrrt_model_t *m
     char why[256];
     st = gmmrrt_model_encode(model, buf, cap, &len, why, sizeof why);
     if (st != GMMRRT_OK) {
-        fail(st, err, errcap, "%s: not written, the model is invalid: %s", path, why);
+        gmmrrt_set_error(st, err, errcap, "%s: not written, the model is invalid: %s", path, why);
         goto done;
     }
 
     snprintf(tmp, tmp_cap, "%s.tmp.XXXXXX", path);
     fd = mkstemp(tmp);
     if (fd < 0) {
-        st = fail(GMMRRT_ERR_IO, err, errcap, "%s: cannot create a temporary file next to it: %s", path,
-                  strerror(errno));
+        st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap,
+                              "%s: cannot create a temporary file next to it: %s", path, strerror(errno));
         goto done;
     }
     tmp_exists = 1;
     if (fchmod(fd, 0644) != 0 || write_all(fd, buf, len) != 0 || fsync(fd) != 0) {
-        st = fail(GMMRRT_ERR_IO, err, errcap, "%s: cannot write %s: %s", path, tmp, strerror(errno));
+        st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: cannot write %s: %s", path, tmp,
+                              strerror(errno));
         goto done;
     }
     const int close_rc = close(fd);
     fd = -1;
     if (close_rc != 0) {
-        st = fail(GMMRRT_ERR_IO, err, errcap, "%s: cannot close %s: %s", path, tmp, strerror(errno));
+        st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: cannot close %s: %s", path, tmp,
+                              strerror(errno));
         goto done;
     }
     if (rename(tmp, path) != 0) {
-        st = fail(GMMRRT_ERR_IO, err, errcap, "%s: cannot rename %s over it: %s", path, tmp,
-                  strerror(errno));
+        st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: cannot rename %s over it: %s", path, tmp,
+                              strerror(errno));
         goto done;
     }
     tmp_exists = 0;

@@ -6,8 +6,8 @@
 #include "gmmrrt/config.h"
 
 #include <math.h>
-#include <stdio.h>
 
+#include "error_text.h"
 #include "gmmrrt/limits.h"
 
 /* Upper bounds that keep the block size and the loops sane; not paper values. */
@@ -38,29 +38,19 @@ void gmmrrt_planner_config_default(gmmrrt_planner_config_t *cfg)
     cfg->waypoint_spacing_m = 0.1;
 }
 
-static int fail(char *err, size_t errcap, const char *field, const char *why)
-{
-    if (err && errcap > 0)
-        snprintf(err, errcap, "config.%s %s", field, why);
-    return 1;
-}
-
+/* Returns INVALID_ARGUMENT with "config.<field> <why>" in err when cond is false. */
 #define CHECK(cond, field, why)                                                                    \
     do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            fail(err, errcap, field, why);                                                         \
-            return GMMRRT_ERR_INVALID_ARGUMENT;                                                    \
-        }                                                                                          \
+        if (!(cond))                                                                               \
+            return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "config.%s %s",      \
+                                    field, why);                                                   \
     } while (0)
 
 gmmrrt_status_t gmmrrt_planner_config_validate(const gmmrrt_planner_config_t *cfg, char *err, size_t errcap)
 {
-    if (err && errcap > 0)
-        err[0] = '\0';
-    if (!cfg) {
-        fail(err, errcap, "(null)", "is NULL");
-        return GMMRRT_ERR_INVALID_ARGUMENT;
-    }
+    gmmrrt_clear_error(err, errcap);
+    if (!cfg)
+        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "config.(null) is NULL");
     CHECK(cfg->planner == GMMRRT_PLANNER_GMM_RRT_STAR || cfg->planner == GMMRRT_PLANNER_RRT_STAR ||
               cfg->planner == GMMRRT_PLANNER_GMM_RRT,
           "planner", "must be 1 (gmm-rrt-star), 2 (rrt-star) or 3 (gmm-rrt)");

@@ -18,37 +18,13 @@
 #include "gmmrrt/model.h"
 
 #include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
 #include <string.h>
+
+#include "error_text.h"
 
 #define CRC_BYTES 4u
 #define WEIGHT_SUM_TOL 1e-9
 #define MAX_DIAG_RATIO 1e8
-
-/* Writes a formatted reason into err[errcap] (when err is usable) and returns status. */
-static gmmrrt_status_t fail(gmmrrt_status_t status, char *err, size_t errcap, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
-#endif
-    ;
-
-static gmmrrt_status_t fail(gmmrrt_status_t status, char *err, size_t errcap, const char *fmt, ...)
-{
-    if (err != NULL && errcap > 0) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(err, errcap, fmt, ap);
-        va_end(ap);
-    }
-    return status;
-}
-
-static void clear_err(char *err, size_t errcap)
-{
-    if (err != NULL && errcap > 0)
-        err[0] = '\0';
-}
 
 /* ------------------------------------------------------------------ sizes */
 
@@ -140,73 +116,75 @@ static int invert_lower(const double *l, int32_t dim, double *inv, double *log_d
 static gmmrrt_status_t validate(const gmmrrt_model_t *m, char *err, size_t errcap)
 {
     if (m->dim < 1 || m->dim > GMMRRT_MAX_DIM)
-        return fail(GMMRRT_ERR_MODEL_BAD_SIZE, err, errcap, "dimension D = %d is outside 1..%d",
-                    (int)m->dim, GMMRRT_MAX_DIM);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_SIZE, err, errcap, "dimension D = %d is outside 1..%d",
+                                (int)m->dim, GMMRRT_MAX_DIM);
     if (m->k < 1 || m->k > GMMRRT_MAX_K)
-        return fail(GMMRRT_ERR_MODEL_BAD_SIZE, err, errcap, "component count K = %d is outside 1..%d",
-                    (int)m->k, GMMRRT_MAX_K);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_SIZE, err, errcap,
+                                "component count K = %d is outside 1..%d", (int)m->k, GMMRRT_MAX_K);
     const int32_t dim = m->dim, k = m->k, tri = GMMRRT_TRI(dim);
 
     /* Header fields. */
     switch (m->kind) {
     case GMMRRT_MODEL_KIND_FEATURES:
         if (dim != 2 || m->angle_mask != 0x2u)
-            return fail(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
-                        "kind features needs D = 2 and angle_mask = 0x2 (theta), got D = %d, "
-                        "angle_mask = 0x%x",
-                        (int)dim, (unsigned)m->angle_mask);
+            return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
+                                    "kind features needs D = 2 and angle_mask = 0x2 (theta), got D = %d, "
+                                    "angle_mask = 0x%x",
+                                    (int)dim, (unsigned)m->angle_mask);
         break;
     case GMMRRT_MODEL_KIND_XY:
         if (dim != 3 || m->angle_mask != 0u)
-            return fail(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
-                        "kind xy needs D = 3 and angle_mask = 0, got D = %d, angle_mask = 0x%x",
-                        (int)dim, (unsigned)m->angle_mask);
+            return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
+                                    "kind xy needs D = 3 and angle_mask = 0, got D = %d, angle_mask = 0x%x",
+                                    (int)dim, (unsigned)m->angle_mask);
         break;
     case GMMRRT_MODEL_KIND_GENERIC: break;
     default:
-        return fail(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
-                    "kind = %d is unknown (1 features, 2 xy, 3 generic)", (int)m->kind);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
+                                "kind = %d is unknown (1 features, 2 xy, 3 generic)", (int)m->kind);
     }
     if (m->task < GMMRRT_TASK_NONE || m->task > GMMRRT_TASK_APPROACH)
-        return fail(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
-                    "task = %d is unknown (0 none, 1 avoid, 2 approach)", (int)m->task);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
+                                "task = %d is unknown (0 none, 1 avoid, 2 approach)", (int)m->task);
     if (m->homotopy < GMMRRT_HOMOTOPY_ALL || m->homotopy > GMMRRT_HOMOTOPY_FRONTAL)
-        return fail(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
-                    "homotopy = %d is unknown (0 all, 1 left, 2 right, 3 frontal)", (int)m->homotopy);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
+                                "homotopy = %d is unknown (0 all, 1 left, 2 right, 3 frontal)",
+                                (int)m->homotopy);
     if (dim < 32 && (m->angle_mask >> dim) != 0u)
-        return fail(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
-                    "angle_mask = 0x%x flags a dimension >= D = %d", (unsigned)m->angle_mask, (int)dim);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
+                                "angle_mask = 0x%x flags a dimension >= D = %d", (unsigned)m->angle_mask,
+                                (int)dim);
     if (!isfinite(m->delta) || !(m->delta > 0.0))
-        return fail(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap, "delta = %g must be finite and > 0",
-                    m->delta);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap, "delta = %g must be finite and > 0",
+                                m->delta);
 
     /* Finite numbers. */
     for (int32_t i = 0; i < k; ++i) {
         if (!isfinite(m->weight[i]))
-            return fail(GMMRRT_ERR_MODEL_NOT_FINITE, err, errcap, "component %d: weight is %g",
-                        (int)i, m->weight[i]);
+            return gmmrrt_set_error(GMMRRT_ERR_MODEL_NOT_FINITE, err, errcap, "component %d: weight is %g",
+                                    (int)i, m->weight[i]);
         for (int32_t j = 0; j < dim; ++j)
             if (!isfinite(m->mean[i][j]))
-                return fail(GMMRRT_ERR_MODEL_NOT_FINITE, err, errcap, "component %d: mean[%d] is %g",
-                            (int)i, (int)j, m->mean[i][j]);
+                return gmmrrt_set_error(GMMRRT_ERR_MODEL_NOT_FINITE, err, errcap,
+                                        "component %d: mean[%d] is %g", (int)i, (int)j, m->mean[i][j]);
         for (int32_t t = 0; t < tri; ++t)
             if (!isfinite(m->chol[i][t]))
-                return fail(GMMRRT_ERR_MODEL_NOT_FINITE, err, errcap,
-                            "component %d: Cholesky factor entry %d is %g", (int)i, (int)t,
-                            m->chol[i][t]);
+                return gmmrrt_set_error(GMMRRT_ERR_MODEL_NOT_FINITE, err, errcap,
+                                        "component %d: Cholesky factor entry %d is %g", (int)i, (int)t,
+                                        m->chol[i][t]);
     }
 
     /* Weights: a distribution. */
     double sum = 0.0;
     for (int32_t i = 0; i < k; ++i) {
         if (!(m->weight[i] > 0.0 && m->weight[i] <= 1.0))
-            return fail(GMMRRT_ERR_MODEL_BAD_WEIGHTS, err, errcap,
-                        "component %d: weight %.17g is outside (0, 1]", (int)i, m->weight[i]);
+            return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_WEIGHTS, err, errcap,
+                                    "component %d: weight %.17g is outside (0, 1]", (int)i, m->weight[i]);
         sum += m->weight[i];
     }
     if (!(fabs(sum - 1.0) <= WEIGHT_SUM_TOL))
-        return fail(GMMRRT_ERR_MODEL_BAD_WEIGHTS, err, errcap,
-                    "weights sum to %.17g, not 1 (tolerance %g)", sum, WEIGHT_SUM_TOL);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_WEIGHTS, err, errcap,
+                                "weights sum to %.17g, not 1 (tolerance %g)", sum, WEIGHT_SUM_TOL);
 
     /* Cholesky factors: positive diagonal, bounded conditioning, invertible. */
     for (int32_t i = 0; i < k; ++i) {
@@ -214,39 +192,39 @@ static gmmrrt_status_t validate(const gmmrrt_model_t *m, char *err, size_t errca
         for (int32_t j = 0; j < dim; ++j) {
             const double d = m->chol[i][GMMRRT_TRI(j) + j];
             if (!(d > 0.0))
-                return fail(GMMRRT_ERR_MODEL_NOT_POSITIVE_DEFINITE, err, errcap,
-                            "component %d: Cholesky diagonal L[%d][%d] = %g is not > 0", (int)i,
-                            (int)j, (int)j, d);
+                return gmmrrt_set_error(GMMRRT_ERR_MODEL_NOT_POSITIVE_DEFINITE, err, errcap,
+                                        "component %d: Cholesky diagonal L[%d][%d] = %g is not > 0", (int)i,
+                                        (int)j, (int)j, d);
             dmin = fmin(dmin, d);
             dmax = fmax(dmax, d);
         }
         if (!(dmax <= MAX_DIAG_RATIO * dmin))
-            return fail(GMMRRT_ERR_MODEL_NOT_POSITIVE_DEFINITE, err, errcap,
-                        "component %d: Cholesky diagonal ratio max/min = %g exceeds %g "
-                        "(ill-conditioned covariance)",
-                        (int)i, dmax / dmin, MAX_DIAG_RATIO);
+            return gmmrrt_set_error(GMMRRT_ERR_MODEL_NOT_POSITIVE_DEFINITE, err, errcap,
+                                    "component %d: Cholesky diagonal ratio max/min = %g exceeds %g "
+                                    "(ill-conditioned covariance)",
+                                    (int)i, dmax / dmin, MAX_DIAG_RATIO);
         double inv[GMMRRT_MAX_TRI], log_det_half;
         if (!invert_lower(m->chol[i], dim, inv, &log_det_half) || !isfinite(log_det_half))
-            return fail(GMMRRT_ERR_MODEL_NOT_POSITIVE_DEFINITE, err, errcap,
-                        "component %d: Cholesky factor cannot be inverted in double precision",
-                        (int)i);
+            return gmmrrt_set_error(GMMRRT_ERR_MODEL_NOT_POSITIVE_DEFINITE, err, errcap,
+                                    "component %d: Cholesky factor cannot be inverted in double precision",
+                                    (int)i);
     }
 
     /* Angle means in [-pi, pi]. */
     for (int32_t i = 0; i < k; ++i)
         for (int32_t j = 0; j < dim; ++j)
             if (((m->angle_mask >> j) & 1u) && !(m->mean[i][j] >= -M_PI && m->mean[i][j] <= M_PI))
-                return fail(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
-                            "component %d: mean[%d] = %.17g is an angle outside [-pi, pi]", (int)i,
-                            (int)j, m->mean[i][j]);
+                return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
+                                        "component %d: mean[%d] = %.17g is an angle outside [-pi, pi]",
+                                        (int)i, (int)j, m->mean[i][j]);
     return GMMRRT_OK;
 }
 
 gmmrrt_status_t gmmrrt_model_prepare(gmmrrt_model_t *model, char *err, size_t errcap)
 {
-    clear_err(err, errcap);
+    gmmrrt_clear_error(err, errcap);
     if (model == NULL)
-        return fail(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model is NULL");
+        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model is NULL");
     const gmmrrt_status_t st = validate(model, err, errcap);
     if (st != GMMRRT_OK)
         return st;
@@ -273,9 +251,9 @@ gmmrrt_status_t gmmrrt_model_prepare(gmmrrt_model_t *model, char *err, size_t er
 gmmrrt_status_t gmmrrt_model_encode(const gmmrrt_model_t *model, uint8_t *buf, size_t cap,
                                     size_t *out_len, char *err, size_t errcap)
 {
-    clear_err(err, errcap);
+    gmmrrt_clear_error(err, errcap);
     if (model == NULL || out_len == NULL || (buf == NULL && cap > 0))
-        return fail(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model, buf or out_len is NULL");
+        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model, buf or out_len is NULL");
     *out_len = 0;
     const gmmrrt_status_t st = validate(model, err, errcap);
     if (st != GMMRRT_OK)
@@ -283,8 +261,8 @@ gmmrrt_status_t gmmrrt_model_encode(const gmmrrt_model_t *model, uint8_t *buf, s
     const int32_t dim = model->dim, k = model->k, tri = GMMRRT_TRI(dim);
     const size_t len = gmmrrt_model_encoded_size(dim, k);
     if (buf == NULL || cap < len)
-        return fail(GMMRRT_ERR_BUFFER_TOO_SMALL, err, errcap,
-                    "the encoded model needs %zu bytes, the buffer has %zu", len, cap);
+        return gmmrrt_set_error(GMMRRT_ERR_BUFFER_TOO_SMALL, err, errcap,
+                                "the encoded model needs %zu bytes, the buffer has %zu", len, cap);
 
     memcpy(buf, GMMRRT_MODEL_MAGIC, 8);
     put_u16(buf + 8, GMMRRT_MODEL_FORMAT_VERSION);
@@ -314,59 +292,61 @@ gmmrrt_status_t gmmrrt_model_encode(const gmmrrt_model_t *model, uint8_t *buf, s
 gmmrrt_status_t gmmrrt_model_decode(const uint8_t *buf, size_t len, gmmrrt_model_t *out, char *err,
                                     size_t errcap)
 {
-    clear_err(err, errcap);
+    gmmrrt_clear_error(err, errcap);
     if (out == NULL || (buf == NULL && len > 0))
-        return fail(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "buf or out is NULL");
+        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "buf or out is NULL");
     const size_t min_len = GMMRRT_MODEL_HEADER_BYTES + CRC_BYTES;
     const size_t max_len = gmmrrt_model_max_encoded_size();
     if (len < min_len)
-        return fail(GMMRRT_ERR_MODEL_TRUNCATED, err, errcap,
-                    "%zu bytes is shorter than the %zu-byte header and checksum", len, min_len);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_TRUNCATED, err, errcap,
+                                "%zu bytes is shorter than the %zu-byte header and checksum", len, min_len);
     if (len > max_len)
-        return fail(GMMRRT_ERR_MODEL_TOO_LARGE, err, errcap,
-                    "%zu bytes is larger than any valid model (at most %zu bytes, D <= %d, K <= %d)",
-                    len, max_len, GMMRRT_MAX_DIM, GMMRRT_MAX_K);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_TOO_LARGE, err, errcap,
+                                "%zu bytes is larger than any valid model "
+                                "(at most %zu bytes, D <= %d, K <= %d)",
+                                len, max_len, GMMRRT_MAX_DIM, GMMRRT_MAX_K);
     if (memcmp(buf, GMMRRT_MODEL_MAGIC, 8) != 0)
-        return fail(GMMRRT_ERR_MODEL_BAD_MAGIC, err, errcap,
-                    "bytes 0..7 are not the magic \"GMMRRTMD\": not a gmmrrt model file");
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_MAGIC, err, errcap,
+                                "bytes 0..7 are not the magic \"GMMRRTMD\": not a gmmrrt model file");
     const uint16_t version = get_u16(buf + 8);
     if (version != GMMRRT_MODEL_FORMAT_VERSION)
-        return fail(GMMRRT_ERR_MODEL_BAD_VERSION, err, errcap,
-                    "format version %u is not one this build reads (%d)", (unsigned)version,
-                    GMMRRT_MODEL_FORMAT_VERSION);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_VERSION, err, errcap,
+                                "format version %u is not one this build reads (%d)", (unsigned)version,
+                                GMMRRT_MODEL_FORMAT_VERSION);
     const uint16_t bom = get_u16(buf + 10);
     if (bom == 0xFFFEu)
-        return fail(GMMRRT_ERR_MODEL_BAD_BYTE_ORDER, err, errcap,
-                    "bytes 10..11: byte-order mark reads 0xFFFE: the file is big-endian");
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_BYTE_ORDER, err, errcap,
+                                "bytes 10..11: byte-order mark reads 0xFFFE: the file is big-endian");
     if (bom != 0xFEFFu)
-        return fail(GMMRRT_ERR_MODEL_BAD_BYTE_ORDER, err, errcap,
-                    "bytes 10..11: byte-order mark is 0x%04X, not 0xFEFF", (unsigned)bom);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_BYTE_ORDER, err, errcap,
+                                "bytes 10..11: byte-order mark is 0x%04X, not 0xFEFF", (unsigned)bom);
     const int32_t dim = buf[15];
     const int32_t k = get_u16(buf + 16);
     if (dim < 1 || dim > GMMRRT_MAX_DIM)
-        return fail(GMMRRT_ERR_MODEL_BAD_SIZE, err, errcap,
-                    "byte 15: dimension D = %d is outside 1..%d", (int)dim, GMMRRT_MAX_DIM);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_SIZE, err, errcap,
+                                "byte 15: dimension D = %d is outside 1..%d", (int)dim, GMMRRT_MAX_DIM);
     if (k < 1 || k > GMMRRT_MAX_K)
-        return fail(GMMRRT_ERR_MODEL_BAD_SIZE, err, errcap,
-                    "bytes 16..17: component count K = %d is outside 1..%d", (int)k, GMMRRT_MAX_K);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_SIZE, err, errcap,
+                                "bytes 16..17: component count K = %d is outside 1..%d", (int)k,
+                                GMMRRT_MAX_K);
     const uint16_t reserved = get_u16(buf + 18);
     if (reserved != 0)
-        return fail(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap, "bytes 18..19: reserved = %u, must be 0",
-                    (unsigned)reserved);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
+                                "bytes 18..19: reserved = %u, must be 0", (unsigned)reserved);
     const size_t want = gmmrrt_model_encoded_size(dim, k);
     if (len < want)
-        return fail(GMMRRT_ERR_MODEL_TRUNCATED, err, errcap,
-                    "%zu bytes, but D = %d, K = %d needs %zu", len, (int)dim, (int)k, want);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_TRUNCATED, err, errcap,
+                                "%zu bytes, but D = %d, K = %d needs %zu", len, (int)dim, (int)k, want);
     if (len > want)
-        return fail(GMMRRT_ERR_MODEL_BAD_SIZE, err, errcap,
-                    "%zu bytes, but D = %d, K = %d needs exactly %zu (trailing bytes)", len, (int)dim,
-                    (int)k, want);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_SIZE, err, errcap,
+                                "%zu bytes, but D = %d, K = %d needs exactly %zu (trailing bytes)", len,
+                                (int)dim, (int)k, want);
     const uint32_t stored_crc = get_u32(buf + len - CRC_BYTES);
     const uint32_t crc = gmmrrt_crc32(buf, len - CRC_BYTES);
     if (crc != stored_crc)
-        return fail(GMMRRT_ERR_MODEL_BAD_CHECKSUM, err, errcap,
-                    "CRC-32 stored 0x%08X, computed 0x%08X: the file is corrupt", (unsigned)stored_crc,
-                    (unsigned)crc);
+        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_CHECKSUM, err, errcap,
+                                "CRC-32 stored 0x%08X, computed 0x%08X: the file is corrupt",
+                                (unsigned)stored_crc, (unsigned)crc);
 
     memset(out, 0, sizeof *out);
     out->kind = buf[12];

@@ -18,7 +18,7 @@ Run one: ctest --test-dir build -R '^fault\\.clock' --output-on-failure
 """
 import struct
 
-from conftest import run_log_clock
+from daemon_fixture import run_log_clock
 from test_fault_replays import base
 
 from gmmrrt import planner_status_t

@@ -10,7 +10,7 @@ ttl=0, live clock) fed by this test at 10 Hz while faults are injected (issue 9)
     every period (median interval within 15 % of it) and plans throughout.
 
 In the sanitizer pass the daemon is the ASan + LeakSanitizer build: its exit after SIGINT
-runs the leak check, and conftest.assert_clean fails the test on any report.
+runs the leak check, and daemon_fixture.assert_clean fails the test on any report.
 """
 import math
 import os
@@ -22,7 +22,7 @@ import time
 
 import lcm
 import pytest
-from conftest import PERSON_RADIUS, ROBOT_RADIUS, assert_clean, daemon_env
+from daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, assert_clean, daemon_env
 
 from gmmrrt import nav_goal_t, obstacles_t, people_t, person_t, planner_status_t, pose2d_t, waypoints_t
 

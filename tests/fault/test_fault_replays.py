@@ -17,7 +17,7 @@ import random
 import struct
 
 import pytest
-from conftest import run_log_clock
+from daemon_fixture import run_log_clock
 
 from gmmrrt import planner_status_t
 from gmmrrt_tools import replay_check

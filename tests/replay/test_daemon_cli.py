@@ -10,7 +10,7 @@ import subprocess
 import time
 
 import lcm
-from conftest import SCENARIOS, venv_bin
+from daemon_fixture import ROOT, SCENARIOS, venv_bin
 from test_replay_udpm import private_url, wait_for_line
 
 from gmmrrt import planner_status_t, waypoints_t
@@ -74,7 +74,6 @@ def test_flags_override_the_file_and_missing_model_is_fatal(gmmrrtd, models, tmp
 def test_the_shipped_example_ini_is_accepted(gmmrrtd, models, tmp_path):
     """tools/systemd/gmmrrtd.ini is what users copy to /etc: every key in it must parse. Its model
     paths point into /etc, so the flags override them (flags win over the file)."""
-    from conftest import ROOT
     out = tmp_path / "out.lcmlog"
     res = run(gmmrrtd, "--config", os.path.join(ROOT, "tools", "systemd", "gmmrrtd.ini"),
               "--model-avoid", str(models["avoid"]), "--model-approach", str(models["approach"]),

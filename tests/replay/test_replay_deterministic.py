@@ -10,10 +10,11 @@ commit): GMMRRT_UPDATE_GOLDEN=1 ctest --test-dir build -R replay.deterministic
 """
 import json
 import os
-import subprocess
 
 import pytest
-from conftest import GOLDEN, PERSON_RADIUS, ROBOT_RADIUS, SCENARIOS
+import daemon_fixture
+from conftest import GOLDEN
+from daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, ROOT, SCENARIOS
 
 from gmmrrt_tools import replay_check
 
@@ -23,16 +24,10 @@ with open(os.path.join(SCENARIOS, "scenarios.json")) as f:
 
 
 def run_log_clock(gmmrrtd, models, scenario, out_path, extra=()):
-    cmd = [gmmrrtd, "--lcm-url", "file://%s?speed=0" % os.path.join(SCENARIOS, INDEX[scenario]["log"]),
-           "--lcm-out-url", "file://%s?mode=w" % out_path, "--exit-at-eof",
-           "--model-avoid", models["avoid"], "--model-approach", models["approach"],
-           "--budget-ms", "0", "--budget-iterations", str(ITERATIONS), "--seed", "7",
-           "--robot-radius", str(ROBOT_RADIUS), "--person-radius", str(PERSON_RADIUS), "--log-level", "warn",
-           *extra]
-    res = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
-    assert res.returncode == 0, "gmmrrtd failed (%d):\n%s" % (res.returncode, res.stderr)
-    assert os.path.getsize(out_path) > 0
-    return res
+    """One scenario through gmmrrtd (daemon_fixture.run_log_clock: clean exit, no sanitizer report)."""
+    daemon_fixture.run_log_clock(gmmrrtd, models, os.path.join(SCENARIOS, INDEX[scenario]["log"]), out_path,
+                                 iterations=ITERATIONS, extra=extra)
+    assert os.path.getsize(out_path) > 0, "gmmrrtd wrote nothing to %s" % out_path
 
 
 @pytest.fixture(scope="module")
@@ -96,7 +91,6 @@ def test_scenario_logs_match_their_generator():
     """logs/scenarios/ is exactly what tools/make_scenarios.py writes (no hand-edited logs)."""
     import subprocess as sp
     import sys
-    from conftest import ROOT
     res = sp.run([sys.executable, os.path.join(ROOT, "tools", "make_scenarios.py"), "--check", "--out", SCENARIOS],
                  capture_output=True, text=True)
     assert res.returncode == 0, res.stderr
