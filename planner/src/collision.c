@@ -27,6 +27,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "collision_internal.h"
 #include "fcl_adapter.h"
 
 #define GMMRRT_CLEARANCE_CAP_CELLS 4.0
@@ -521,4 +522,16 @@ void gmmrrt_world_set_edge_resolution(gmmrrt_world_t *world, double edge_resolut
 {
     if (world && isfinite(edge_resolution_m) && edge_resolution_m > 0.0)
         world->edge_resolution_m = edge_resolution_m;
+}
+
+const float *gmmrrt_world_grid_cells(const gmmrrt_world_t *world, int32_t *nx, int32_t *ny, double *gi0,
+                                     double *gj0)
+{
+    if (!world || !nx || !ny || !gi0 || !gj0)
+        return NULL;
+    *nx = world->nx;
+    *ny = world->ny;
+    *gi0 = world->gi0;
+    *gj0 = world->gj0;
+    return world->clearance;
 }
