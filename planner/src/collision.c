@@ -47,6 +47,7 @@ struct gmmrrt_world {
     double edge_resolution_m;
     double cap_m;
     double gi0, gj0; /* lattice index of cell (0, 0); integer-valued */
+    double gi0h, gj0h; /* gi0 + 0.5, gj0 + 0.5 (exact): cell (i, j) is centred at ((gi0h + i) res, (gj0h + j) res) */
     int32_t nx, ny;
     int32_t max_cells;
     /* People that can come within reach of a point inside the bounds, for the exact tests. */
@@ -154,10 +155,10 @@ static void splat(struct gmmrrt_world *w, int32_t ri0, int32_t ri1, int32_t rj0,
     const int32_t i0 = (int32_t)fmax(lo_i, (double)ri0), i1 = (int32_t)fmin(hi_i, (double)(ri1 - 1));
     const int32_t j0 = (int32_t)fmax(lo_j, (double)rj0), j1 = (int32_t)fmin(hi_j, (double)(rj1 - 1));
     for (int32_t j = j0; j <= j1; ++j) {
-        const double y = (w->gj0 + (double)j + 0.5) * res;
+        const double y = (w->gj0h + (double)j) * res; /* the same centres as clearance_lower_bound */
         float *row = w->clearance + (size_t)j * (size_t)w->nx;
         for (int32_t i = i0; i <= i1; ++i) {
-            const double x = (w->gi0 + (double)i + 0.5) * res;
+            const double x = (w->gi0h + (double)i) * res;
             const double d = kind == 0 ? gmmrrt_fcl_disc_distance(x, y, w->robot_radius_m, cx, cy, r_or_w)
                                        : gmmrrt_fcl_box_distance(x, y, w->robot_radius_m, cx, cy, r_or_w, h, yaw);
             /* Round down to float so the stored value stays a lower bound. */
@@ -290,6 +291,8 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
     w->cap_m = GMMRRT_CLEARANCE_CAP_CELLS * resolution_m;
     w->gi0 = nw.gi0;
     w->gj0 = nw.gj0;
+    w->gi0h = nw.gi0 + 0.5;
+    w->gj0h = nw.gj0 + 0.5;
     w->nx = nw.nx;
     w->ny = nw.ny;
     w->max_cells = grid_max_cells;
@@ -355,9 +358,10 @@ gmmrrt_status_t gmmrrt_world_grid_stats(const gmmrrt_world_t *world, gmmrrt_worl
 static double clearance_lower_bound(const struct gmmrrt_world *w, double x, double y)
 {
     const double res = w->resolution_m;
-    const double u = x * w->inv_resolution - w->gi0 - 0.5, v = y * w->inv_resolution - w->gj0 - 0.5;
-    const int32_t i0 = (int32_t)fmax(fmin(floor(u), (double)w->nx), -1.0);
-    const int32_t j0 = (int32_t)fmax(fmin(floor(v), (double)w->ny), -1.0);
+    const double u = x * w->inv_resolution - w->gi0h, v = y * w->inv_resolution - w->gj0h;
+    /* The point is inside the bounds, so u is within [-1, nx + 1] or so (the lattice cells
+     * start at or before xmin) and the conversion is safe; the corners are clamped below. */
+    const int32_t i0 = (int32_t)floor(u), j0 = (int32_t)floor(v);
     double best = -INFINITY;
     for (int32_t dj = 0; dj <= 1; ++dj) {
         int32_t j = j0 + dj;
@@ -371,7 +375,7 @@ static double clearance_lower_bound(const struct gmmrrt_world *w, double x, doub
                 i = 0;
             if (i >= w->nx)
                 i = w->nx - 1;
-            const double cx = (w->gi0 + (double)i + 0.5) * res, cy = (w->gj0 + (double)j + 0.5) * res;
+            const double cx = (w->gi0h + (double)i) * res, cy = (w->gj0h + (double)j) * res;
             const double s = (double)w->clearance[(size_t)j * (size_t)w->nx + (size_t)i];
             const double dx = x - cx, dy = y - cy; /* plain sqrt: hypot is ~10x slower, no overflow here */
             const double lb = s - sqrt(dx * dx + dy * dy);
@@ -406,8 +410,9 @@ static int people_segment_free(const struct gmmrrt_world *w, double x0, double y
                                double len2)
 {
     const double e = w->person_edge_reach;
-    const double xlo = fmin(x0, x0 + dx) - e, xhi = fmax(x0, x0 + dx) + e;
-    const double ylo = fmin(y0, y0 + dy) - e, yhi = fmax(y0, y0 + dy) + e;
+    const double x1 = x0 + dx, y1 = y0 + dy;
+    const double xlo = (dx < 0.0 ? x1 : x0) - e, xhi = (dx < 0.0 ? x0 : x1) + e;
+    const double ylo = (dy < 0.0 ? y1 : y0) - e, yhi = (dy < 0.0 ? y0 : y1) + e;
     for (int32_t k = 0; k < w->num_near_people; ++k) {
         const double px = w->near_px[k], py = w->near_py[k];
         if (px < xlo || px > xhi || py < ylo || py > yhi)
