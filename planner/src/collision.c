@@ -279,7 +279,7 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
 
     struct gmmrrt_world *w = mem;
     const int keep = prev && same_statics(w, grid_max_cells, resolution_m, robot_radius_m, obstacles);
-    const grid_layout_t old = {w->gi0, w->gj0, w->nx, w->ny};
+    const grid_layout_t old = keep ? (grid_layout_t){w->gi0, w->gj0, w->nx, w->ny} : (grid_layout_t){0};
     const gmmrrt_world_grid_stats_t counts = prev ? w->stats : (gmmrrt_world_grid_stats_t){0};
 
     memcpy(&w->obstacles, obstacles, sizeof *obstacles);
