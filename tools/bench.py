@@ -219,7 +219,8 @@ def main(argv=None) -> int:
 
     def learner():
         import bench_learner  # numpy/scikit-learn only when needed
-        return bench_learner.run_learner(bin_dir, build / "bench-data", args.quick, args.seed)
+        return bench_learner.run_learner(bin_dir, build / "bench-data", args.quick, args.seed,
+                                         Path(args.real_data) if args.real_data else None)
     section("learner", learner)
     section("micro", lambda: run_micro(build, args.quick))
     section("daemon", lambda: run_daemon(args.quick, raw))

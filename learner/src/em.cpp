@@ -16,6 +16,7 @@
 #include "estep_2d.hpp"
 #include "gmmrrt/features.h"
 #include "gmmrrt_learner/kmeans.hpp"
+#include "spatial_order.hpp"
 
 namespace gmmrrt {
 namespace learn {
@@ -163,6 +164,7 @@ std::vector<Eigen::Index> WorstPoints(const Eigen::VectorXd& score, int count) {
 
 struct FitState {
   const Eigen::MatrixXd* xt = nullptr;  // points as rows (N x D)
+  const std::vector<Eigen::Index>* original_index = nullptr;  // row -> column of the caller's points
   uint32_t mask = 0;
   const FitOptions* options = nullptr;
   DataInfo info;
@@ -224,7 +226,7 @@ bool MStep(const FitState& s, const Stats& st, const Eigen::MatrixXd& old_means,
         w.push_back(1.0 / k);
         mu.push_back(s.xt->row(p).transpose());
         chol.push_back(s.reseed_chol);
-        msg << ": re-seeded at point " << p;
+        msg << ": re-seeded at point " << (s.original_index ? (*s.original_index)[p] : p);
       } else {
         ++s.summary->dropped;
         msg << ": dropped (re-seed budget of " << s.max_reseeds << " spent)";
@@ -325,10 +327,22 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   summary->k_requested = options.k;
   Eigen::MatrixXd x = points;
   WrapAngleRows(angle_mask, &x);
-  const Eigen::MatrixXd xt = x.transpose();  // points as rows: see component_terms.hpp
+  // Points as rows (see component_terms.hpp). For the fused 2-D E-step they are put in spatial
+  // order first (spatial_order.hpp): its lanes then hold nearby points and skip far components
+  // together. The order is a function of the points only, so the fit stays deterministic.
+  std::vector<Eigen::Index> order;
+  Eigen::MatrixXd xt;
+  if (d == 2 && (angle_mask == 0u || angle_mask == 2u)) {
+    order = detail::SpatialOrder2d(x.transpose());
+    xt.resize(n, d);
+    for (Eigen::Index p = 0; p < n; ++p) xt.row(p) = x.col(order[p]).transpose();
+  } else {
+    xt = x.transpose();
+  }
 
   FitState s;
   s.xt = &xt;
+  s.original_index = order.empty() ? nullptr : &order;
   s.mask = angle_mask;
   s.options = &options;
   s.summary = summary;
@@ -354,6 +368,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   std::mt19937_64 rng(options.seed);
   Eigen::MatrixXd sample_xt;
   FitState screen = s;
+  screen.original_index = nullptr;  // point numbers in messages: of the sample
   if (options.screen_points > 0 && n > options.screen_points) {
     std::vector<Eigen::Index> idx(n);
     std::iota(idx.begin(), idx.end(), 0);

@@ -1,6 +1,6 @@
-// estep_2d.hpp (private to learner/src) - the E-step specialised for the common case of the
-// benchmark and of generic 2-D features without angles: D = 2, no wrapped dimension (paper
-// eq. 1). It returns the same quantities as the general E-step of em.cpp (component_terms.hpp):
+// estep_2d.hpp (private to learner/src) - the E-step specialised for D = 2 (paper eq. 1): the
+// benchmark's and generic 2-D features without angles, and the planner's (d, theta) features
+// with theta wrapped (angle on dimension 1, 3 images as in gmm.h). It returns the same quantities as the general E-step of em.cpp (component_terms.hpp):
 // per-point log-likelihood and the responsibility-weighted moments around the current means,
 // in one fused pass, without heap allocation and with a closed-form 2x2 Mahalanobis term.
 #ifndef GMMRRT_LEARNER_ESTEP_2D_HPP
@@ -21,19 +21,32 @@ struct Moments2d {
   std::vector<double> n, m0, m1, s00, s01, s11;
 };
 
-// True when EStep2d handles m (D = 2 and no angle dimension).
-inline bool EStep2dApplies(const Mixture& m) { return m.dim == 2 && m.angle_mask == 0u; }
+// True when EStep2d handles m: D = 2, and no angle dimension or the angle on dimension 1.
+inline bool EStep2dApplies(const Mixture& m) {
+  return m.dim == 2 && (m.angle_mask == 0u || m.angle_mask == 2u);
+}
 
-// x0, x1: the two coordinates of n_points points (contiguous arrays, caller-owned). m must be
-// valid and EStep2dApplies(m). Writes point_ll[p] = log sum_i w_i N(x_p; mu_i, Sigma_i)
-// (n_points entries, caller-owned) and *moments (resized to K); returns the mean of point_ll.
-// Deterministic: a fixed summation order (2 lanes, blocks of 512 points).
+// Which compiled kernel runs: kAuto takes AVX2 when the CPU has it; kAvx2 falls back to the
+// baseline when it does not (tests compare the two).
+enum class Simd { kAuto, kBaseline, kAvx2 };
+
+// True when this build has the AVX2 kernel and the CPU runs it.
+bool EStep2dAvx2Available();
+
+// x0, x1: the two coordinates of n_points >= 1 points (contiguous arrays, caller-owned); with
+// the angle (angle_mask 2), x1 and the means' angle row must be in (-pi, pi] (FitMixture wraps
+// them). m must be valid and EStep2dApplies(m). Writes point_ll[p] = log sum_i w_i N(x_p; mu_i,
+// Sigma_i) (wrapped normal over 3 images with the angle; n_points entries, caller-owned) and
+// *moments (resized to K; y = x - mu_i with the angle coordinate unwrapped per image, as the
+// general E-step); returns the mean of point_ll. Deterministic: a fixed summation order (2
+// lanes on the baseline kernel, 4 on the AVX2 one; blocks of 512 points): the two kernels agree
+// up to rounding (same machine, same kernel -> same bits).
 double EStep2d(const Mixture& m, const double* x0, const double* x1, Eigen::Index n_points,
-               double* point_ll, Moments2d* moments);
+               double* point_ll, Moments2d* moments, Simd simd = Simd::kAuto);
 
 // exp(x) for 4 doubles at a time, as the kernel computes it (relative error < 1e-15 against
 // std::exp for x in [-700, 0]; x below -700 gives 0): exposed for the unit test.
-void VectorExp4(const double* x, double* out);
+void VectorExp4(const double* x, double* out, Simd simd = Simd::kAuto);
 
 }  // namespace detail
 }  // namespace learn

@@ -10,6 +10,7 @@
 
 #include "gmmrrt/features.h"
 #include "gmmrrt_learner/mixture.hpp"
+#include "wrap_difference.hpp"
 
 namespace gmmrrt {
 namespace learn {
@@ -25,15 +26,27 @@ double Uniform01(std::mt19937_64* rng) {
   return static_cast<double>((*rng)() >> 11) * (1.0 / 9007199254740992.0);
 }
 
+namespace {
+
+inline double Wrap(double v) { return detail::WrapDifference(v); }
+
+}  // namespace
+
 void SquaredDistances(const Eigen::MatrixXd& points, const Eigen::VectorXd& center,
                       uint32_t angle_mask, Eigen::ArrayXd* d2) {
   const Eigen::Index n = points.rows();
-  d2->setZero(n);
+  d2->resize(n);
+  if (angle_mask == 0u) {  // one pass, no temporary (the same sums: 0 + a^2 = a^2 exactly)
+    *d2 = (points.col(0).array() - center[0]).square();
+    for (Eigen::Index c = 1; c < points.cols(); ++c) *d2 += (points.col(c).array() - center[c]).square();
+    return;
+  }
+  d2->setZero();
   Eigen::ArrayXd diff(n);
   for (Eigen::Index c = 0; c < points.cols(); ++c) {
     diff = points.col(c).array() - center[c];
     if (c < 32 && ((angle_mask >> c) & 1u))
-      for (Eigen::Index p = 0; p < n; ++p) diff[p] = gmmrrt_wrap_angle(diff[p]);
+      for (Eigen::Index p = 0; p < n; ++p) diff[p] = Wrap(diff[p]);
     *d2 += diff.square();
   }
 }
@@ -83,6 +96,38 @@ void SeedPlusPlus(const Eigen::MatrixXd& x, uint32_t mask, int k, std::mt19937_6
 double Assign(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::MatrixXd& centers,
               Eigen::ArrayXi* labels, Eigen::ArrayXd* best) {
   const Eigen::Index n = x.rows();
+  if (x.cols() == 2 && (mask == 0u || mask == 2u)) {
+    // D = 2, plain or with the angle on dimension 1 (the benchmark's and the planner's (d, theta)
+    // features): one pass over the points per center, no temporaries; the same distances and
+    // ties (strict <: the lower index wins) as below.
+    const bool angle = mask == 2u;
+    labels->resize(n);
+    best->resize(n);
+    const double* x0 = x.col(0).data();
+    const double* x1 = x.col(1).data();
+    int* lab = labels->data();
+    double* bst = best->data();
+    {
+      const double c0 = centers(0, 0), c1 = centers(1, 0);
+      for (Eigen::Index p = 0; p < n; ++p) {
+        const double a = x0[p] - c0, b = angle ? Wrap(x1[p] - c1) : x1[p] - c1;
+        bst[p] = a * a + b * b;
+        lab[p] = 0;
+      }
+    }
+    for (Eigen::Index c = 1; c < centers.cols(); ++c) {
+      const double c0 = centers(0, c), c1 = centers(1, c);
+      const int ci = static_cast<int>(c);
+      for (Eigen::Index p = 0; p < n; ++p) {
+        const double a = x0[p] - c0, b = angle ? Wrap(x1[p] - c1) : x1[p] - c1;
+        const double d = a * a + b * b;
+        const bool closer = d < bst[p];
+        bst[p] = closer ? d : bst[p];
+        lab[p] = closer ? ci : lab[p];
+      }
+    }
+    return best->sum();
+  }
   Eigen::ArrayXd d2;
   SquaredDistances(x, centers.col(0), mask, best);
   labels->setZero(n);
@@ -107,7 +152,7 @@ double Update(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::ArrayXi& lab
     for (Eigen::Index p = 0; p < n; ++p) {
       const int l = labels[p];
       const double diff = x(p, c) - (*centers)(c, l);
-      shift(c, l) += angle ? gmmrrt_wrap_angle(diff) : diff;
+      shift(c, l) += angle ? Wrap(diff) : diff;
     }
   }
   std::vector<bool> taken(n, false);

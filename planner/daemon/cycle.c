@@ -246,6 +246,11 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_utime)
         return;
     }
 
+    /* The world keeps the static obstacles' grid while they stay the same (collision.h). */
+    gmmrrt_world_grid_stats_t grid = {GMMRRT_GRID_BUILT, 0, 0, 0, 0};
+    if (gmmrrt_world_grid_stats(gmmrrt_planner_world(d->planner), &grid) == GMMRRT_OK)
+        d->grid_updates[grid.last]++;
+
     const int32_t n_seed = warm_start_seed(d);
     if (n_seed > 0) {
         if (gmmrrt_planner_seed_path(d->planner, d->seed_x, d->seed_y, n_seed) == GMMRRT_OK)
@@ -255,7 +260,9 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_utime)
     /* The budget covers the whole cycle: set_problem (world build) and the seed come out of it. */
     const double setup_ms = (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3;
     const double time_ms = d->set.budget_ms > 0.0 ? fmax(d->set.budget_ms - setup_ms, 1.0) : 0.0;
-    LOG_DEBUG("cycle set-up %.2f ms, planning %.2f ms", setup_ms, time_ms);
+    LOG_DEBUG("cycle set-up %.2f ms (grid %s, %lld cells), planning %.2f ms", setup_ms,
+              grid.last == GMMRRT_GRID_KEPT ? "kept" : grid.last == GMMRRT_GRID_SHIFTED ? "shifted" : "built",
+              (long long)grid.last_cells, time_ms);
     const gmmrrt_budget_t budget = {
         .time_ms = time_ms,
         .max_iterations = d->set.budget_iterations,

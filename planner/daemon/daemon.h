@@ -88,6 +88,7 @@ typedef struct {
     int64_t plan_seq;
     int64_t cycles;
     int64_t warm_starts;
+    int64_t grid_updates[3]; /* set_problem's clearance grid: built, kept, shifted (gmmrrt_grid_update_t) */
 
     gmmrrtd_ratelimit_t rl[GMMRRTD_NUM_INPUTS + 1][GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS];
 } gmmrrtd_t;

@@ -266,6 +266,8 @@ int main(int argc, char **argv)
     LOG_INFO("exiting: %lld cycles, %lld plans, %lld warm starts, %lld missed deadlines; rejected:%s",
              (long long)d->cycles, (long long)d->status.plans_published, (long long)d->warm_starts,
              (long long)d->status.missed_deadlines, summary);
+    LOG_INFO("clearance grid: %lld built, %lld shifted, %lld kept", (long long)d->grid_updates[GMMRRT_GRID_BUILT],
+             (long long)d->grid_updates[GMMRRT_GRID_SHIFTED], (long long)d->grid_updates[GMMRRT_GRID_KEPT]);
     if (d->lcm_out != d->lcm_in)
         lcm_destroy(d->lcm_out);
     lcm_destroy(d->lcm_in);

@@ -1,38 +1,68 @@
 /*
- * collision.c - the collision world of collision.h: a clearance grid built from FCL
- * distance queries when the world changes, and the conservative point and segment tests
- * the planning loop uses (docs/planner.md, "Collision checking").
+ * collision.c - the collision world of collision.h: a clearance grid of the static obstacles
+ * built from FCL distance queries, kept or shifted while they stay the same, exact tests
+ * against people, and the conservative point and segment tests the planning loop uses
+ * (docs/planner.md, "Collision checking"; the paper's RRT* needs only a free/blocked answer,
+ * Sect. 3 and Karaman & Frazzoli's CollisionFree).
  *
- * Grid: cell (i, j) stores min(C, clearance at its centre), C = 4 cells, where clearance
- * is the FCL distance from the robot disc centred there to the nearest circle, box or
- * person (0 when touching or overlapping). Clearance is 1-Lipschitz, so for any point q
+ * Grid: cell (i, j) is the world-frame lattice cell (gi0 + i, gj0 + j), centred at
+ * ((gi0 + i + 0.5) res, (gj0 + j + 0.5) res), and stores min(C, clearance at its centre),
+ * C = 4 cells, where clearance is the FCL distance from the robot disc centred there to the
+ * nearest circle or box (0 when touching or overlapping). A cell's value depends only on its
+ * place and the static obstacles, never on the bounds, which is what lets gmmrrt_world_update
+ * keep it when only the bounds (and people, start, goal) move. Clearance is 1-Lipschitz, so
+ * for any point q
  *     clearance(q) >= stored(c) - |q - c|
  * for every cell centre c; a point is declared free when that bound is positive for one
  * of the four centres around it. The test never calls a colliding point free; it may
  * call free points within about one cell of an obstacle blocked (the price of a query
- * that costs four loads). Segments are walked with steps of at least edge_resolution_m,
- * longer where the bound proves the gap free (sphere tracing).
+ * that costs four loads). Segments are walked by sphere tracing on that bound.
+ *
+ * People (discs of person_radius_m) change every cycle in the daemon, so they are not in the
+ * grid: a point is tested against each person's centre (distance > robot + person radius),
+ * a segment by its exact point-to-segment distance to each centre.
  */
 #include "gmmrrt/collision.h"
 
 #include <math.h>
 #include <string.h>
 
+#include "collision_internal.h"
 #include "fcl_adapter.h"
 
 #define GMMRRT_CLEARANCE_CAP_CELLS 4.0
+/* Lattice indices are kept in doubles and must stay exact integers with room for + 0.5. */
+#define GMMRRT_MAX_CELL_INDEX 1125899906842624.0 /* 2^50 */
+
+/* Margin an edge must keep from every obstacle and person (m): edges closer than this are
+ * refused, which is what keeps sphere tracing exact and finite (see gmmrrt_world_segment_free). */
+#define GMMRRT_EDGE_MIN_CLEARANCE_M 1e-3
 
 struct gmmrrt_world {
-    gmmrrt_obstacle_set_t obstacles;
+    gmmrrt_obstacle_set_t obstacles; /* copy of the last problem's: the grid is built from its statics */
     double resolution_m;
+    double inv_resolution;
     double robot_radius_m;
     double person_radius_m;
     double edge_resolution_m;
     double cap_m;
+    double gi0, gj0; /* lattice index of cell (0, 0); integer-valued */
+    double gi0h, gj0h; /* gi0 + 0.5, gj0 + 0.5 (exact): cell (i, j) is centred at ((gi0h + i) res, (gj0h + j) res) */
     int32_t nx, ny;
     int32_t max_cells;
+    /* People that can come within reach of a point inside the bounds, for the exact tests. */
+    int32_t num_near_people;
+    double person_reach2;      /* (robot + person radius)^2, m^2: a point closer is blocked */
+    double person_edge_reach;  /* robot + person radius + GMMRRT_EDGE_MIN_CLEARANCE_M, m */
+    double person_edge_reach2;
+    double near_px[GMMRRT_MAX_PEOPLE], near_py[GMMRRT_MAX_PEOPLE];
+    gmmrrt_world_grid_stats_t stats;
     float clearance[]; /* nx * ny, row-major (j * nx + i) */
 };
+
+/* Compared with memcmp to decide whether the grid can be kept: no padding in them. */
+_Static_assert(sizeof(gmmrrt_circle_t) == 3 * sizeof(double), "gmmrrt_circle_t has padding");
+_Static_assert(sizeof(gmmrrt_box_t) == 5 * sizeof(double), "gmmrrt_box_t has padding");
 
 static size_t align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
 
@@ -75,39 +105,60 @@ static gmmrrt_status_t validate_obstacles(const gmmrrt_obstacle_set_t *o)
     return GMMRRT_OK;
 }
 
-/* Lowers the stored clearance of every cell whose centre lies in [x0, x1] x [y0, y1]
- * to the FCL distance of one obstacle (kind 0: disc, 1: box). */
-static void splat(struct gmmrrt_world *w, int kind, double cx, double cy, double r_or_w, double h,
-                  double yaw, double x0, double y0, double x1, double y1)
+/* The grid's cells for the bounds: the lattice cells that meet them, cut to the capacity. */
+typedef struct {
+    double gi0, gj0;
+    int32_t nx, ny;
+} grid_layout_t;
+
+static gmmrrt_status_t layout_for(const gmmrrt_bounds_t *b, double res, int32_t max_cells, grid_layout_t *out)
 {
-    const gmmrrt_bounds_t *b = &w->obstacles.bounds;
+    /* The capacity check of the bounds' own extent, as it always was. */
+    const double cw = ceil((b->xmax - b->xmin) / res), ch = ceil((b->ymax - b->ymin) / res);
+    if (!(cw * ch <= (double)max_cells))
+        return GMMRRT_ERR_BUFFER_TOO_SMALL;
+    const double i0 = floor(b->xmin / res), i1 = ceil(b->xmax / res);
+    const double j0 = floor(b->ymin / res), j1 = ceil(b->ymax / res);
+    if (!(fabs(i0) <= GMMRRT_MAX_CELL_INDEX && fabs(i1) <= GMMRRT_MAX_CELL_INDEX &&
+          fabs(j0) <= GMMRRT_MAX_CELL_INDEX && fabs(j1) <= GMMRRT_MAX_CELL_INDEX))
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    /* Lattice cells meeting [xmin, xmax] are at most one more than ceil(width / res) per axis;
+     * when that extra row or column does not fit, it is left out. Nothing depends on the grid
+     * covering the bounds: any cell's bound is valid everywhere, only weaker further away. */
+    double nx = fmax(i1 - i0, 1.0), ny = fmax(j1 - j0, 1.0);
+    if (nx * ny > (double)max_cells)
+        nx = fmax(fmin(nx, cw), 1.0);
+    if (nx * ny > (double)max_cells)
+        ny = fmax(fmin(ny, ch), 1.0);
+    out->gi0 = i0;
+    out->gj0 = j0;
+    out->nx = (int32_t)nx;
+    out->ny = (int32_t)ny;
+    return GMMRRT_OK;
+}
+
+/* Lowers the stored clearance of every cell in the local index rectangle [ri0, ri1) x
+ * [rj0, rj1) whose centre lies in [x0, x1] x [y0, y1] (widened by a cell) to the FCL distance
+ * of one obstacle (kind 0: disc, 1: box). */
+static void splat(struct gmmrrt_world *w, int32_t ri0, int32_t ri1, int32_t rj0, int32_t rj1, int kind,
+                     double cx, double cy, double r_or_w, double h, double yaw, double x0, double y0, double x1,
+                     double y1)
+{
     const double res = w->resolution_m;
-    /* Clip in double first: any finite position is valid on the wire, and one far outside the
-     * bounds overflowed the int conversion below (UB; found by tests/fuzz/fuzz_daemon_inputs).
-     * The margin of one cell keeps the cell range below exactly what it was for near obstacles. */
-    if (!(x1 >= b->xmin - res && x0 <= b->xmax + res && y1 >= b->ymin - res && y0 <= b->ymax + res))
+    /* Cell ranges as doubles first: any finite position is valid on the wire, and one far
+     * outside the bounds overflows an int conversion (found by tests/fuzz/fuzz_daemon_inputs).
+     * x0 - e may be -inf for huge sizes; the comparisons below handle that. */
+    const double lo_i = floor(x0 / res - 0.5) - w->gi0, hi_i = ceil(x1 / res - 0.5) - w->gi0;
+    const double lo_j = floor(y0 / res - 0.5) - w->gj0, hi_j = ceil(y1 / res - 0.5) - w->gj0;
+    if (!(hi_i >= (double)ri0 && lo_i <= (double)(ri1 - 1) && hi_j >= (double)rj0 && lo_j <= (double)(rj1 - 1)))
         return;
-    x0 = fmax(x0, b->xmin - res);
-    x1 = fmin(x1, b->xmax + res);
-    y0 = fmax(y0, b->ymin - res);
-    y1 = fmin(y1, b->ymax + res);
-    int32_t i0 = (int32_t)floor((x0 - b->xmin) / res - 0.5), i1 = (int32_t)ceil((x1 - b->xmin) / res - 0.5);
-    int32_t j0 = (int32_t)floor((y0 - b->ymin) / res - 0.5), j1 = (int32_t)ceil((y1 - b->ymin) / res - 0.5);
-    if (i1 < 0 || j1 < 0 || i0 >= w->nx || j0 >= w->ny)
-        return;
-    if (i0 < 0)
-        i0 = 0;
-    if (j0 < 0)
-        j0 = 0;
-    if (i1 >= w->nx)
-        i1 = w->nx - 1;
-    if (j1 >= w->ny)
-        j1 = w->ny - 1;
+    const int32_t i0 = (int32_t)fmax(lo_i, (double)ri0), i1 = (int32_t)fmin(hi_i, (double)(ri1 - 1));
+    const int32_t j0 = (int32_t)fmax(lo_j, (double)rj0), j1 = (int32_t)fmin(hi_j, (double)(rj1 - 1));
     for (int32_t j = j0; j <= j1; ++j) {
-        const double y = b->ymin + (j + 0.5) * res;
+        const double y = (w->gj0h + (double)j) * res; /* the same centres as clearance_lower_bound */
         float *row = w->clearance + (size_t)j * (size_t)w->nx;
         for (int32_t i = i0; i <= i1; ++i) {
-            const double x = b->xmin + (i + 0.5) * res;
+            const double x = (w->gi0h + (double)i) * res;
             const double d = kind == 0 ? gmmrrt_fcl_disc_distance(x, y, w->robot_radius_m, cx, cy, r_or_w)
                                        : gmmrrt_fcl_box_distance(x, y, w->robot_radius_m, cx, cy, r_or_w, h, yaw);
             /* Round down to float so the stored value stays a lower bound. */
@@ -120,74 +171,197 @@ static void splat(struct gmmrrt_world *w, int kind, double cx, double cy, double
     }
 }
 
-gmmrrt_status_t gmmrrt_world_build(gmmrrt_world_t **out, void *mem, size_t size, int32_t grid_max_cells,
-                                   double resolution_m, double robot_radius_m, double person_radius_m,
-                                   const gmmrrt_obstacle_set_t *obstacles)
+/* Computes the cells of the local rectangle [i0, i1) x [j0, j1) from the static obstacles. */
+static int64_t fill_cells(struct gmmrrt_world *w, int32_t i0, int32_t i1, int32_t j0, int32_t j1)
 {
-    if (!out || !mem || !obstacles || grid_max_cells < 1 || !isfinite(resolution_m) || resolution_m <= 0.0 ||
+    if (i0 >= i1 || j0 >= j1)
+        return 0;
+    for (int32_t j = j0; j < j1; ++j) {
+        float *row = w->clearance + (size_t)j * (size_t)w->nx;
+        for (int32_t i = i0; i < i1; ++i)
+            row[i] = (float)w->cap_m;
+    }
+    /* Only cells within reach (robot radius + cap) of an obstacle can hold less than the cap. */
+    const gmmrrt_obstacle_set_t *o = &w->obstacles;
+    const double reach = w->robot_radius_m + w->cap_m;
+    for (int32_t k = 0; k < o->num_circles; ++k) {
+        const gmmrrt_circle_t *c = &o->circles[k];
+        const double e = c->radius_m + reach;
+        splat(w, i0, i1, j0, j1, 0, c->x, c->y, c->radius_m, 0.0, 0.0, c->x - e, c->y - e, c->x + e,
+                          c->y + e);
+    }
+    for (int32_t k = 0; k < o->num_boxes; ++k) {
+        const gmmrrt_box_t *bx = &o->boxes[k];
+        const double hx = 0.5 * (fabs(cos(bx->yaw)) * bx->width_m + fabs(sin(bx->yaw)) * bx->height_m);
+        const double hy = 0.5 * (fabs(sin(bx->yaw)) * bx->width_m + fabs(cos(bx->yaw)) * bx->height_m);
+        splat(w, i0, i1, j0, j1, 1, bx->x, bx->y, bx->width_m, bx->height_m, bx->yaw,
+                          bx->x - hx - reach, bx->y - hy - reach, bx->x + hx + reach, bx->y + hy + reach);
+    }
+    return (int64_t)(i1 - i0) * (int64_t)(j1 - j0);
+}
+
+/* Moves the cells the old layout shares with the new one to their new places, in place (rows
+ * may grow or shrink, and move either way). Row J moves by delta(J), which is linear in J:
+ * first the rows moving down (delta <= 0) in ascending J, then those moving up in descending
+ * J; no row is overwritten before it has moved (the destinations keep the rows' order). */
+static void move_shared_cells(struct gmmrrt_world *w, const grid_layout_t *old, const grid_layout_t *nw,
+                              int32_t ai, int32_t bi, int32_t aj, int32_t bj)
+{
+    /* ai..bi, aj..bj: shared columns and rows as local indices of the new layout (exclusive). */
+    const int32_t di = (int32_t)(nw->gi0 - old->gi0), dj = (int32_t)(nw->gj0 - old->gj0);
+    const size_t len = (size_t)(bi - ai) * sizeof(float);
+    for (int pass = 0; pass < 2; ++pass) {
+        for (int32_t k = 0; k < bj - aj; ++k) {
+            const int32_t j = pass == 0 ? aj + k : bj - 1 - k;
+            const ptrdiff_t src = (ptrdiff_t)(j + dj) * old->nx + (ai + di);
+            const ptrdiff_t dst = (ptrdiff_t)j * nw->nx + ai;
+            if ((pass == 0) == (dst <= src))
+                memmove(w->clearance + dst, w->clearance + src, len);
+        }
+    }
+}
+
+static int same_statics(const struct gmmrrt_world *w, int32_t grid_max_cells, double resolution_m,
+                        double robot_radius_m, const gmmrrt_obstacle_set_t *o)
+{
+    const gmmrrt_obstacle_set_t *k = &w->obstacles;
+    return w->max_cells == grid_max_cells && memcmp(&w->resolution_m, &resolution_m, sizeof(double)) == 0 &&
+           memcmp(&w->robot_radius_m, &robot_radius_m, sizeof(double)) == 0 && k->num_circles == o->num_circles &&
+           k->num_boxes == o->num_boxes &&
+           memcmp(k->circles, o->circles, (size_t)o->num_circles * sizeof o->circles[0]) == 0 &&
+           memcmp(k->boxes, o->boxes, (size_t)o->num_boxes * sizeof o->boxes[0]) == 0;
+}
+
+/* People whose disc (plus the edge margin) can reach a point inside the bounds. */
+static void set_people(struct gmmrrt_world *w)
+{
+    const gmmrrt_obstacle_set_t *o = &w->obstacles;
+    const gmmrrt_bounds_t *b = &o->bounds;
+    const double reach = w->robot_radius_m + w->person_radius_m;
+    w->person_reach2 = reach * reach;
+    w->person_edge_reach = reach + GMMRRT_EDGE_MIN_CLEARANCE_M;
+    w->person_edge_reach2 = w->person_edge_reach * w->person_edge_reach;
+    w->num_near_people = 0;
+    if (!(w->person_radius_m > 0.0))
+        return; /* people of radius 0 are not obstacles (as exact_clearance) */
+    const double m = w->person_edge_reach + GMMRRT_EDGE_MIN_CLEARANCE_M;
+    for (int32_t k = 0; k < o->num_people; ++k) {
+        const gmmrrt_pose_t *p = &o->people[k];
+        if (p->x < b->xmin - m || p->x > b->xmax + m || p->y < b->ymin - m || p->y > b->ymax + m)
+            continue;
+        w->near_px[w->num_near_people] = p->x;
+        w->near_py[w->num_near_people] = p->y;
+        w->num_near_people++;
+    }
+}
+
+gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t size, int32_t grid_max_cells,
+                                    double resolution_m, double robot_radius_m, double person_radius_m,
+                                    const gmmrrt_obstacle_set_t *obstacles)
+{
+    if (!world)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    struct gmmrrt_world *prev = *world;
+    *world = NULL;
+    if (!mem || !obstacles || grid_max_cells < 1 || !isfinite(resolution_m) || resolution_m <= 0.0 ||
         !isfinite(robot_radius_m) || robot_radius_m < 0.0 || !isfinite(person_radius_m) ||
-        person_radius_m < 0.0 || ((uintptr_t)mem & 7u) != 0)
+        person_radius_m < 0.0 || ((uintptr_t)mem & 7u) != 0 || (prev && (void *)prev != mem))
         return GMMRRT_ERR_INVALID_ARGUMENT;
     if (size < gmmrrt_world_mem_size(grid_max_cells))
         return GMMRRT_ERR_BUFFER_TOO_SMALL;
     gmmrrt_status_t st = validate_obstacles(obstacles);
     if (st != GMMRRT_OK)
         return st;
-    const gmmrrt_bounds_t *b = &obstacles->bounds;
-    const double nxd = ceil((b->xmax - b->xmin) / resolution_m), nyd = ceil((b->ymax - b->ymin) / resolution_m);
-    if (!(nxd * nyd <= (double)grid_max_cells))
-        return GMMRRT_ERR_BUFFER_TOO_SMALL;
+    grid_layout_t nw;
+    st = layout_for(&obstacles->bounds, resolution_m, grid_max_cells, &nw);
+    if (st != GMMRRT_OK)
+        return st;
 
     struct gmmrrt_world *w = mem;
+    const int keep = prev && same_statics(w, grid_max_cells, resolution_m, robot_radius_m, obstacles);
+    const grid_layout_t old = keep ? (grid_layout_t){w->gi0, w->gj0, w->nx, w->ny} : (grid_layout_t){0};
+    const gmmrrt_world_grid_stats_t counts = prev ? w->stats : (gmmrrt_world_grid_stats_t){0};
+
     memcpy(&w->obstacles, obstacles, sizeof *obstacles);
     w->resolution_m = resolution_m;
+    w->inv_resolution = 1.0 / resolution_m;
     w->robot_radius_m = robot_radius_m;
     w->person_radius_m = person_radius_m;
     w->edge_resolution_m = resolution_m;
     w->cap_m = GMMRRT_CLEARANCE_CAP_CELLS * resolution_m;
-    w->nx = nxd < 1.0 ? 1 : (int32_t)nxd;
-    w->ny = nyd < 1.0 ? 1 : (int32_t)nyd;
+    w->gi0 = nw.gi0;
+    w->gj0 = nw.gj0;
+    w->gi0h = nw.gi0 + 0.5;
+    w->gj0h = nw.gj0 + 0.5;
+    w->nx = nw.nx;
+    w->ny = nw.ny;
     w->max_cells = grid_max_cells;
-    const size_t n = (size_t)w->nx * (size_t)w->ny;
-    for (size_t c = 0; c < n; ++c)
-        w->clearance[c] = (float)w->cap_m;
+    w->stats = counts;
+    set_people(w);
 
-    /* Only cells within reach (robot radius + cap) of an obstacle can hold less than the cap. */
-    const double reach = robot_radius_m + w->cap_m;
-    for (int32_t k = 0; k < obstacles->num_circles; ++k) {
-        const gmmrrt_circle_t *c = &obstacles->circles[k];
-        const double e = c->radius_m + reach;
-        splat(w, 0, c->x, c->y, c->radius_m, 0.0, 0.0, c->x - e, c->y - e, c->x + e, c->y + e);
+    /* Shared cells as local indices of the new layout (exclusive ends); none when the
+     * statics changed. */
+    int32_t ai = 0, bi = 0, aj = 0, bj = 0;
+    if (keep) {
+        const double ai_d = fmax(old.gi0, nw.gi0) - nw.gi0, bi_d = fmin(old.gi0 + old.nx, nw.gi0 + nw.nx) - nw.gi0;
+        const double aj_d = fmax(old.gj0, nw.gj0) - nw.gj0, bj_d = fmin(old.gj0 + old.ny, nw.gj0 + nw.ny) - nw.gj0;
+        if (ai_d < bi_d && aj_d < bj_d) {
+            ai = (int32_t)ai_d;
+            bi = (int32_t)bi_d;
+            aj = (int32_t)aj_d;
+            bj = (int32_t)bj_d;
+        }
     }
-    for (int32_t k = 0; k < obstacles->num_people; ++k) {
-        const gmmrrt_pose_t *p = &obstacles->people[k];
-        const double e = person_radius_m + reach;
-        if (person_radius_m > 0.0)
-            splat(w, 0, p->x, p->y, person_radius_m, 0.0, 0.0, p->x - e, p->y - e, p->x + e, p->y + e);
+    int64_t cells;
+    if (ai < bi) {
+        const int same = old.gi0 == nw.gi0 && old.gj0 == nw.gj0 && old.nx == nw.nx && old.ny == nw.ny;
+        if (!same)
+            move_shared_cells(w, &old, &nw, ai, bi, aj, bj);
+        cells = fill_cells(w, 0, nw.nx, 0, aj) + fill_cells(w, 0, nw.nx, bj, nw.ny) + fill_cells(w, 0, ai, aj, bj) +
+                fill_cells(w, bi, nw.nx, aj, bj);
+        w->stats.last = same ? GMMRRT_GRID_KEPT : GMMRRT_GRID_SHIFTED;
+        if (same)
+            w->stats.kept++;
+        else
+            w->stats.shifted++;
+    } else {
+        cells = fill_cells(w, 0, nw.nx, 0, nw.ny);
+        w->stats.last = GMMRRT_GRID_BUILT;
+        w->stats.built++;
     }
-    for (int32_t k = 0; k < obstacles->num_boxes; ++k) {
-        const gmmrrt_box_t *bx = &obstacles->boxes[k];
-        const double hx = 0.5 * (fabs(cos(bx->yaw)) * bx->width_m + fabs(sin(bx->yaw)) * bx->height_m);
-        const double hy = 0.5 * (fabs(sin(bx->yaw)) * bx->width_m + fabs(cos(bx->yaw)) * bx->height_m);
-        splat(w, 1, bx->x, bx->y, bx->width_m, bx->height_m, bx->yaw, bx->x - hx - reach, bx->y - hy - reach,
-              bx->x + hx + reach, bx->y + hy + reach);
-    }
-    *out = w;
+    w->stats.last_cells = cells;
+    *world = w;
     return GMMRRT_OK;
 }
 
-/* Lower bound on the clearance at (x, y) from the four cell centres around it; the point
- * must lie inside the bounds. */
-/* Margin an edge must keep from every obstacle (m): edges closer than this are refused, which is
- * what keeps sphere tracing exact and finite (see gmmrrt_world_segment_free). */
-#define GMMRRT_EDGE_MIN_CLEARANCE_M 1e-3
+gmmrrt_status_t gmmrrt_world_build(gmmrrt_world_t **out, void *mem, size_t size, int32_t grid_max_cells,
+                                   double resolution_m, double robot_radius_m, double person_radius_m,
+                                   const gmmrrt_obstacle_set_t *obstacles)
+{
+    if (!out)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    *out = NULL;
+    return gmmrrt_world_update(out, mem, size, grid_max_cells, resolution_m, robot_radius_m, person_radius_m,
+                               obstacles);
+}
 
+gmmrrt_status_t gmmrrt_world_grid_stats(const gmmrrt_world_t *world, gmmrrt_world_grid_stats_t *out)
+{
+    if (!world || !out)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    *out = world->stats;
+    return GMMRRT_OK;
+}
+
+/* Lower bound on the clearance from static obstacles at (x, y), from the four cell centres
+ * around it (clamped to the grid: any cell's bound holds everywhere, only weaker). */
 static double clearance_lower_bound(const struct gmmrrt_world *w, double x, double y)
 {
-    const gmmrrt_bounds_t *b = &w->obstacles.bounds;
     const double res = w->resolution_m;
-    const double u = (x - b->xmin) / res - 0.5, v = (y - b->ymin) / res - 0.5;
-    int32_t i0 = (int32_t)floor(u), j0 = (int32_t)floor(v);
+    const double u = x * w->inv_resolution - w->gi0h, v = y * w->inv_resolution - w->gj0h;
+    /* The point is inside the bounds, so u is within [-1, nx + 1] or so (the lattice cells
+     * start at or before xmin) and the conversion is safe; the corners are clamped below. */
+    const int32_t i0 = (int32_t)floor(u), j0 = (int32_t)floor(v);
     double best = -INFINITY;
     for (int32_t dj = 0; dj <= 1; ++dj) {
         int32_t j = j0 + dj;
@@ -201,7 +375,7 @@ static double clearance_lower_bound(const struct gmmrrt_world *w, double x, doub
                 i = 0;
             if (i >= w->nx)
                 i = w->nx - 1;
-            const double cx = b->xmin + (i + 0.5) * res, cy = b->ymin + (j + 0.5) * res;
+            const double cx = (w->gi0h + (double)i) * res, cy = (w->gj0h + (double)j) * res;
             const double s = (double)w->clearance[(size_t)j * (size_t)w->nx + (size_t)i];
             const double dx = x - cx, dy = y - cy; /* plain sqrt: hypot is ~10x slower, no overflow here */
             const double lb = s - sqrt(dx * dx + dy * dy);
@@ -218,11 +392,45 @@ static int inside_bounds(const struct gmmrrt_world *w, double x, double y)
     return x >= b->xmin && x <= b->xmax && y >= b->ymin && y <= b->ymax;
 }
 
+/* 1 when the robot at (x, y) touches no person: centre distance > robot + person radius. */
+static int people_point_free(const struct gmmrrt_world *w, double x, double y)
+{
+    for (int32_t k = 0; k < w->num_near_people; ++k) {
+        const double dx = x - w->near_px[k], dy = y - w->near_py[k];
+        if (dx * dx + dy * dy <= w->person_reach2)
+            return 0;
+    }
+    return 1;
+}
+
+/* 1 when every point of the segment (x0, y0) + t (dx, dy), t in [0, 1], len2 = dx^2 + dy^2 > 0,
+ * keeps more than GMMRRT_EDGE_MIN_CLEARANCE_M from every person: exact point-segment distance
+ * to each centre. */
+static int people_segment_free(const struct gmmrrt_world *w, double x0, double y0, double dx, double dy,
+                               double len2)
+{
+    const double e = w->person_edge_reach;
+    const double x1 = x0 + dx, y1 = y0 + dy;
+    const double xlo = (dx < 0.0 ? x1 : x0) - e, xhi = (dx < 0.0 ? x0 : x1) + e;
+    const double ylo = (dy < 0.0 ? y1 : y0) - e, yhi = (dy < 0.0 ? y0 : y1) + e;
+    for (int32_t k = 0; k < w->num_near_people; ++k) {
+        const double px = w->near_px[k], py = w->near_py[k];
+        if (px < xlo || px > xhi || py < ylo || py > yhi)
+            continue;
+        double t = ((px - x0) * dx + (py - y0) * dy) / len2;
+        t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+        const double ex = x0 + t * dx - px, ey = y0 + t * dy - py;
+        if (ex * ex + ey * ey <= w->person_edge_reach2)
+            return 0;
+    }
+    return 1;
+}
+
 int gmmrrt_world_point_free(const gmmrrt_world_t *world, double x, double y)
 {
     if (!world || !isfinite(x) || !isfinite(y) || !inside_bounds(world, x, y))
         return 0;
-    return clearance_lower_bound(world, x, y) > 0.0;
+    return clearance_lower_bound(world, x, y) > 0.0 && people_point_free(world, x, y);
 }
 
 int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0, double x1, double y1)
@@ -246,14 +454,18 @@ int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0,
     if (!(lb0 > 0.0) || !(lb1 > 0.0))
         return 0;
     const double dx = x1 - x0, dy = y1 - y0;
-    const double len = sqrt(dx * dx + dy * dy); /* plain sqrt: map coordinates, no overflow */
-    if (len == 0.0)
-        return 1;
+    const double len2 = dx * dx + dy * dy;
+    if (len2 == 0.0)
+        return people_point_free(world, x0, y0);
+    if (!people_segment_free(world, x0, y0, dx, dy, len2))
+        return 0;
+    /* From here on only the static obstacles of the grid. */
+    const double len = sqrt(len2); /* plain sqrt: map coordinates, no overflow */
     /* Free discs of radius lb0 and lb1 around the ends that overlap cover the whole edge
      * (same clearance floor as the walk below). */
     if (lb0 > GMMRRT_EDGE_MIN_CLEARANCE_M && lb1 > GMMRRT_EDGE_MIN_CLEARANCE_M && lb0 + lb1 > len)
         return 1;
-    const double ux = (x1 - x0) / len, uy = (y1 - y0) / len;
+    const double ux = dx / len, uy = dy / len;
     /* Bounds are convex and both ends are inside, so every point between is inside. */
     /* Sphere tracing: lb is a lower bound on the exact clearance and clearance is 1-Lipschitz, so
      * the robot is free everywhere within lb of the probe and a step of lb never skips an obstacle,
@@ -315,4 +527,16 @@ void gmmrrt_world_set_edge_resolution(gmmrrt_world_t *world, double edge_resolut
 {
     if (world && isfinite(edge_resolution_m) && edge_resolution_m > 0.0)
         world->edge_resolution_m = edge_resolution_m;
+}
+
+const float *gmmrrt_world_grid_cells(const gmmrrt_world_t *world, int32_t *nx, int32_t *ny, double *gi0,
+                                     double *gj0)
+{
+    if (!world || !nx || !ny || !gi0 || !gj0)
+        return NULL;
+    *nx = world->nx;
+    *ny = world->ny;
+    *gi0 = world->gi0;
+    *gj0 = world->gj0;
+    return world->clearance;
 }

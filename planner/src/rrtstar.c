@@ -177,11 +177,12 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
             return GMMRRT_ERR_MODEL_MISMATCH;
     }
 
-    /* Builds the world (validates every obstacle number and the bounds). */
-    gmmrrt_world_t *w = NULL;
-    gmmrrt_status_t st = gmmrrt_world_build(&w, p->world_mem, p->world_size, p->cfg.grid_max_cells,
-                                            p->cfg.grid_resolution_m, p->cfg.robot_radius_m,
-                                            p->cfg.person_radius_m, o);
+    /* Builds the world (validates every obstacle number and the bounds); keeps the last
+     * problem's clearance grid where the static obstacles are the same (collision.h). */
+    gmmrrt_world_t *w = p->world;
+    gmmrrt_status_t st = gmmrrt_world_update(&w, p->world_mem, p->world_size, p->cfg.grid_max_cells,
+                                             p->cfg.grid_resolution_m, p->cfg.robot_radius_m,
+                                             p->cfg.person_radius_m, o);
     if (st != GMMRRT_OK) {
         p->world = NULL;
         return st;

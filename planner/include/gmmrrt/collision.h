@@ -5,6 +5,8 @@
  *
  * Memory: a gmmrrt_world_t lives inside the planner's block (rrtstar.h); the functions
  * here are also usable standalone with gmmrrt_world_mem_size() bytes of caller memory.
+ * Static obstacles go into a clearance grid (rebuilt only when they change, see
+ * gmmrrt_world_update); people are checked exactly at query time.
  */
 #ifndef GMMRRT_COLLISION_H
 #define GMMRRT_COLLISION_H
@@ -53,15 +55,60 @@ typedef struct gmmrrt_world gmmrrt_world_t;
 size_t gmmrrt_world_mem_size(int32_t grid_max_cells);
 
 /* Builds the collision world in mem[size]: robot disc of robot_radius_m (>= 0), people as
- * discs of person_radius_m (>= 0), grid at resolution_m. Validates every number. */
+ * discs of person_radius_m (>= 0; 0: people are not obstacles), grid at resolution_m.
+ * Validates every number. GMMRRT_ERR_INVALID_ARGUMENT: a NULL pointer, mem not 8-byte aligned,
+ * a number out of range or not finite, or bounds further than 2^50 cells from the origin;
+ * GMMRRT_ERR_BUFFER_TOO_SMALL: size < gmmrrt_world_mem_size(grid_max_cells), or the bounds
+ * need more than grid_max_cells cells at resolution_m. */
 gmmrrt_status_t gmmrrt_world_build(gmmrrt_world_t **out, void *mem, size_t size, int32_t grid_max_cells,
                                    double resolution_m, double robot_radius_m, double person_radius_m,
                                    const gmmrrt_obstacle_set_t *obstacles);
 
-/* 1 when the robot centred at (x, y) is free (inside bounds, touching nothing), else 0. */
+/* Updates the world that gmmrrt_world_build or this function last built in mem for a new
+ * problem, keeping as much of the clearance grid as is still valid. The grid holds only the
+ * bounds' area and the static obstacles (circles, boxes); people are tested exactly at query
+ * time, so moving people never touch the grid. Cells sit on a lattice fixed in the world frame
+ * (cell (I, J) centred at ((I + 0.5) res, (J + 0.5) res)), so a cell's value depends only on its
+ * place and the static obstacles:
+ *   - same circles, boxes, robot_radius_m, resolution_m and grid_max_cells (bit for bit) and the
+ *     bounds cover the same cells: the grid is kept as it is (GMMRRT_GRID_KEPT);
+ *   - the same, but the bounds moved or changed size: the cells still covered are moved in place
+ *     and only the newly covered ones computed (GMMRRT_GRID_SHIFTED);
+ *   - anything else: every cell computed, as gmmrrt_world_build (GMMRRT_GRID_BUILT).
+ * In every case the world answers every query exactly as a fresh gmmrrt_world_build would.
+ * world: in, NULL (then this is gmmrrt_world_build) or the world last returned for this mem;
+ * out, the world (== mem) on success, NULL on error. Other parameters, validation and statuses
+ * as gmmrrt_world_build; a *world that is neither NULL nor mem is GMMRRT_ERR_INVALID_ARGUMENT.
+ * On error mem is left as it was. Allocates nothing. */
+gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t size, int32_t grid_max_cells,
+                                    double resolution_m, double robot_radius_m, double person_radius_m,
+                                    const gmmrrt_obstacle_set_t *obstacles);
+
+typedef enum {
+    GMMRRT_GRID_BUILT = 0,   /* every cell computed */
+    GMMRRT_GRID_KEPT = 1,    /* nothing computed */
+    GMMRRT_GRID_SHIFTED = 2, /* cells still covered kept, the new ones computed */
+} gmmrrt_grid_update_t;
+
+/* What the grid cost, for logs, tests and benchmarks. Counts run from the last call that
+ * started from no world (gmmrrt_world_build, or gmmrrt_world_update with *world == NULL). */
+typedef struct {
+    gmmrrt_grid_update_t last; /* what the last build / update did */
+    int64_t last_cells;        /* cells the last call computed (0 when kept) */
+    int64_t built, kept, shifted;
+} gmmrrt_world_grid_stats_t;
+
+/* Fills *out; GMMRRT_ERR_INVALID_ARGUMENT when world or out is NULL. */
+gmmrrt_status_t gmmrrt_world_grid_stats(const gmmrrt_world_t *world, gmmrrt_world_grid_stats_t *out);
+
+/* 1 when the robot centred at (x, y) is free (inside bounds, touching nothing), else 0.
+ * Conservative near static obstacles (may block points within about a cell of one), exact
+ * for people. */
 int gmmrrt_world_point_free(const gmmrrt_world_t *world, double x, double y);
 
-/* 1 when the straight segment is free, checked at the world's resolution (docs/planner.md). */
+/* 1 when the straight segment is free (docs/planner.md, "Collision checking"): the grid part by
+ * sphere tracing, people exactly; a segment of positive length that comes within 1 mm of an
+ * obstacle or person is refused. */
 int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0, double x1, double y1);
 
 /* Exact clearance (m) from the robot disc at (x, y) to the nearest obstacle or person,

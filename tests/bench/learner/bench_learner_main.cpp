@@ -1,9 +1,12 @@
 // bench_learner_main.cpp - gmmrrt-bench-learner: times the learner's EM fit (FitMixture) or its
 // BIC sweep (SweepBic) on the points of a CSV file, for the comparison with scikit-learn in
 // tools/bench_learner.py (issue 8; paper Sect. 3 and 5.1). Only the fit is timed, not the
-// reading. Prints one JSON object: the time, the learner's summary and the fitted mixture
-// (weights, means, covariances), so the peer script scores both mixtures with one evaluator.
+// reading: wall time (steady clock) and the process's CPU time (CLOCK_PROCESS_CPUTIME_ID; the
+// learner is single-threaded, so on a shared machine this is the steadier figure). Prints one
+// JSON object: the times, the learner's summary and the fitted mixture (weights, means,
+// covariances), so the peer script scores both mixtures with one evaluator.
 #include <getopt.h>
+#include <time.h>
 
 #include <cerrno>
 #include <chrono>
@@ -37,6 +40,8 @@ void Usage(FILE* f) {
                "  -t, --tol T             convergence tolerance on the mean log-likelihood (default: learner's)\n"
                "  -m, --max-iter N        EM iterations at most (default: learner's)\n"
                "  -r, --restarts N        k-means++ seedings (default: learner's)\n"
+               "  -p, --screen-points N   sample size for screening the candidates (default: learner's;\n"
+               "                          0 screens on all points)\n"
                "  -h, --help              this help\n");
 }
 
@@ -135,19 +140,27 @@ void PrintMixture(const Mixture& m) {
   std::printf("]");
 }
 
+// CPU time of this process [ms].
+double ProcessCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string points_path;
-  long k = 0, k_min = 0, k_max = 0, seed = 1, max_iter = -1, restarts = -1;
+  long k = 0, k_min = 0, k_max = 0, seed = 1, max_iter = -1, restarts = -1, screen_points = -1;
   double tol = -1.0;
   static const option opts[] = {{"points", required_argument, nullptr, 'i'}, {"k", required_argument, nullptr, 'k'},
                                 {"sweep", required_argument, nullptr, 'b'},  {"seed", required_argument, nullptr, 's'},
                                 {"tol", required_argument, nullptr, 't'},    {"max-iter", required_argument, nullptr, 'm'},
                                 {"restarts", required_argument, nullptr, 'r'}, {"help", no_argument, nullptr, 'h'},
+                                {"screen-points", required_argument, nullptr, 'p'},
                                 {nullptr, 0, nullptr, 0}};
   int c;
-  while ((c = getopt_long(argc, argv, "i:k:b:s:t:m:r:h", opts, nullptr)) != -1) {
+  while ((c = getopt_long(argc, argv, "i:k:b:s:t:m:r:p:h", opts, nullptr)) != -1) {
     bool ok = true;
     switch (c) {
       case 'i': points_path = optarg; break;
@@ -157,6 +170,7 @@ int main(int argc, char** argv) {
       case 't': ok = ParseDouble(optarg, &tol) && tol > 0; break;
       case 'm': ok = ParseLong(optarg, &max_iter) && max_iter >= 1; break;
       case 'r': ok = ParseLong(optarg, &restarts) && restarts >= 1; break;
+      case 'p': ok = ParseLong(optarg, &screen_points) && screen_points >= 0; break;
       case 'h': Usage(stdout); return 0;
       default: Usage(stderr); return 2;
     }
@@ -181,6 +195,7 @@ int main(int argc, char** argv) {
   if (tol > 0) options.tolerance = tol;
   if (max_iter > 0) options.max_iterations = static_cast<int>(max_iter);
   if (restarts > 0) options.restarts = static_cast<int>(restarts);
+  if (screen_points >= 0) options.screen_points = screen_points;
   if (k > 0) options.k = static_cast<int>(k);
   if (!options.IsValid(&error)) {
     std::fprintf(stderr, "gmmrrt-bench-learner: %s\n", error.c_str());
@@ -191,35 +206,39 @@ int main(int argc, char** argv) {
   if (k > 0) {
     Mixture m;
     FitSummary s;
+    const double cpu0 = ProcessCpuMs();
     const Clock::time_point t0 = Clock::now();
     const Status st = gmmrrt::learn::FitMixture(points, 0u, options, &m, &s);
     const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    const double cpu_ms = ProcessCpuMs() - cpu0;
     if (!st.ok()) {
       std::fprintf(stderr, "gmmrrt-bench-learner: fit failed: %s\n", st.message.c_str());
       return 1;
     }
     std::printf("{\"mode\":\"fit\",\"n\":%ld,\"dim\":%ld,\"k\":%ld,\"seed\":%ld,\"tol\":%.17g,\"max_iter\":%d,"
-                "\"restarts\":%d,\"fit_ms\":%.6f,\"mean_log_likelihood\":%.17g,\"iterations\":%d,\"converged\":%s,"
+                "\"restarts\":%d,\"fit_ms\":%.6f,\"fit_cpu_ms\":%.6f,\"mean_log_likelihood\":%.17g,\"iterations\":%d,\"converged\":%s,"
                 "\"k_final\":%d,\"bic\":%.17g,",
                 static_cast<long>(points.cols()), static_cast<long>(points.rows()), k, seed, options.tolerance,
-                options.max_iterations, options.restarts, ms, s.final_mean_log_likelihood, s.iterations,
+                options.max_iterations, options.restarts, ms, cpu_ms, s.final_mean_log_likelihood, s.iterations,
                 s.converged ? "true" : "false", s.k_final, s.bic);
     PrintMixture(m);
     std::printf("}\n");
     return 0;
   }
   BicSweepResult r;
+  const double cpu0 = ProcessCpuMs();
   const Clock::time_point t0 = Clock::now();
   const Status st = gmmrrt::learn::SweepBic(points, 0u, options, static_cast<int>(k_min), static_cast<int>(k_max), &r);
   const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  const double cpu_ms = ProcessCpuMs() - cpu0;
   if (!st.ok()) {
     std::fprintf(stderr, "gmmrrt-bench-learner: sweep failed: %s\n", st.message.c_str());
     return 1;
   }
   std::printf("{\"mode\":\"sweep\",\"n\":%ld,\"dim\":%ld,\"k_min\":%ld,\"k_max\":%ld,\"seed\":%ld,\"tol\":%.17g,"
-              "\"max_iter\":%d,\"restarts\":%d,\"sweep_ms\":%.6f,\"best_k\":%d,\"rows\":[",
+              "\"max_iter\":%d,\"restarts\":%d,\"sweep_ms\":%.6f,\"sweep_cpu_ms\":%.6f,\"best_k\":%d,\"rows\":[",
               static_cast<long>(points.cols()), static_cast<long>(points.rows()), k_min, k_max, seed,
-              options.tolerance, options.max_iterations, options.restarts, ms, r.best_k);
+              options.tolerance, options.max_iterations, options.restarts, ms, cpu_ms, r.best_k);
   for (size_t i = 0; i < r.rows.size(); ++i)
     std::printf("%s{\"k\":%d,\"k_final\":%d,\"mean_log_likelihood\":%.17g,\"bic\":%.17g,\"iterations\":%d,"
                 "\"converged\":%s}",

@@ -78,6 +78,24 @@ static void bench_collision(void)
     for (int i = 0; i < builds; ++i)
         gmmrrt_world_build(&w, mem, size, cells, 0.05, 0.3, 0.25, &o);
     const double build_ms = (now_ms() - t0) / builds;
+    /* What the daemon's cycles pay since the grid is kept (gmmrrt_world_update): people moved
+     * only, and a robot step of 10 cm that moves the bounds (cells shifted, a strip computed). */
+    gmmrrt_obstacle_set_t moving = o;
+    const int updates = 200;
+    double kept_ms = 0.0, shifted_ms = 0.0;
+    for (int i = 0; i < updates; ++i) {
+        moving.people[i % moving.num_people].x += 0.01;
+        t0 = now_ms();
+        gmmrrt_world_update(&w, mem, size, cells, 0.05, 0.3, 0.25, &moving);
+        kept_ms += now_ms() - t0;
+        const double step = (i % 40 < 20) ? 0.1 : -0.1;
+        moving.bounds.xmin += step;
+        moving.bounds.xmax += step;
+        t0 = now_ms();
+        gmmrrt_world_update(&w, mem, size, cells, 0.05, 0.3, 0.25, &moving);
+        shifted_ms += now_ms() - t0;
+    }
+    gmmrrt_world_build(&w, mem, size, cells, 0.05, 0.3, 0.25, &o);
 
     enum { Q = 400000 };
     static double qx[Q], qy[Q];
@@ -100,6 +118,8 @@ static void bench_collision(void)
         disagree += gmmrrt_world_point_free(w, qx[i], qy[i]) != fcl_point_free(&o, 0.3, 0.25, qx[i], qy[i]);
     printf("collision, 14 x 10 m, 10 circles + 5 boxes + 3 people, robot r = 0.3 m, grid 5 cm:\n");
     printf("  grid build (set_problem)   %8.2f ms\n", build_ms);
+    printf("  grid kept, people moved    %8.3f ms   (gmmrrt_world_update)\n", kept_ms / updates);
+    printf("  grid shifted, 10 cm step   %8.3f ms   (gmmrrt_world_update)\n", shifted_ms / updates);
     printf("  point query, grid          %8.1f ns   (%d of %d free)\n", grid_ns, free_grid, Q);
     printf("  point query, FCL per query %8.1f ns   (%d free)   ratio FCL/grid %.1f\n", fcl_ns, free_fcl,
            fcl_ns / grid_ns);

@@ -2,12 +2,20 @@
 // eq. 1) against oracles: its vector exp against std::exp, its per-point log-likelihood against
 // LogDensity (the density that matches the C gmm.h), its moments against a direct computation of
 // the responsibilities from single-component densities, on an odd point count (tail lanes) and
-// with points far from every component (the negligible-term cut); and FitMixture's screening
+// with points far from every component (the negligible-term cut); the same with theta wrapped
+// (the planner's (d, theta) features) against the general E-step's building blocks; the
+// baseline and AVX2 kernels against each other; k-means' inline angle wrap against
+// gmmrrt_wrap_angle; and FitMixture's screening
 // subsample: deterministic, and the fit on all points still recovers the generating mixture.
 #include <cmath>
+#include <cstring>
+#include <vector>
 #include <random>
 
+#include "component_terms.hpp"
 #include "estep_2d.hpp"
+#include "wrap_difference.hpp"
+#include "gmmrrt/features.h"
 #include "gmmrrt_learner/em.hpp"
 #include "gmmrrt_learner/mixture.hpp"
 #include "test_support.hpp"
@@ -122,6 +130,142 @@ void test_fused_estep_matches_the_density_and_direct_moments(void** state) {
   assert_true(Close(total, static_cast<double>(n), 1e-12, 0.0));
 }
 
+// The planner's (d, theta) features: theta wrapped (angle_mask 2), means and points spread over
+// the seam at +-pi. The fused kernel (both compiled variants) against the general E-step's own
+// building blocks (component_terms.hpp: log terms over the 3 images, log-sum-exp, then the
+// moments of delta + offset as em.cpp's EStep sums them).
+void test_fused_estep_with_angle_matches_the_general_path(void** state) {
+  (void)state;
+  const int k = 6;
+  std::mt19937_64 rng(17);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Mixture m;
+  m.dim = 2;
+  m.angle_mask = 2u;
+  m.weights.resize(k);
+  m.means.resize(2, k);
+  m.chol.assign(k, Eigen::MatrixXd::Zero(2, 2));
+  for (int i = 0; i < k; ++i) {
+    m.weights[i] = 0.2 + std::fabs(normal(rng));
+    m.means(0, i) = 1.0 + 0.5 * i;                                      // d [m]
+    m.means(1, i) = i < 3 ? M_PI - 0.1 * i : -M_PI + 0.3 + 0.2 * i;     // theta near the seam
+    m.chol[i](0, 0) = 0.2 + 0.3 * std::fabs(normal(rng));
+    m.chol[i](1, 1) = 0.3 + (i == 5 ? 1.5 : 0.4 * std::fabs(normal(rng)));  // one wide in theta
+    m.chol[i](1, 0) = 0.1 * normal(rng);
+  }
+  m.weights /= m.weights.sum();
+  assert_true(ValidateMixture(m).ok());
+  const Eigen::Index n = 1003;  // not a multiple of 2 or 4: tail lanes
+  Eigen::MatrixXd pts(2, n);
+  for (Eigen::Index c = 0; c < n; ++c) {
+    pts(0, c) = 2.0 + 1.2 * normal(rng);
+    pts(1, c) = gmmrrt_wrap_angle(M_PI + 0.8 * normal(rng));
+  }
+  pts(1, 0) = M_PI;  // on the seam itself
+  pts(0, 1) = 1e3;   // far from every component
+  const Eigen::VectorXd x0 = pts.row(0).transpose(), x1 = pts.row(1).transpose();
+
+  // The general path's quantities.
+  detail::PreparedMixture prep;
+  detail::Prepare(m, &prep);
+  assert_int_equal(prep.images, 3);
+  Eigen::MatrixXd block = pts.transpose(), terms;
+  std::vector<Eigen::MatrixXd> deltas;
+  Eigen::VectorXd want_ll;
+  detail::LogTerms(m, prep, block, &terms, &deltas);
+  detail::LogSumExpToResponsibilities(&terms, &want_ll);  // terms: responsibilities now
+  std::vector<double> wn(k, 0.0), w0(k, 0.0), w1(k, 0.0), w00(k, 0.0), w01(k, 0.0), w11(k, 0.0);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < prep.images; ++j)
+      for (Eigen::Index c = 0; c < n; ++c) {
+        const double r = terms(c, i * prep.images + j);
+        const double y0 = deltas[i](c, 0) + prep.offsets(0, j), y1 = deltas[i](c, 1) + prep.offsets(1, j);
+        wn[i] += r;
+        w0[i] += r * y0;
+        w1[i] += r * y1;
+        w00[i] += r * y0 * y0;
+        w01[i] += r * y0 * y1;
+        w11[i] += r * y1 * y1;
+      }
+  Eigen::VectorXd density;
+  LogDensity(m, pts, &density);  // the model's density (gmm.h's wrapped normal)
+  for (Eigen::Index c = 0; c < n; ++c) assert_true(Close(density[c], want_ll[c], 1e-12, 1e-12));
+
+  for (detail::Simd simd : {detail::Simd::kBaseline, detail::Simd::kAvx2}) {
+    Eigen::VectorXd ll(n);
+    detail::Moments2d mo;
+    const double mean_ll = detail::EStep2d(m, x0.data(), x1.data(), n, ll.data(), &mo, simd);
+    for (Eigen::Index c = 0; c < n; ++c) assert_true(Close(ll[c], want_ll[c], 1e-12, 1e-12));
+    assert_true(Close(mean_ll, want_ll.mean(), 1e-12, 1e-12));
+    for (int i = 0; i < k; ++i) {
+      assert_true(Close(mo.n[i], wn[i], 1e-11, 1e-12));
+      assert_true(Close(mo.m0[i], w0[i], 1e-11, 1e-10));
+      assert_true(Close(mo.m1[i], w1[i], 1e-11, 1e-10));
+      assert_true(Close(mo.s00[i], w00[i], 1e-11, 1e-10));
+      assert_true(Close(mo.s01[i], w01[i], 1e-11, 1e-10));
+      assert_true(Close(mo.s11[i], w11[i], 1e-11, 1e-10));
+    }
+  }
+}
+
+// The baseline (2 lanes) and AVX2 (4 lanes) kernels: the same values up to the order of sums.
+void test_baseline_and_avx2_kernels_agree(void** state) {
+  (void)state;
+  if (!detail::EStep2dAvx2Available())
+    print_message("no AVX2 on this CPU: the kAvx2 request runs the baseline kernel (compared with itself)\n");
+  const Mixture m = RandomMixture(19, 8);
+  std::mt19937_64 rng(4);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const Eigen::Index n = 5001;
+  Eigen::VectorXd x0(n), x1(n), la(n), lb(n);
+  for (Eigen::Index c = 0; c < n; ++c) {
+    x0[c] = 100.0 + 5.0 * normal(rng);
+    x1[c] = -50.0 + 5.0 * normal(rng);
+  }
+  detail::Moments2d a, b;
+  const double ma = detail::EStep2d(m, x0.data(), x1.data(), n, la.data(), &a, detail::Simd::kBaseline);
+  const double mb = detail::EStep2d(m, x0.data(), x1.data(), n, lb.data(), &b, detail::Simd::kAvx2);
+  assert_true(Close(ma, mb, 1e-14, 0.0));
+  for (Eigen::Index c = 0; c < n; ++c) assert_true(Close(la[c], lb[c], 1e-14, 1e-14));
+  for (int i = 0; i < 19; ++i) {
+    assert_true(Close(a.n[i], b.n[i], 1e-12, 1e-13));
+    assert_true(Close(a.s01[i], b.s01[i], 1e-12, 1e-12));
+  }
+  double e[4], f[4];
+  const double x[4] = {-1e-3, -3.7, -45.0, -699.0};
+  detail::VectorExp4(x, e, detail::Simd::kBaseline);
+  detail::VectorExp4(x, f, detail::Simd::kAvx2);
+  for (int q = 0; q < 4; ++q) assert_true(e[q] == f[q]);  // lane-wise the same operations
+}
+
+// k-means' inline wrap of angle differences (wrap_difference.hpp) against gmmrrt_wrap_angle, bit
+// for bit: random differences of two wrapped angles, the edges (+-pi, +-2 pi and their
+// neighbours, values whose v + pi rounds onto 2 pi), and values outside (-2 pi, 2 pi).
+void test_wrap_difference_is_gmmrrt_wrap_angle(void** state) {
+  (void)state;
+  std::vector<double> v = {0.0, -0.0, M_PI, -M_PI, 2.0 * M_PI, -2.0 * M_PI, 3.0 * M_PI, -7.5, 1e6, -1e6};
+  for (double e : {M_PI, -M_PI, 2.0 * M_PI, -2.0 * M_PI})
+    for (int ulps = 1; ulps <= 4; ++ulps) {
+      double up = e, down = e;
+      for (int u = 0; u < ulps; ++u) {
+        up = std::nextafter(up, HUGE_VAL);
+        down = std::nextafter(down, -HUGE_VAL);
+      }
+      v.push_back(up);
+      v.push_back(down);
+    }
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI);
+  for (int i = 0; i < 200000; ++i) v.push_back(gmmrrt_wrap_angle(angle(rng)) - gmmrrt_wrap_angle(angle(rng)));
+  int mismatches = 0;
+  for (double x : v) {
+    const double got = detail::WrapDifference(x), want = gmmrrt_wrap_angle(x);
+    if (std::memcmp(&got, &want, sizeof got) != 0) ++mismatches;
+  }
+  assert_int_equal(mismatches, 0);
+  assert_true(std::isnan(detail::WrapDifference(NAN)));
+}
+
 // Five separated blobs, 30 000 points: more than a 4 000-point screening sample.
 Eigen::MatrixXd FiveBlobs() {
   using test_support::Diag;
@@ -170,6 +314,9 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_vector_exp_matches_std_exp),
       cmocka_unit_test(test_fused_estep_matches_the_density_and_direct_moments),
+      cmocka_unit_test(test_fused_estep_with_angle_matches_the_general_path),
+      cmocka_unit_test(test_baseline_and_avx2_kernels_agree),
+      cmocka_unit_test(test_wrap_difference_is_gmmrrt_wrap_angle),
       cmocka_unit_test(test_screening_on_a_sample_is_deterministic_and_recovers_the_mixture),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);

@@ -1,0 +1,26 @@
+// spatial_order.hpp (private to learner/src) - an order of 2-D points that keeps neighbours
+// together, for the fused E-step (estep_2d.hpp): it takes 2 or 4 consecutive points at a time
+// and skips a component only when its term is negligible (paper eq. 1; < exp(-50) of the
+// largest) for all of them, which happens far more often when they lie close together. On the
+// benchmark's 200 000 points in random order it cut the E-step's instructions by a third
+#ifndef GMMRRT_LEARNER_SPATIAL_ORDER_HPP
+#define GMMRRT_LEARNER_SPATIAL_ORDER_HPP
+
+#include <Eigen/Dense>
+#include <cstdint>
+#include <vector>
+
+namespace gmmrrt {
+namespace learn {
+namespace detail {
+
+// xt: N x 2 points as rows, finite. Returns a permutation (N indices into xt): points sorted by
+// the Morton (Z-order) index of their cell in a 64 x 64 grid over the bounding box, ties in the
+// original order (counting sort: O(N), deterministic). A constant coordinate is fine.
+std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt);
+
+}  // namespace detail
+}  // namespace learn
+}  // namespace gmmrrt
+
+#endif  // GMMRRT_LEARNER_SPATIAL_ORDER_HPP
