@@ -34,7 +34,8 @@ def test_bad_flags_are_named(gmmrrtd):
     cases = [(["--no-such-flag"], "--no-such-flag"), (["--rate-hz", "abc"], "--rate-hz"),
              (["--rate-hz", "0"], "--rate-hz"), (["--robot-radius", "nan"], "--robot-radius"),
              (["--planner", "a-star"], "--planner"), (["--rate-hz"], "--rate-hz"), (["stray"], "stray"),
-             (["--rate-hz", "20", "--budget-ms", "60"], "budget_ms")]
+             (["--rate-hz", "20", "--budget-ms", "60"], "budget_ms"), (["--informed", "2"], "--informed"),
+             (["--rewire-k", "-1"], "--rewire-k")]
     for args, named in cases:
         res = run(gmmrrtd, *args)
         assert res.returncode == 2, (args, res.returncode, res.stderr)
@@ -45,6 +46,7 @@ def test_bad_ini_lines_name_file_and_line(gmmrrtd, tmp_path):
     for body, line in (("[timing]\nrate_hz = 10\n\nbudget_ms = fast\n", 4),
                        ("[lcm]\nurl = udpm://239.255.76.67:7667?ttl=0\n[timing]\nrate = 10\n", 4),
                        ("[planner]\nrobot_radius_m = -1\n", 2),
+                       ("[planner]\nseed = 3\ninformed_sampling = yes\n", 3),
                        ("[timing\n", 1)):
         ini = tmp_path / "bad.ini"
         ini.write_text(body)
