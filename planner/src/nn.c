@@ -210,6 +210,23 @@ static void scan_bucket(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, int32_
     }
 }
 
+/* Distance from (x, y) to the nearest side of the bucket box [i0, i1] x [j0, j1] that is not
+ * on the grid's edge (INFINITY when all are): every node outside the box is at least that
+ * far, since nodes beyond the grid are clamped into its edge buckets. */
+static double box_reach(const gmmrrt_nn_t *nn, double x, double y, int32_t i0, int32_t i1, int32_t j0, int32_t j1)
+{
+    double reach = INFINITY;
+    if (i0 > 0)
+        reach = fmin(reach, x - (nn->x0 + (double)i0 * nn->cell_m));
+    if (i1 < nn->nx - 1)
+        reach = fmin(reach, nn->x0 + (double)(i1 + 1) * nn->cell_m - x);
+    if (j0 > 0)
+        reach = fmin(reach, y - (nn->y0 + (double)j0 * nn->cell_m));
+    if (j1 < nn->ny - 1)
+        reach = fmin(reach, nn->y0 + (double)(j1 + 1) * nn->cell_m - y);
+    return reach;
+}
+
 int32_t gmmrrt_nn_nearest(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, double x, double y)
 {
     const int32_t ci = cell_of(x, nn->x0, nn->cell_m, nn->nx);
@@ -231,15 +248,7 @@ int32_t gmmrrt_nn_nearest(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, doub
         /* Every node not yet scanned lies outside the box of rings 0..k; on a side where
          * that box has reached the grid's edge there is none. */
         if (best >= 0) {
-            double reach = INFINITY;
-            if (i0 > 0)
-                reach = fmin(reach, x - (nn->x0 + (double)i0 * nn->cell_m));
-            if (i1 < nn->nx - 1)
-                reach = fmin(reach, nn->x0 + (double)(i1 + 1) * nn->cell_m - x);
-            if (j0 > 0)
-                reach = fmin(reach, y - (nn->y0 + (double)j0 * nn->cell_m));
-            if (j1 < nn->ny - 1)
-                reach = fmin(reach, nn->y0 + (double)(j1 + 1) * nn->cell_m - y);
+            const double reach = box_reach(nn, x, y, i0, i1, j0, j1);
             if (reach >= 0.0 && best_d2 <= reach * reach)
                 break;
             if (i0 <= 0 && i1 >= nn->nx - 1 && j0 <= 0 && j1 >= nn->ny - 1)
@@ -345,15 +354,7 @@ int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, do
         if (count >= k) {
             /* Every node not yet scanned lies outside the box of rings 0..r, farther than
              * reach: done when k of those found are within it. */
-            double reach = INFINITY;
-            if (i0 > 0)
-                reach = fmin(reach, x - (nn->x0 + (double)i0 * nn->cell_m));
-            if (i1 < nn->nx - 1)
-                reach = fmin(reach, nn->x0 + (double)(i1 + 1) * nn->cell_m - x);
-            if (j0 > 0)
-                reach = fmin(reach, y - (nn->y0 + (double)j0 * nn->cell_m));
-            if (j1 < nn->ny - 1)
-                reach = fmin(reach, nn->y0 + (double)(j1 + 1) * nn->cell_m - y);
+            const double reach = box_reach(nn, x, y, i0, i1, j0, j1);
             if (reach >= 0.0) {
                 const double reach2 = reach * reach;
                 int32_t within = 0;
