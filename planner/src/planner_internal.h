@@ -40,6 +40,7 @@ struct gmmrrt_planner {
     double near_edge[GMMRRT_NEAR_CAP + 1]; /* exact edge cost, NAN until needed */
     double near_len[GMMRRT_NEAR_CAP + 1];  /* m */
     double near_d2[GMMRRT_KNN_SCRATCH];    /* m^2, squared distances of near_idx */
+    double near_cost[GMMRRT_NEAR_CAP + 1]; /* their cost-to-come when the iteration's near set was taken */
     int8_t near_free[GMMRRT_NEAR_CAP + 1];
     int32_t goal_idx[GMMRRT_GOAL_CAP];
     double goal_edge[GMMRRT_GOAL_CAP];

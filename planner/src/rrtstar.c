@@ -471,11 +471,18 @@ static void iterate(struct gmmrrt_planner *p)
                                p->num_active == 0;
     /* The lower bound is linear in length (objective.c): its slope once per iteration. */
     const double unit = gmmrrt_edge_cost_lower_bound(p, 1.0);
-    for (int32_t k = 0; k < count; ++k) {
+    /* Simple loops (the square roots vectorise). */
+    for (int32_t k = 0; k < count; ++k)
         p->near_len[k] = sqrt(p->near_d2[k]);
-        p->near_edge[k] = cost_is_length ? unit * p->near_len[k] : NAN;
-        p->near_free[k] = -1;
-    }
+    if (cost_is_length)
+        for (int32_t k = 0; k < count; ++k)
+            p->near_edge[k] = unit * p->near_len[k];
+    else
+        for (int32_t k = 0; k < count; ++k)
+            p->near_edge[k] = NAN;
+    for (int32_t k = 0; k < count; ++k)
+        p->near_cost[k] = p->pool.cost[p->near_idx[k]];
+    memset(p->near_free, -1, (size_t)count);
     int32_t parent_k = -1;
     for (;;) {
         int32_t pick = -1;
@@ -484,7 +491,7 @@ static void iterate(struct gmmrrt_planner *p)
             if (p->near_free[k] == 0)
                 continue;
             const double edge = isnan(p->near_edge[k]) ? unit * p->near_len[k] : p->near_edge[k];
-            const double c = p->pool.cost[p->near_idx[k]] + edge;
+            const double c = p->near_cost[k] + edge;
             if (c < pick_cost) {
                 pick_cost = c;
                 pick = k;
