@@ -367,6 +367,19 @@ static void near_exact(struct gmmrrt_planner *p, int32_t k, double x, double y)
     p->near_edge[k] = gmmrrt_edge_cost(p, n->x, n->y, x, y);
 }
 
+/* Appends `nearest` (with its squared distance to (x, y)) to the near set of count nodes
+ * unless it is in it: the extend step's parent is always a candidate. Returns the count. */
+static int32_t with_nearest(struct gmmrrt_planner *p, int32_t count, int32_t nearest, double x, double y)
+{
+    for (int32_t k = 0; k < count; ++k)
+        if (p->near_idx[k] == nearest)
+            return count;
+    const double dx = p->pool.xy[nearest].x - x, dy = p->pool.xy[nearest].y - y;
+    p->near_idx[count] = nearest;
+    p->near_d2[count] = dx * dx + dy * dy;
+    return count + 1;
+}
+
 static int32_t near_set(struct gmmrrt_planner *p, double x, double y, int32_t nearest)
 {
     double r = p->cfg.step_m;
@@ -379,12 +392,7 @@ static int32_t near_set(struct gmmrrt_planner *p, double x, double y, int32_t ne
     int32_t count;
     while ((count = gmmrrt_nn_near(&p->nn, &p->pool, x, y, r, p->near_idx, GMMRRT_NEAR_CAP)) < 0)
         r *= 0.5;
-    int found = 0;
-    for (int32_t k = 0; k < count; ++k)
-        found |= (p->near_idx[k] == nearest);
-    if (!found)
-        p->near_idx[count++] = nearest; /* the extend step's parent is always a candidate */
-    return count;
+    return with_nearest(p, count, nearest, x, y);
 }
 
 /* k of the k-nearest near set for the current tree: ceil(rewire_k_factor ln(n + 1)). */
@@ -413,8 +421,7 @@ static void iterate(struct gmmrrt_planner *p)
     int32_t nearest;
     if (knn) {
         count = gmmrrt_nn_nearest_k(&p->nn, &p->pool, sx, sy, near_k(p), GMMRRT_NEAR_CAP, p->cfg.step_m,
-                                    p->near_idx,
-                                    p->near_d2, GMMRRT_KNN_SCRATCH);
+                                    p->near_idx, p->near_d2, GMMRRT_KNN_SCRATCH);
         nearest = p->near_idx[0];
     } else {
         nearest = gmmrrt_nn_nearest(&p->nn, &p->pool, sx, sy);
@@ -453,13 +460,7 @@ static void iterate(struct gmmrrt_planner *p)
     } else if (steered) {
         count = gmmrrt_nn_nearest_k(&p->nn, &p->pool, x, y, near_k(p), GMMRRT_NEAR_CAP, p->cfg.step_m,
                                     p->near_idx, p->near_d2, GMMRRT_KNN_SCRATCH);
-        int found = 0;
-        for (int32_t k = 0; k < count; ++k)
-            found |= (p->near_idx[k] == nearest);
-        if (!found) { /* the extend step's parent is always a candidate */
-            p->near_idx[count] = nearest;
-            p->near_d2[count++] = p->cfg.step_m * p->cfg.step_m;
-        }
+        count = with_nearest(p, count, nearest, x, y);
     }
 
     /* Choose parent: cheapest candidate by cost-to-come + edge cost whose edge is free.

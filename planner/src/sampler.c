@@ -60,13 +60,17 @@ static int in_ellipse(const struct gmmrrt_planner *p, double diameter, double x,
     return sqrt(ax * ax + ay * ay) + sqrt(bx * bx + by * by) <= diameter;
 }
 
-/* Uniform in the informed ellipse of the given diameter (> focal distance): a uniform point
+/* Semi-minor axis (m) of the informed ellipse of the given transverse diameter. */
+static double informed_semi_minor(const struct gmmrrt_planner *p, double diameter)
+{
+    return 0.5 * sqrt(fmax(diameter * diameter - p->inf_cmin * p->inf_cmin, 0.0));
+}
+
+/* Uniform in the informed ellipse of semi-axes a (along start -> goal) and b: a uniform point
  * of the unit disc, scaled to the semi-axes, turned along start -> goal, moved to the centre.
  * Returns 0 when it falls outside the bounds. */
-static int informed_uniform(struct gmmrrt_planner *p, double diameter, double *x, double *y)
+static int informed_uniform(struct gmmrrt_planner *p, double a, double b, double *x, double *y)
 {
-    const double a = 0.5 * diameter;
-    const double b = 0.5 * sqrt(fmax(diameter * diameter - p->inf_cmin * p->inf_cmin, 0.0));
     const double r = sqrt(gmmrrt_rng_uniform(&p->rng));
     const double phi = 2.0 * M_PI * gmmrrt_rng_uniform(&p->rng);
     const double ex = a * r * cos(phi), ey = b * r * sin(phi);
@@ -145,10 +149,9 @@ int gmmrrt_sample(struct gmmrrt_planner *p, double *x, double *y)
     if (!use_model) {
         if (isfinite(diameter)) {
             const gmmrrt_bounds_t *b = &pr->obstacles.bounds;
-            const double a = 0.5 * diameter;
-            const double bb = 0.5 * sqrt(fmax(diameter * diameter - p->inf_cmin * p->inf_cmin, 0.0));
+            const double a = 0.5 * diameter, bb = informed_semi_minor(p, diameter);
             if (M_PI * a * bb < (b->xmax - b->xmin) * (b->ymax - b->ymin))
-                return informed_uniform(p, diameter, x, y);
+                return informed_uniform(p, a, bb, x, y);
         }
         uniform(p, x, y);
         return 1;
