@@ -44,7 +44,7 @@ def test_help_lists_every_option():
     assert r.returncode == 0
     for opt in ["--model", "--start", "--goal", "--person", "--obstacle", "--planner", "--bias",
                 "--budget-ms", "--iterations", "--seed", "--robot-radius", "--bounds", "--json", "--delta",
-                "--w-task", "cost_history"]:
+                "--w-task", "--rewire-k", "--informed", "cost_history"]:
         assert opt in r.stdout
 
 
@@ -109,6 +109,9 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0", "--goal", "1,1", "--delta", "0"], "--delta"),
     (["--start", "0,0", "--goal", "1,1", "--delta", "nan"], "--delta"),
     (["--start", "0,0", "--goal", "1,1", "--w-task", "-1"], "--w-task"),
+    (["--start", "0,0", "--goal", "1,1", "--rewire-k", "-1"], "--rewire-k"),
+    (["--start", "0,0", "--goal", "1,1", "--rewire-k", "x"], "--rewire-k"),
+    (["--start", "0,0", "--goal", "1,1", "--informed", "2"], "--informed"),
 ])
 def test_bad_input_is_refused_with_a_clear_error(args, message):
     r = run(*args)
@@ -181,3 +184,19 @@ def test_delta_and_w_task_change_the_objective(tmp_path):
         out = json.loads(run(*base, *extra).stdout)
         return min(math.hypot(x, y) for x, y in out["path"])
     assert closest("--delta", "0.1") > closest() + 0.15
+
+
+def test_search_flags_take_effect():
+    """--informed 0 and --rewire-k 0 (radius rewiring) plan the disc problem too, and each
+    changes the search: the same seed then gives other cost histories."""
+    base = ["--start", "-5,0", "--goal", "5,0", "--obstacle", "circle:0,0,2", "--robot-radius", "0",
+            "--iterations", "3000", "--json"]
+    hist = {}
+    for name, extra in (("default", []), ("plain", ["--informed", "0"]), ("radius", ["--rewire-k", "0"])):
+        r = run(*base, *extra)
+        assert r.returncode == 0, r.stderr
+        out = json.loads(r.stdout)
+        assert out["status"] == "ok"
+        hist[name] = out["stats"]["cost_history"]
+    assert hist["default"] != hist["plain"]
+    assert hist["default"] != hist["radius"]
