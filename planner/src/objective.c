@@ -15,18 +15,40 @@
 #include "gmmrrt/gmm.h"
 #include "planner_internal.h"
 
+/* Quadrature points weighed per kernel call (edges of more points go in chunks, summed in
+ * the same order, so the chunking does not change the result). */
+#define EDGE_CHUNK 64
+
+/* Task costs of the n points (x[i], y[i]) into c[i]: the largest over the active people.
+ * The features are gmmrrt_features_from_xy's, with the person's cos/sin of yaw taken once
+ * (set_problem) instead of per point. */
+static void task_costs(const struct gmmrrt_planner *p, const double *x, const double *y, int32_t n, double *c)
+{
+    double d[EDGE_CHUNK], theta[EDGE_CHUNK], ck[EDGE_CHUNK];
+    for (int32_t i = 0; i < n; ++i)
+        c[i] = 0.0;
+    for (int32_t k = 0; k < p->num_active; ++k) {
+        const gmmrrt_pose_t *person = &p->problem.obstacles.people[p->active[k]];
+        const double cs = p->active_cos[k], sn = p->active_sin[k];
+        for (int32_t i = 0; i < n; ++i) {
+            const double dx = x[i] - person->x, dy = y[i] - person->y;
+            const double xp = dx * cs + dy * sn, yp = -dx * sn + dy * cs;
+            d[i] = sqrt(xp * xp + yp * yp); /* map coordinates: plain sqrt (features.c) */
+            theta[i] = (d[i] > 0.0) ? gmmrrt_wrap_angle(atan2(yp, xp)) : 0.0;
+        }
+        gmmrrt_gmm_task_cost_batch(p->problem.model, d, theta, n, p->delta, ck);
+        for (int32_t i = 0; i < n; ++i)
+            if (ck[i] > c[i])
+                c[i] = ck[i];
+    }
+}
+
 double gmmrrt_task_cost_at(const struct gmmrrt_planner *p, double x, double y)
 {
     if (!p->task_active || p->num_active == 0)
         return 1.0;
-    double c = 0.0;
-    for (int32_t k = 0; k < p->num_active; ++k) {
-        double f[2];
-        gmmrrt_features_from_xy(&p->problem.obstacles.people[p->active[k]], x, y, &f[0], &f[1]);
-        const double ck = gmmrrt_gmm_task_cost(p->problem.model, f, p->delta);
-        if (ck > c)
-            c = ck;
-    }
+    double c;
+    task_costs(p, &x, &y, 1, &c);
     return c;
 }
 
@@ -46,9 +68,17 @@ double gmmrrt_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, do
     const int32_t steps = (int32_t)n;
     const double h = len / n;
     double sum_c = 0.0;
-    for (int32_t i = 0; i < steps; ++i) {
-        const double t = ((double)i + 0.5) / n;
-        sum_c += gmmrrt_task_cost_at(p, x0 + t * (x1 - x0), y0 + t * (y1 - y0));
+    for (int32_t start = 0; start < steps; start += EDGE_CHUNK) {
+        const int32_t count = steps - start < EDGE_CHUNK ? steps - start : EDGE_CHUNK;
+        double x[EDGE_CHUNK], y[EDGE_CHUNK], c[EDGE_CHUNK];
+        for (int32_t i = 0; i < count; ++i) {
+            const double t = ((double)(start + i) + 0.5) / n;
+            x[i] = x0 + t * (x1 - x0);
+            y[i] = y0 + t * (y1 - y0);
+        }
+        task_costs(p, x, y, count, c);
+        for (int32_t i = 0; i < count; ++i)
+            sum_c += c[i];
     }
     return p->cfg.w_length * len + p->cfg.w_task * h * sum_c;
 }

@@ -52,6 +52,8 @@ struct gmmrrt_planner {
     int task_active;               /* task cost and mixture sampling apply */
     int32_t num_active;            /* people the task is about */
     int32_t active[GMMRRT_MAX_PEOPLE];
+    double active_cos[GMMRRT_MAX_PEOPLE]; /* cos / sin of the active people's yaw (objective.c) */
+    double active_sin[GMMRRT_MAX_PEOPLE];
     int32_t focus_person;          /* GMM-RRT: the person whose frame the xy model lives in */
 
     /* Informed sampling (sampler.c): the ellipse's centre, axis direction and focal distance. */

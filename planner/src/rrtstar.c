@@ -224,6 +224,11 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
         }
         if (p->num_active == 0 || p->focus_person < 0)
             p->task_active = 0; /* nobody the task is about: plain search */
+        for (int32_t k = 0; k < p->num_active; ++k) {
+            const double yaw = o->people[p->active[k]].yaw;
+            p->active_cos[k] = cos(yaw);
+            p->active_sin[k] = sin(yaw);
+        }
     }
     gmmrrt_sampler_prepare(p);
     reset_tree(p);

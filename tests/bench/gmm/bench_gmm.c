@@ -127,7 +127,15 @@ int main(int argc, char **argv)
         pts[p][1] = -M_PI + 2.0 * M_PI * gmmrrt_rng_uniform(&rng);
     }
 
-    double sink = 0.0, t0, dt_log, dt_cost, dt_sample, dt_plain;
+    /* The same points as two arrays, for the batch (an edge of the planner: 10 points). */
+    static double pts_d[N_POINTS], pts_theta[N_POINTS];
+    for (int p = 0; p < N_POINTS; ++p) {
+        pts_d[p] = pts[p][0];
+        pts_theta[p] = pts[p][1];
+    }
+    enum { EDGE_POINTS = 10 };
+
+    double sink = 0.0, t0, dt_log, dt_cost, dt_batch, dt_sample, dt_plain;
     t0 = now_s();
     for (long e = 0; e < n_eval; ++e)
         sink += gmmrrt_gmm_log_density(&model, pts[e % N_POINTS]);
@@ -136,6 +144,15 @@ int main(int argc, char **argv)
     for (long e = 0; e < n_eval; ++e)
         sink += gmmrrt_gmm_task_cost(&model, pts[e % N_POINTS], model.delta);
     dt_cost = now_s() - t0;
+    t0 = now_s();
+    for (long e = 0; e + EDGE_POINTS <= n_eval; e += EDGE_POINTS) {
+        const long at = e % (N_POINTS - EDGE_POINTS);
+        double cost[EDGE_POINTS];
+        gmmrrt_gmm_task_cost_batch(&model, pts_d + at, pts_theta + at, EDGE_POINTS, model.delta, cost);
+        for (int i = 0; i < EDGE_POINTS; ++i)
+            sink += cost[i];
+    }
+    dt_batch = now_s() - t0;
     t0 = now_s();
     for (long e = 0; e < n_eval; ++e) {
         double f[2];
@@ -152,6 +169,9 @@ int main(int argc, char **argv)
     printf("bench_gmm: K = %d, D = 2 (d, theta wrapped), %ld evaluations each, seed %llu\n", K, n_eval, seed);
     printf("  log_density       %12.3e /s  (%.1f ns each)\n", r_log, 1e9 / r_log);
     printf("  task_cost         %12.3e /s  (%.1f ns each)\n", (double)n_eval / dt_cost, 1e9 * dt_cost / (double)n_eval);
+    const double n_batched = (double)(n_eval / EDGE_POINTS * EDGE_POINTS);
+    printf("  task_cost_batch   %12.3e /s  (%.1f ns each, %d points per call)\n", n_batched / dt_batch,
+           1e9 * dt_batch / n_batched, (int)EDGE_POINTS);
     printf("  sample            %12.3e /s  (%.1f ns each)\n", (double)n_eval / dt_sample, 1e9 * dt_sample / (double)n_eval);
     printf("  peer: plain general-path log_density %12.3e /s\n", r_plain);
     printf("  ratio log_density / plain = %.2f\n", r_log / r_plain);

@@ -14,6 +14,7 @@
 
 #include "gmmrrt/features.h"
 #include "gmmrrt/gmm.h"
+#include "gmm_task_cost.h" /* planner/src: the batch with a chosen vector width */
 #include "../model/model_fixture.h"
 
 static void prepare_or_fail(gmmrrt_model_t *m)
@@ -268,6 +269,106 @@ static void test_task_cost_is_delta_over_max_p_delta(void **state)
     assert_true(gmmrrt_gmm_task_cost(&m, nan_f, m.delta) == 1.0);
 }
 
+/* Points for the batch tests: inside and around the fixture's mixture, far away, on the seam,
+ * and non-finite ones mixed in (they cost 1 without disturbing the points sharing a vector). */
+static int batch_points(double *f0, double *f1, int cap, uint64_t seed)
+{
+    gmmrrt_rng_t rng;
+    gmmrrt_rng_seed(&rng, seed);
+    int n = 0;
+    while (n < cap - 8) {
+        f0[n] = 6.0 * gmmrrt_rng_uniform(&rng) - 0.5;
+        f1[n] = 7.0 * gmmrrt_rng_uniform(&rng) - 3.5;
+        ++n;
+    }
+    const double extra0[8] = {300.0, 1.0, NAN, 1.0, INFINITY, 2.0, 1.5, -1e300};
+    const double extra1[8] = {0.3, M_PI, 0.0, NAN, 0.0, -INFINITY, -M_PI + 1e-12, 0.0};
+    for (int e = 0; e < 8; ++e, ++n) {
+        f0[n] = extra0[e];
+        f1[n] = extra1[e];
+    }
+    return n;
+}
+
+static void test_task_cost_batch_matches_one_point_calls_and_the_density(void **state)
+{
+    (void)state;
+    for (uint32_t mask = 0; mask < 4; ++mask) {
+        gmmrrt_model_t m;
+        fixture_features_model(&m);
+        if (mask != 2u) { /* the planner's (d, theta) models have mask 2; the batch takes any 2-D one */
+            m.kind = GMMRRT_MODEL_KIND_GENERIC;
+            m.angle_mask = mask;
+            m.mean[0][0] = 0.5;
+        }
+        prepare_or_fail(&m);
+        double f0[200], f1[200], batch[200];
+        const int n = batch_points(f0, f1, 200, 7 + mask);
+        int below = 0, above = 0;
+        for (int t = 0; t < 2; ++t) {
+            const double delta = t == 0 ? m.delta : 1e-6;
+            /* Lengths that are not multiples of the vector width, from every start. */
+            for (int start = 0; start < 5; ++start) {
+                const int count = n - start - (start % 3);
+                gmmrrt_gmm_task_cost_batch(&m, f0 + start, f1 + start, count, delta, batch);
+                for (int i = 0; i < count; ++i) {
+                    const double f[2] = {f0[start + i], f1[start + i]};
+                    const double one = gmmrrt_gmm_task_cost(&m, f, delta);
+                    if (!(memcmp(&one, &batch[i], sizeof one) == 0))
+                        fail_msg("mask %u point (%g, %g): batch %.17g, one-point call %.17g", mask, f[0], f[1],
+                                 batch[i], one);
+                    const double p = gmmrrt_gmm_density(&m, f);
+                    if (!isfinite(f[0]) || !isfinite(f[1]) || isnan(p)) {
+                        assert_true(batch[i] == 1.0);
+                        continue;
+                    }
+                    assert_rel(batch[i], delta / fmax(p, delta), 1e-13, "batch vs delta / max(p, delta)");
+                    below += p < delta;
+                    above += p > delta;
+                }
+            }
+        }
+        assert_true(below > 0 && above > 0);
+    }
+}
+
+static void test_task_cost_vector_widths_give_the_same_bits(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_features_model(&m);
+    prepare_or_fail(&m);
+    double f0[300], f1[300], w2[300], w4[300], wide[300];
+    const int n = batch_points(f0, f1, 300, 99);
+    assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w2, 2), 1);
+    assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, wide, 0), 1);
+    assert_memory_equal(w2, wide, sizeof(double) * (size_t)n);
+    assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w2, 3), 0); /* no such width */
+    if (gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w4, 4) == 1) {
+        assert_memory_equal(w2, w4, sizeof(double) * (size_t)n);
+    } else {
+        print_message("this CPU has no AVX2: the 4-lane kernel was not compared (the 2-lane one was)\n");
+    }
+}
+
+static void test_task_cost_below_the_kernel_floor_uses_the_exact_density(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    fixture_features_model(&m);
+    prepare_or_fail(&m);
+    /* p ~ e^-800 here: under the kernel's e^-700 floor, above a delta of 1e-320 (subnormal). */
+    const double d[3] = {20.0, 25.0, 1.0}, th[3] = {0.1, -2.0, 0.3};
+    double c[3];
+    const double delta = 1e-320;
+    gmmrrt_gmm_task_cost_batch(&m, d, th, 3, delta, c);
+    for (int i = 0; i < 3; ++i) {
+        const double f[2] = {d[i], th[i]};
+        const double p = gmmrrt_gmm_density(&m, f);
+        assert_true(c[i] == (p > delta ? delta / p : 1.0));
+    }
+}
+
 static void test_nan_features_give_nan_log_density_in_every_path(void **state)
 {
     (void)state;
@@ -506,6 +607,9 @@ int main(void)
         cmocka_unit_test(test_density_integrates_to_one),
         cmocka_unit_test(test_far_points_keep_a_finite_log_density),
         cmocka_unit_test(test_task_cost_is_delta_over_max_p_delta),
+        cmocka_unit_test(test_task_cost_batch_matches_one_point_calls_and_the_density),
+        cmocka_unit_test(test_task_cost_vector_widths_give_the_same_bits),
+        cmocka_unit_test(test_task_cost_below_the_kernel_floor_uses_the_exact_density),
         cmocka_unit_test(test_nan_features_give_nan_log_density_in_every_path),
         cmocka_unit_test(test_shared_vectors_features_seam),
         cmocka_unit_test(test_shared_vectors_xy),
