@@ -26,8 +26,7 @@
 #endif
 
 #define TC_NEGLIGIBLE (-40.0) /* e^-40 = 4e-18 of the largest term (1): 57 such add < 3e-16 */
-#define TC_EXP_LOW (-700.0)   /* e^-700 = 1e-304: the kernel's floor, above subnormals */
-#define TC_EXP_HIGH 700.0
+#define TC_EXP_HIGH 700.0     /* e^m is taken at most e^700 (Exp's bits stay in range); its floor: e^-700 */
 #define TC_MIN_KERNEL_DELTA 1e-290
 
 #define KW 2
