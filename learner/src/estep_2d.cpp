@@ -54,9 +54,11 @@ struct MomentPtrs {
 namespace kernel_baseline {
 using Moments2d = MomentPtrs;
 constexpr int kW = 2;
+#define GMMRRT_KERNEL_LANES 2
 #define GMMRRT_KERNEL_ATTR
 #include "estep_2d_kernel.inc"
 #undef GMMRRT_KERNEL_ATTR
+#undef GMMRRT_KERNEL_LANES
 }  // namespace kernel_baseline
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
@@ -64,9 +66,11 @@ constexpr int kW = 2;
 namespace kernel_avx2 {
 using Moments2d = MomentPtrs;
 constexpr int kW = 4;
+#define GMMRRT_KERNEL_LANES 4
 #define GMMRRT_KERNEL_ATTR __attribute__((target("avx2")))
 #include "estep_2d_kernel.inc"
 #undef GMMRRT_KERNEL_ATTR
+#undef GMMRRT_KERNEL_LANES
 }  // namespace kernel_avx2
 #endif
 
