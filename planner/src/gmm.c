@@ -11,8 +11,9 @@
  *
  * D = 2 (the paper's (d, theta) features) has its own log-density path: all 3K exponents
  * first (plain arithmetic, no libm calls), then exp() only for the terms near the maximum;
- * tests/bench/gmm measures it. The task cost of D = 2 models is gmm_task_cost.c's vector
- * kernel. Other D use a streaming log-sum-exp per component and
+ * tests/bench/gmm measures it. This is the one-point task cost (OMPL's state cost in the
+ * benchmark calls it); the planner's quadrature uses the batch of gmm_task_cost.c, which
+ * agrees with it to about 1e-14. Other D use a streaming log-sum-exp per component and
  * image. Nothing here allocates or does I/O; the model must be prepared
  * (gmmrrt_model_prepare). NaN features give a NaN log-density (task cost 1).
  */
@@ -139,6 +140,32 @@ static double log_density_2d(const gmmrrt_model_t *m, const double *f)
     return mx + log(s);
 }
 
+/* delta / max(p(f), delta) for D = 2 without the log/exp round trip: p = e^max * sum of
+ * e^(x - max). Far from the data (e^max * n < delta, so p < delta) it costs 1 after a
+ * single exp(), which is most of the map; only near the data does the sum run. */
+static double task_cost_2d(const gmmrrt_model_t *m, const double *f, double delta)
+{
+    double x[GMMRRT_MAX_K * 9];
+    const double f0 = (m->angle_mask & 1u) ? gmmrrt_wrap_angle(f[0]) : f[0];
+    const double f1 = (m->angle_mask & 2u) ? gmmrrt_wrap_angle(f[1]) : f[1];
+    if (isnan(f0) || isnan(f1))
+        return 1.0; /* a NaN density costs the maximum */
+    double mx;
+    const int n = terms_2d(m, f0, f1, x, &mx);
+    if (!(mx > -INFINITY))
+        return 1.0;
+    const double top = exp(mx);
+    if (top * (double)n <= delta)
+        return 1.0; /* every term is at most e^max: p <= n e^max <= delta */
+    const double cut = mx - LSE_CUTOFF;
+    double s = 0.0;
+    for (int t = 0; t < n; ++t)
+        if (x[t] > cut)
+            s += exp(x[t] - mx);
+    const double p = top * s;
+    return (p > delta) ? delta / p : 1.0;
+}
+
 /* ------------------------------------------------------------------ any D */
 
 /* fw: f with its angle entries already wrapped into (-pi, pi]. */
@@ -235,11 +262,8 @@ double gmmrrt_gmm_component_log_density(const gmmrrt_model_t *model, int32_t i, 
 double gmmrrt_gmm_task_cost(const gmmrrt_model_t *model, const double *f, double delta)
 {
     assert(model != NULL && f != NULL && delta > 0.0);
-    double c;
-    if (model->dim == 2) {
-        gmmrrt_gmm_task_cost_batch(model, &f[0], &f[1], 1, delta, &c);
-        return c;
-    }
+    if (model->dim == 2)
+        return task_cost_2d(model, f, delta);
     const double p = gmmrrt_gmm_density(model, f);
     /* delta / max(p, delta); a NaN density (NaN features) costs the maximum, 1. */
     return (p > delta) ? delta / p : 1.0;

@@ -6,9 +6,9 @@
  *
  * D = 2 models go through a vector kernel (gmm_task_cost_kernel.inc) with its own exp, 2
  * points per instruction on any x86-64 (SSE2) or ARM (NEON), 4 when the CPU has AVX2 (checked
- * once at run time). Both give the same bits (lanes never mix), so a plan does not depend on
- * the machine's vector width. Against the scalar log-sum-exp of gmm.c the kernel agrees to a
- * few units in the last place (its exp is not libm's; tests/unit/gmm checks 1e-13 relative).
+ * at run time). Both give the same bits (lanes never mix), so a plan does not depend on the
+ * machine's vector width. It agrees with gmm.c's one-point gmmrrt_gmm_task_cost (libm's exp)
+ * to a few units in the last place (tests/unit/gmm checks 1e-13 relative).
  * A delta below 1e-290 (densities that small are under the kernel's e^-700 floor) takes the
  * scalar path. Nothing here allocates.
  */

@@ -36,10 +36,10 @@ double gmmrrt_gmm_component_log_density(const gmmrrt_model_t *model, int32_t i, 
  * 1 where the model finds f unlikely, small where it is typical. delta > 0. */
 double gmmrrt_gmm_task_cost(const gmmrrt_model_t *model, const double *f, double delta);
 
-/* The task cost of n points of a D = 2 model at once: cost[i] = c((f0[i], f1[i])), the same
- * value gmmrrt_gmm_task_cost gives (which calls this for D = 2). Vectorised (2 or 4 points per
- * instruction, the same bits either way); agrees with delta / exp(gmmrrt_gmm_log_density) to
- * about 1e-14 relative. NaN or infinite features cost 1. model->dim == 2, delta > 0, arrays of n >= 0 entries. */
+/* The task cost of n points of a D = 2 model at once: cost[i] = c((f0[i], f1[i])), what the
+ * planner's edge quadrature uses. Vectorised (2 or 4 points per instruction, the same bits
+ * either way, with its own exp); agrees with gmmrrt_gmm_task_cost (scalar, libm's exp) and
+ * with delta / exp(gmmrrt_gmm_log_density) to about 1e-14 relative. NaN or infinite features cost 1. model->dim == 2, delta > 0, arrays of n >= 0 entries. */
 void gmmrrt_gmm_task_cost_batch(const gmmrrt_model_t *model, const double *f0, const double *f1, int32_t n,
                                 double delta, double *cost);
 
