@@ -43,15 +43,6 @@ static void task_costs(const struct gmmrrt_planner *p, const double *x, const do
     }
 }
 
-double gmmrrt_task_cost_at(const struct gmmrrt_planner *p, double x, double y)
-{
-    if (!p->task_active || p->num_active == 0)
-        return 1.0;
-    double c;
-    task_costs(p, &x, &y, 1, &c);
-    return c;
-}
-
 double gmmrrt_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1)
 {
     const double dx = x1 - x0, dy = y1 - y0;

@@ -82,10 +82,9 @@ struct gmmrrt_planner {
     int64_t conv_ref_iter;
 };
 
-/* objective.c: task cost c at a point (1 where no task applies), and the edge cost
- * integral of (w_length + w_task c) ds by the midpoint rule at cfg.edge_resolution_m
- * (plain length for rrt-star and gmm-rrt). */
-double gmmrrt_task_cost_at(const struct gmmrrt_planner *p, double x, double y);
+/* objective.c: the edge cost, integral of (w_length + w_task c) ds by the midpoint rule at
+ * cfg.edge_resolution_m, c the task cost (1 where no task applies; plain length for rrt-star
+ * and gmm-rrt). */
 double gmmrrt_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1);
 /* A lower bound of gmmrrt_edge_cost for an edge of len_m (c > 0 is bounded below by 0), so
  * the loop can skip the quadrature for candidates that cannot win. Linear in len_m (the
