@@ -56,6 +56,7 @@ struct gmmrrt_world {
     double person_edge_reach;  /* robot + person radius + GMMRRT_EDGE_MIN_CLEARANCE_M, m */
     double person_edge_reach2;
     double near_px[GMMRRT_MAX_PEOPLE], near_py[GMMRRT_MAX_PEOPLE];
+    double box_cos[GMMRRT_MAX_BOXES], box_sin[GMMRRT_MAX_BOXES]; /* of each box's yaw, for exact_static_clearance */
     gmmrrt_world_grid_stats_t stats;
     float clearance[]; /* nx * ny, row-major (j * nx + i) */
 };
@@ -298,6 +299,10 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
     w->max_cells = grid_max_cells;
     w->stats = counts;
     set_people(w);
+    for (int32_t k = 0; k < obstacles->num_boxes; ++k) {
+        w->box_cos[k] = cos(obstacles->boxes[k].yaw);
+        w->box_sin[k] = sin(obstacles->boxes[k].yaw);
+    }
 
     /* Shared cells as local indices of the new layout (exclusive ends); none when the
      * statics changed. */
@@ -386,6 +391,46 @@ static double clearance_lower_bound(const struct gmmrrt_world *w, double x, doub
     return best;
 }
 
+/* Exact clearance from the static obstacles at (x, y), closed forms of what FCL computes for
+ * the grid (the robot disc against each circle and oriented box: centre distance to the shape
+ * minus the robot's radius, negative inside). O(circles + boxes): only called where the grid's
+ * bound cannot decide (at and within about a cell of an obstacle). */
+static double exact_static_clearance(const struct gmmrrt_world *w, double x, double y)
+{
+    const gmmrrt_obstacle_set_t *o = &w->obstacles;
+    double best = INFINITY;
+    for (int32_t k = 0; k < o->num_circles; ++k) {
+        const gmmrrt_circle_t *c = &o->circles[k];
+        const double dx = x - c->x, dy = y - c->y;
+        const double d = sqrt(dx * dx + dy * dy) - c->radius_m; /* plain sqrt: map coordinates */
+        best = d < best ? d : best;
+    }
+    for (int32_t k = 0; k < o->num_boxes; ++k) {
+        const gmmrrt_box_t *b = &o->boxes[k];
+        const double dx = x - b->x, dy = y - b->y;
+        const double lx = dx * w->box_cos[k] + dy * w->box_sin[k], ly = -dx * w->box_sin[k] + dy * w->box_cos[k];
+        const double qx = fabs(lx) - 0.5 * b->width_m, qy = fabs(ly) - 0.5 * b->height_m;
+        const double ox = qx > 0.0 ? qx : 0.0, oy = qy > 0.0 ? qy : 0.0;
+        const double in = qx > qy ? qx : qy; /* <= 0 inside: minus the depth */
+        const double d = (in > 0.0) ? sqrt(ox * ox + oy * oy) : in;
+        best = d < best ? d : best;
+    }
+    return best - w->robot_radius_m;
+}
+
+/* The grid's bound at (x, y), or the exact clearance where the bound is at most `need` (so it
+ * cannot prove what the caller needs); both are lower bounds of the true clearance and
+ * 1-Lipschitz in (x, y). EXACT_MARGIN_M absorbs the closed forms' rounding against FCL. */
+#define EXACT_MARGIN_M 1e-9
+static double static_clearance(const struct gmmrrt_world *w, double x, double y, double need)
+{
+    const double lb = clearance_lower_bound(w, x, y);
+    if (lb > need)
+        return lb;
+    const double exact = exact_static_clearance(w, x, y) - EXACT_MARGIN_M;
+    return exact > lb ? exact : lb;
+}
+
 static int inside_bounds(const struct gmmrrt_world *w, double x, double y)
 {
     const gmmrrt_bounds_t *b = &w->obstacles.bounds;
@@ -430,7 +475,7 @@ int gmmrrt_world_point_free(const gmmrrt_world_t *world, double x, double y)
 {
     if (!world || !isfinite(x) || !isfinite(y) || !inside_bounds(world, x, y))
         return 0;
-    return clearance_lower_bound(world, x, y) > 0.0 && people_point_free(world, x, y);
+    return static_clearance(world, x, y, 0.0) > 0.0 && people_point_free(world, x, y);
 }
 
 int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0, double x1, double y1)
@@ -450,7 +495,8 @@ int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0,
         !inside_bounds(world, x1, y1))
         return 0;
     /* The end points' clearance bounds (as gmmrrt_world_point_free) are also the first probes. */
-    const double lb0 = clearance_lower_bound(world, x0, y0), lb1 = clearance_lower_bound(world, x1, y1);
+    const double m = GMMRRT_EDGE_MIN_CLEARANCE_M;
+    const double lb0 = static_clearance(world, x0, y0, m), lb1 = static_clearance(world, x1, y1, m);
     if (!(lb0 > 0.0) || !(lb1 > 0.0))
         return 0;
     const double dx = x1 - x0, dy = y1 - y0;
@@ -478,7 +524,7 @@ int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0,
     if (s >= len)
         return 1;
     for (;;) {
-        const double lb = clearance_lower_bound(world, x0 + s * ux, y0 + s * uy);
+        const double lb = static_clearance(world, x0 + s * ux, y0 + s * uy, m);
         if (!(lb > GMMRRT_EDGE_MIN_CLEARANCE_M))
             return 0;
         s += lb;

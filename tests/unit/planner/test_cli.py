@@ -188,9 +188,11 @@ def test_delta_and_w_task_change_the_objective(tmp_path):
 
 def test_search_flags_take_effect():
     """--informed 0 and --rewire-k 0 (radius rewiring) plan the disc problem too, and each
-    changes the search: the same seed then gives other cost histories."""
+    changes the search: the same seed then gives other cost histories. The bounds are tight and
+    the tree dense enough that the step_m disc holds more nodes than the k-nearest set takes;
+    on a sparser tree both near sets are 'every node within step_m' and the searches agree."""
     base = ["--start", "-5,0", "--goal", "5,0", "--obstacle", "circle:0,0,2", "--robot-radius", "0",
-            "--iterations", "3000", "--json"]
+            "--bounds", "-6,-3,6,3", "--iterations", "6000", "--json"]
     hist = {}
     for name, extra in (("default", []), ("plain", ["--informed", "0"]), ("radius", ["--rewire-k", "0"])):
         r = run(*base, *extra)

@@ -1,7 +1,8 @@
 /*
  * test_collision.c - planner.collision: the world of collision.h against FCL's exact
- * clearance (the oracle): the grid test never calls a colliding point free and calls
- * every point with more than two cells of clearance free; segments through obstacles
+ * clearance (the oracle): the point test never calls a colliding point free and calls
+ * every point with more than 1e-6 m of clearance free (the grid decides far from obstacles,
+ * the exact closed forms near them); edges keep 1 mm; segments through obstacles
  * are blocked whichever way they are walked; boxes rotate; people are discs; bad input
  * gets its status.
  */
@@ -47,7 +48,7 @@ static gmmrrt_status_t build(world_t *t, double res, double robot_r, const gmmrr
     return gmmrrt_world_build(&t->w, t->mem, size, cells, res, robot_r, 0.3, o);
 }
 
-static void test_grid_is_conservative_against_fcl(void **state)
+static void test_points_are_free_exactly_when_fcl_finds_clearance(void **state)
 {
     (void)state;
     const double radii[] = {0.0, 0.3};
@@ -58,19 +59,78 @@ static void test_grid_is_conservative_against_fcl(void **state)
         assert_int_equal(build(&t, res, radii[r], &o), GMMRRT_OK);
         gmmrrt_rng_t rng;
         gmmrrt_rng_seed(&rng, 11);
-        int free_n = 0, blocked_n = 0;
+        int free_n = 0, blocked_n = 0, near_free = 0;
         for (int i = 0; i < 200000; ++i) {
             const double x = -5.0 + 10.0 * gmmrrt_rng_uniform(&rng), y = -4.0 + 8.0 * gmmrrt_rng_uniform(&rng);
             const double exact = gmmrrt_world_exact_clearance(t.w, x, y);
             const int f = gmmrrt_world_point_free(t.w, x, y);
-            if (exact <= 0.0)
-                assert_int_equal(f, 0);
-            if (exact > 2.0 * res)
-                assert_int_equal(f, 1);
+            if (exact <= 0.0 && f)
+                fail_msg("(%g, %g) clearance %g called free", x, y, exact);
+            if (exact > 1e-6 && !f)
+                fail_msg("(%g, %g) clearance %g called blocked (radius %g)", x, y, exact, radii[r]);
             free_n += f;
             blocked_n += !f;
+            near_free += f && exact < res; /* where the grid's bound alone says blocked */
         }
-        assert_true(free_n > 1000 && blocked_n > 1000);
+        assert_true(free_n > 1000 && blocked_n > 1000 && near_free > 100);
+        free(t.mem);
+    }
+}
+
+/* Near obstacles the grid's bound is not enough (it calls points up to about a cell away
+ * blocked); the exact closed forms decide there. Points 1 um outside / inside a circle and a
+ * rotated box's face and corner; edges tangent to the circle at 2 mm (free) and 0.5 mm
+ * (refused: the 1 mm edge margin), both ways, and grazing the box's face at 2 mm. */
+static void test_edges_may_pass_obstacles_at_a_millimetre(void **state)
+{
+    (void)state;
+    gmmrrt_obstacle_set_t o;
+    memset(&o, 0, sizeof o);
+    o.bounds = (gmmrrt_bounds_t){-5.0, -5.0, 5.0, 5.0};
+    o.num_circles = 1;
+    o.circles[0] = (gmmrrt_circle_t){-2.0, 0.0, 1.0};
+    o.num_boxes = 1;
+    const double yaw = 0.5, c = cos(yaw), sn = sin(yaw);
+    o.boxes[0] = (gmmrrt_box_t){2.0, 0.0, 2.0, 1.0, yaw};
+    const double radii[] = {0.0, 0.3};
+    for (int r = 0; r < 2; ++r) {
+        world_t t;
+        const double rr = radii[r];
+        assert_int_equal(build(&t, 0.05, rr, &o), GMMRRT_OK);
+        const double reach = 1.0 + rr; /* circle: centre distance where the robot touches */
+        for (int k = 0; k < 16; ++k) {
+            const double a = 2.0 * M_PI * k / 16.0, ca = cos(a), sa = sin(a);
+            assert_true(gmmrrt_world_point_free(t.w, -2.0 + (reach + 1e-6) * ca, (reach + 1e-6) * sa));
+            assert_false(gmmrrt_world_point_free(t.w, -2.0 + (reach - 1e-6) * ca, (reach - 1e-6) * sa));
+            assert_true(gmmrrt_world_point_free(t.w, -2.0 + (reach + 0.02) * ca, (reach + 0.02) * sa));
+        }
+        /* Box faces and a corner, in the box frame then rotated (+x face at 1 + rr, +y face at 0.5 + rr). */
+        const double pts[][3] = {{1.0 + rr, 0.2, 1}, {-0.3, 0.5 + rr, 1}, {1.0 + rr * M_SQRT1_2, 0.5 + rr * M_SQRT1_2, 1}};
+        for (int k = 0; k < 3; ++k)
+            for (int side = -1; side <= 1; side += 2) {
+                const double s = 1.0 + side * 1e-6 / hypot(pts[k][0], pts[k][1]);
+                const double lx = pts[k][0] * s, ly = pts[k][1] * s;
+                const double x = 2.0 + lx * c - ly * sn, y = lx * sn + ly * c;
+                const double exact = gmmrrt_world_exact_clearance(t.w, x, y);
+                if (!(fabs(exact) > 1e-7 && fabs(exact) < 2e-6))
+                    fail_msg("test point %d side %d: FCL clearance %g (set-up)", k, side, exact);
+                assert_int_equal(gmmrrt_world_point_free(t.w, x, y), exact > 0.0);
+            }
+        /* Tangent edges above the circle: y = reach + gap. */
+        const double gaps[] = {0.002, 0.0005};
+        for (int g = 0; g < 2; ++g) {
+            const double y = reach + gaps[g];
+            assert_int_equal(gmmrrt_world_segment_free(t.w, -2.4, y, -1.6, y), g == 0);
+            assert_int_equal(gmmrrt_world_segment_free(t.w, -1.6, y, -2.4, y), g == 0);
+        }
+        /* Along the box's +y face (local y = 0.5 + rr + 2 mm), rotated into the world. */
+        {
+            const double ly = 0.5 + rr + 0.002, lx0 = -0.8, lx1 = 0.8;
+            const double x0 = 2.0 + lx0 * c - ly * sn, y0 = lx0 * sn + ly * c;
+            const double x1 = 2.0 + lx1 * c - ly * sn, y1 = lx1 * sn + ly * c;
+            assert_true(gmmrrt_world_segment_free(t.w, x0, y0, x1, y1));
+            assert_true(gmmrrt_world_segment_free(t.w, x1, y1, x0, y0));
+        }
         free(t.mem);
     }
 }
@@ -216,7 +276,8 @@ static void test_bad_worlds_get_their_status(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_grid_is_conservative_against_fcl),
+        cmocka_unit_test(test_points_are_free_exactly_when_fcl_finds_clearance),
+        cmocka_unit_test(test_edges_may_pass_obstacles_at_a_millimetre),
         cmocka_unit_test(test_exact_clearance_matches_geometry),
         cmocka_unit_test(test_segments_through_obstacles_are_blocked_both_ways),
         cmocka_unit_test(test_free_segments_never_cut_a_corner),
