@@ -110,9 +110,9 @@ def observations(res: dict) -> List[str]:
     pair = _get(res, "ompl", "length", "pairs", "ours_vs_ompl_informed")
     if isinstance(pair, dict) and _get(pair, "reference", "ours_reached") == 0:
         notes.append(f"Ours never reached the 1-second cost of OMPL's RRTstar with informed sampling "
-                     f"({fmt(_get(pair, 'reference', 'ompl_median_cost'), 4)}): our clearance grid is exact in that it "
-                     "never calls a colliding point free, but it is conservative within about a cell (5 cm) of a "
-                     "static obstacle, which puts our floor on this problem near 10.83; OMPL checks motions at "
+                     f"({fmt(_get(pair, 'reference', 'ompl_median_cost'), 4)}) in these runs. Our collision test "
+                     "is exact near obstacles (it never calls a colliding point free and calls every point with "
+                     "clearance free) but refuses edges that pass within 1 mm of one; OMPL checks motions at "
                      "discrete points and may cut the disc's edge between them.")
     sw = _get(res, "learner", "sweep")
     if isinstance(sw, dict) and "k_true" in sw:
@@ -185,9 +185,9 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
               "numbers where they are problem settings: step 5.66 m, goal bias 0.05, edge resolution 0.283 m. "
               "Two more planners run interleaved with these for context: ours without informed sampling "
               "(`gmmrrt_rrtstar_plain`, the algorithm OMPL's default runs) and OMPL's RRTstar with informed "
-              "sampling on (`ompl_rrtstar_informed`). Our collision checks are exact but conservative near "
-              "obstacles (the clearance grid, docs/planner.md), OMPL checks motions at discrete points, so "
-              "the costs each can reach differ slightly. An iteration is "
+              "sampling on (`ompl_rrtstar_informed`). Our collision checks are exact (a clearance grid, and "
+              "the exact clearance near obstacles; edges keep 1 mm, docs/planner.md), OMPL checks motions at "
+              "discrete points, so the costs each can reach differ slightly. An iteration is "
               "one sample drawn, kept or not (OMPL's `numIterations()`; samples in collision count). OMPL's best-cost curve comes from its "
               "intermediate-solution callback; ours from the planner's cost history, timed by slicing the run "
               "into ~100 anytime calls. Timing starts after set-up (OMPL `setup()`; our `set_problem`). "
