@@ -35,6 +35,19 @@ static gmmrrt_obstacle_set_t scene(void)
     return o;
 }
 
+/* One circle and one box in [-5, 5]^2, nothing else. */
+static gmmrrt_obstacle_set_t circle_and_box(gmmrrt_circle_t circle, gmmrrt_box_t box)
+{
+    gmmrrt_obstacle_set_t o;
+    memset(&o, 0, sizeof o);
+    o.bounds = (gmmrrt_bounds_t){-5.0, -5.0, 5.0, 5.0};
+    o.num_circles = 1;
+    o.circles[0] = circle;
+    o.num_boxes = 1;
+    o.boxes[0] = box;
+    return o;
+}
+
 typedef struct {
     void *mem;
     gmmrrt_world_t *w;
@@ -84,14 +97,9 @@ static void test_points_are_free_exactly_when_fcl_finds_clearance(void **state)
 static void test_edges_may_pass_obstacles_at_a_millimetre(void **state)
 {
     (void)state;
-    gmmrrt_obstacle_set_t o;
-    memset(&o, 0, sizeof o);
-    o.bounds = (gmmrrt_bounds_t){-5.0, -5.0, 5.0, 5.0};
-    o.num_circles = 1;
-    o.circles[0] = (gmmrrt_circle_t){-2.0, 0.0, 1.0};
-    o.num_boxes = 1;
     const double yaw = 0.5, c = cos(yaw), sn = sin(yaw);
-    o.boxes[0] = (gmmrrt_box_t){2.0, 0.0, 2.0, 1.0, yaw};
+    const gmmrrt_obstacle_set_t o =
+        circle_and_box((gmmrrt_circle_t){-2.0, 0.0, 1.0}, (gmmrrt_box_t){2.0, 0.0, 2.0, 1.0, yaw});
     const double radii[] = {0.0, 0.3};
     for (int r = 0; r < 2; ++r) {
         world_t t;
@@ -138,13 +146,9 @@ static void test_edges_may_pass_obstacles_at_a_millimetre(void **state)
 static void test_exact_clearance_matches_geometry(void **state)
 {
     (void)state;
-    gmmrrt_obstacle_set_t o;
-    memset(&o, 0, sizeof o);
-    o.bounds = (gmmrrt_bounds_t){-5.0, -5.0, 5.0, 5.0};
-    o.num_circles = 1;
-    o.circles[0] = (gmmrrt_circle_t){0.0, 0.0, 1.0};
-    o.num_boxes = 1;
-    o.boxes[0] = (gmmrrt_box_t){3.0, 0.0, 2.0, 1.0, M_PI / 2.0}; /* rotated: 1 wide in x, 2 tall in y */
+    /* The box rotated: 1 wide in x, 2 tall in y. */
+    const gmmrrt_obstacle_set_t o =
+        circle_and_box((gmmrrt_circle_t){0.0, 0.0, 1.0}, (gmmrrt_box_t){3.0, 0.0, 2.0, 1.0, M_PI / 2.0});
     world_t t;
     assert_int_equal(build(&t, 0.05, 0.25, &o), GMMRRT_OK);
     assert_true(fabs(gmmrrt_world_exact_clearance(t.w, 0.0, -2.0) - 0.75) < 1e-9);
