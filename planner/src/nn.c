@@ -42,6 +42,7 @@ static void layout(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double cell)
     nn->x0 = bounds->xmin;
     nn->y0 = bounds->ymin;
     nn->cell_m = cell;
+    nn->sorted_end = 1; /* no runs: every bucket a plain list */
     for (int32_t i = 0; i < nx * ny; ++i)
         nn->heads[i] = -1;
 }
@@ -170,19 +171,33 @@ void gmmrrt_nn_relayout_sorted(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t n, 
             pool->next_in_bucket[i] = tnext;
         }
     }
-    /* Bucket lists: each bucket's nodes are now one run of the pool. */
-    for (int32_t c = 0; c < cells; ++c)
-        nn->heads[c] = -1;
-    int32_t prev_bucket = -1;
-    for (int32_t i = n - 1; i >= 1; --i) {
-        const int32_t b = bucket_of(nn, &pool->xy[i]);
-        pool->next_in_bucket[i] = (b == prev_bucket) ? i + 1 : -1;
-        nn->heads[b] = i;
-        prev_bucket = b;
+    /* Each bucket's nodes are now one run of the pool, [end of the bucket before, heads[c])
+     * (heads[] holds each bucket's end after the numbering above): heads[] to run starts
+     * (-1 when empty), and every node of a run holds the run's end. */
+    for (int32_t c = cells - 1; c >= 0; --c) {
+        const int32_t run_end = nn->heads[c], run_start = c > 0 ? nn->heads[c - 1] : 1;
+        for (int32_t i = run_start; i < run_end; ++i)
+            pool->next_in_bucket[i] = run_end;
+        nn->heads[c] = run_start < run_end ? run_start : -1;
     }
+    nn->sorted_end = n > 1 ? n : 1;
     if (n > 0)
-        link(nn, pool, 0); /* the root heads its bucket's list */
+        link(nn, pool, 0); /* the root is its bucket's list, ahead of the run */
 }
+
+/* Scans bucket c's nodes in the index's order (list, then run; nn.h), running the
+ * statement after n (the visit) with the node index in variable n. */
+#define GMMRRT_NN_FOR_BUCKET(nn, pool, c, n, ...)                                    \
+    do {                                                                               \
+        int32_t n = (nn)->heads[c];                                                    \
+        while (n == 0 || n >= (nn)->sorted_end) {                                      \
+            __VA_ARGS__;                                                               \
+            n = (pool)->next_in_bucket[n];                                             \
+        }                                                                              \
+        if (n > 0)                                                                     \
+            for (const int32_t run_end_ = (pool)->next_in_bucket[n]; n < run_end_; ++n) \
+                __VA_ARGS__;                                                           \
+    } while (0)
 
 void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t idx)
 {
@@ -200,14 +215,14 @@ void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t idx)
 static void scan_bucket(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, int32_t i, int32_t j, double x,
                         double y, int32_t *best, double *best_d2)
 {
-    for (int32_t n = nn->heads[j * nn->nx + i]; n >= 0; n = pool->next_in_bucket[n]) {
+    GMMRRT_NN_FOR_BUCKET(nn, pool, j * nn->nx + i, n, {
         const double dx = pool->xy[n].x - x, dy = pool->xy[n].y - y;
         const double d2 = dx * dx + dy * dy;
         if (d2 < *best_d2) {
             *best_d2 = d2;
             *best = n;
         }
-    }
+    });
 }
 
 /* Distance from (x, y) to the nearest side of the bucket box [i0, i1] x [j0, j1] that is not
@@ -301,32 +316,70 @@ static void select_k(int32_t *idx, double *d2, int32_t n, int32_t k)
     }
 }
 
-/* Appends the nodes of buckets [a, b] of row j to (buf, buf_d2); when the buffer is full,
- * keeps only its k nearest (nothing farther can be in the answer) and goes on. The first
- * node of every bucket in the segment is prefetched before any is read: most buckets hold
- * one or two nodes, so pool misses overlap instead of queueing one behind the other. */
+/* Keeps the k nearest of the c entries of a full buffer (nothing farther can be in the
+ * answer); returns the new count, k. */
+static int32_t trim_to_k(int32_t *buf, double *buf_d2, int32_t c, int32_t k, int *trimmed)
+{
+    select_k(buf, buf_d2, c, k);
+    *trimmed = 1;
+    return k;
+}
+
+/* Appends the nodes of buckets [a, b] of row j to (buf, buf_d2) in the index's order (each
+ * bucket's list, then its run; nn.h); when the buffer is full, keeps only its k nearest and
+ * goes on. The runs of consecutive buckets are consecutive in the pool, so the runs of the
+ * buckets between two list nodes are one plain loop over a range of pool indices (no links
+ * followed, no branch per node): after a sorted re-layout most buckets have no list. */
 static void gather_row(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, int32_t j, int32_t a, int32_t b,
-                       double x, double y, int32_t k, int32_t *buf, double *buf_d2, int32_t cap, int32_t *count,
-                       int *trimmed)
+                       double x, double y, int32_t k, int32_t *restrict buf, double *restrict buf_d2, int32_t cap,
+                       int32_t *count, int *trimmed)
 {
     if (j < 0 || j >= nn->ny || a > b)
         return;
     const int32_t *heads = nn->heads + (size_t)j * (size_t)nn->nx;
+    const gmmrrt_xy_t *restrict xy = pool->xy;
+    const int32_t *next = pool->next_in_bucket;
+    const int32_t sorted_end = nn->sorted_end;
     for (int32_t i = a; i <= b; ++i)
-        if (heads[i] >= 0)
-            __builtin_prefetch(&pool->xy[heads[i]]);
+        if (heads[i] >= 0) {
+            __builtin_prefetch(&xy[heads[i]]);
+            __builtin_prefetch(&next[heads[i]]);
+        }
     int32_t c = *count;
-    for (int32_t i = a; i <= b; ++i)
-        for (int32_t n = heads[i]; n >= 0; n = pool->next_in_bucket[n]) {
-            if (c == cap) {
-                select_k(buf, buf_d2, c, k);
-                c = k;
-                *trimmed = 1;
-            }
-            const double dx = pool->xy[n].x - x, dy = pool->xy[n].y - y;
+    for (int32_t i = a; i <= b; ++i) {
+        int32_t n = heads[i];
+        while (n == 0 || n >= sorted_end) { /* the list */
+            if (c == cap)
+                c = trim_to_k(buf, buf_d2, c, k, trimmed);
+            const double dx = xy[n].x - x, dy = xy[n].y - y;
             buf[c] = n;
             buf_d2[c++] = dx * dx + dy * dy;
+            n = next[n];
         }
+        if (n < 0)
+            continue;
+        /* A run from n: it goes on through the next buckets as long as they have no list. */
+        int32_t last_start = n;
+        while (i < b) {
+            const int32_t h = heads[i + 1];
+            if (h == 0 || h >= sorted_end)
+                break;
+            if (h > 0)
+                last_start = h;
+            ++i;
+        }
+        const int32_t end = next[last_start];
+        while (n < end) {
+            if (c == cap)
+                c = trim_to_k(buf, buf_d2, c, k, trimmed);
+            const int32_t stop = end - n < cap - c ? end : n + (cap - c);
+            for (; n < stop; ++n) {
+                const double dx = xy[n].x - x, dy = xy[n].y - y;
+                buf[c] = n;
+                buf_d2[c++] = dx * dx + dy * dy;
+            }
+        }
+    }
     *count = c;
 }
 
@@ -452,14 +505,14 @@ int32_t gmmrrt_nn_near(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, double 
             b = clampi((int32_t)floor((x + half - nn->x0) / nn->cell_m), i0, i1);
         }
         for (int32_t i = a; i <= b; ++i)
-            for (int32_t n = nn->heads[j * nn->nx + i]; n >= 0; n = pool->next_in_bucket[n]) {
+            GMMRRT_NN_FOR_BUCKET(nn, pool, j * nn->nx + i, n, {
                 const double dx = pool->xy[n].x - x, ddy = pool->xy[n].y - y;
                 if (dx * dx + ddy * ddy <= r2) {
                     if (count >= cap)
                         return -1;
                     out[count++] = n;
                 }
-            }
+            });
     }
     return count;
 }
