@@ -410,7 +410,7 @@ int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, do
             const double reach = box_reach(nn, x, y, i0, i1, j0, j1);
             if (reach >= 0.0) {
                 const double reach2 = reach * reach;
-                int32_t within = 0;
+                int64_t within = 0; /* (64 bits: the comparisons' masks add up as vectors) */
                 for (int32_t c = 0; c < count; ++c)
                     within += buf_d2[c] <= reach2;
                 if (within >= k && trimmed)
@@ -418,27 +418,27 @@ int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, do
                 if (within >= k || (within > 0 && reach2 >= max_d2)) {
                     /* The answer: every node within reach and max_d (all of them are nearer
                      * than any node outside), or the nearest alone when none is within max_d.
-                     * Compacted in scan order, without branches. */
+                     * Compacted in scan order in one pass, which also finds the nearest kept
+                     * and the nearest of all (of equally near nodes the first found). */
                     const double lim2 = reach2 < max_d2 ? reach2 : max_d2;
-                    int32_t w = 0, best = 0;
-                    double best_d2 = INFINITY;
-                    for (int32_t c = 0; c < count; ++c)
-                        if (buf_d2[c] < best_d2) {
-                            best_d2 = buf_d2[c];
-                            best = c;
-                        }
-                    if (best_d2 > lim2) {
-                        buf[0] = buf[best];
-                        buf_d2[0] = best_d2;
-                        return 1;
-                    }
-                    best = 0;
+                    int32_t w = 0, best = 0, nearest = buf[0];
+                    double best_d2 = INFINITY, nearest_d2 = INFINITY;
                     for (int32_t c = 0; c < count; ++c) {
-                        const int32_t keep = buf_d2[c] <= lim2;
-                        buf[w] = buf[c];
-                        buf_d2[w] = buf_d2[c];
-                        best = (keep && buf_d2[c] < buf_d2[best]) ? w : best;
+                        const double d2 = buf_d2[c];
+                        const int32_t idx = buf[c];
+                        const int keep = d2 <= lim2;
+                        buf[w] = idx;
+                        buf_d2[w] = d2;
+                        nearest = d2 < nearest_d2 ? idx : nearest;
+                        nearest_d2 = d2 < nearest_d2 ? d2 : nearest_d2;
+                        best = keep && d2 < best_d2 ? w : best;
+                        best_d2 = keep && d2 < best_d2 ? d2 : best_d2;
                         w += keep;
+                    }
+                    if (w == 0) { /* none within max_d: the nearest alone */
+                        buf[0] = nearest;
+                        buf_d2[0] = nearest_d2;
+                        return 1;
                     }
                     count = w;
                     if (count > kmax)
