@@ -410,12 +410,23 @@ static void check_scan_order(const gmmrrt_nn_t *nn, int32_t n, gmmrrt_rng_t *rng
     ref_scan_order(nn, n, want);
     assert_int_equal(gmmrrt_nn_near(nn, &pool, 0.0, 0.0, 1e3, got, N), n);
     assert_memory_equal(got, want, sizeof(int32_t) * (size_t)n);
+    static int32_t rank[N]; /* place in the reference order */
+    for (int32_t i = 0; i < n; ++i)
+        rank[want[i]] = i;
     const double w = b->xmax - b->xmin, h = b->ymax - b->ymin;
-    for (int q = 0; q < 40; ++q) {
+    for (int q = 0; q < 44; ++q) {
         const int at_root = q % 4 == 0; /* the root's bucket: list, root and run */
-        const double qx = at_root ? xy[0].x + 0.01 * gmmrrt_rng_normal(rng) : b->xmin - 0.5 + (w + 1.0) * gmmrrt_rng_uniform(rng);
-        const double qy = at_root ? xy[0].y + 0.01 * gmmrrt_rng_normal(rng) : b->ymin - 0.5 + (h + 1.0) * gmmrrt_rng_uniform(rng);
-        assert_int_equal(gmmrrt_nn_nearest(nn, &pool, qx, qy), gmmrrt_nn_nearest(&twin, &twin_pool, qx, qy));
+        double qx = at_root ? xy[0].x + 0.01 * gmmrrt_rng_normal(rng) : b->xmin - 0.5 + (w + 1.0) * gmmrrt_rng_uniform(rng);
+        double qy = at_root ? xy[0].y + 0.01 * gmmrrt_rng_normal(rng) : b->ymin - 0.5 + (h + 1.0) * gmmrrt_rng_uniform(rng);
+        if (q >= 40) { /* where several nodes share a position (the edge nodes below): ties */
+            qx = q % 2 ? b->xmax : b->xmin - 1.0;
+            qy = q < 42 ? b->ymax + 2.0 : b->ymin;
+        }
+        const int32_t nearest = gmmrrt_nn_nearest(nn, &pool, qx, qy);
+        assert_int_equal(nearest, gmmrrt_nn_nearest(&twin, &twin_pool, qx, qy));
+        for (int32_t i = 0; i < n; ++i) /* of nodes at the same place, the first in scan order */
+            if (xy[i].x == xy[nearest].x && xy[i].y == xy[nearest].y)
+                assert_true(rank[nearest] <= rank[i]);
         const double r = 0.02 + 0.6 * gmmrrt_rng_uniform(rng);
         const int32_t m = gmmrrt_nn_near(nn, &pool, qx, qy, r, got, N);
         assert_int_equal(m, gmmrrt_nn_near(&twin, &twin_pool, qx, qy, r, got_twin, N));
@@ -430,6 +441,11 @@ static void check_scan_order(const gmmrrt_nn_t *nn, int32_t n, gmmrrt_rng_t *rng
             assert_true(c1 >= 1);
             assert_memory_equal(got, got_twin, sizeof(int32_t) * (size_t)c1);
             assert_memory_equal(d2, d2_twin, sizeof(double) * (size_t)c1);
+            /* Unless the k nearest were selected (the count is then k), the first found of
+             * equally near nodes comes first. */
+            for (int32_t i = 1; i < c1 && c1 > ks[t][0]; ++i)
+                if (xy[got[i]].x == xy[got[0]].x && xy[got[i]].y == xy[got[0]].y)
+                    assert_true(rank[got[0]] < rank[got[i]]);
         }
     }
 }
