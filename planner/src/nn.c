@@ -1,8 +1,10 @@
 /*
  * nn.c - uniform bucket grid for nearest and radius queries over the tree (see nn.h).
  * Nearest grows square rings of buckets around the query's bucket until the ring is
- * farther than the best distance found; radius queries visit the buckets overlapping
- * the query disc's bounding box.
+ * farther than the best distance found; k-nearest (k-nearest RRT*, Karaman & Frazzoli 2011)
+ * grows a box of rings the same way; radius queries visit the buckets overlapping the query
+ * disc. Every query scans each bucket as its list, then its run (nn.h): the order nodes
+ * are reported in, on which the planner's trees depend.
  */
 #include "nn.h"
 

@@ -1,7 +1,8 @@
 /*
  * nn.h - internal: the nearest-neighbour index of the tree, a uniform grid of buckets over
- * the planning bounds whose lists run through the node pool (one int32_t per node, one
- * int32_t head per bucket). The RRT* needs the nearest node (extend) and the nodes within
+ * the planning bounds, each bucket a list through the node pool then a run of consecutive
+ * pool entries (one int32_t per node, one int32_t head per bucket; see gmmrrt_nn_t and
+ * docs/planner.md). The RRT* needs the nearest node (extend) and the nodes within
  * a radius (choose-parent and rewire, Karaman & Frazzoli 2011, Alg. 6). Checked against a
  * linear scan in tests/unit/planner/test_nn.c.
  */
