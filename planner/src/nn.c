@@ -318,6 +318,41 @@ static void select_k(int32_t *idx, double *d2, int32_t n, int32_t k)
     }
 }
 
+/* Number of d2[0..n) within lim2 (four sums: no chain of dependent additions). */
+static int32_t count_within(const double *d2, int32_t n, double lim2)
+{
+    int32_t s0 = 0, s1 = 0, s2 = 0, s3 = 0, c = 0;
+    for (; c + 4 <= n; c += 4) {
+        s0 += d2[c] <= lim2;
+        s1 += d2[c + 1] <= lim2;
+        s2 += d2[c + 2] <= lim2;
+        s3 += d2[c + 3] <= lim2;
+    }
+    for (; c < n; ++c)
+        s0 += d2[c] <= lim2;
+    return s0 + s1 + s2 + s3;
+}
+
+/* Index of the smallest of d2[0..n), n >= 1 (of equal ones the first): the even and the odd
+ * entries are two independent minimum chains, merged at the end. */
+static int32_t first_min(const double *d2, int32_t n)
+{
+    int32_t i0 = 0, i1 = n > 1 ? 1 : 0;
+    double m0 = d2[0], m1 = d2[i1];
+    int32_t c = 2;
+    for (; c + 2 <= n; c += 2) {
+        i0 = d2[c] < m0 ? c : i0;
+        m0 = d2[c] < m0 ? d2[c] : m0;
+        i1 = d2[c + 1] < m1 ? c + 1 : i1;
+        m1 = d2[c + 1] < m1 ? d2[c + 1] : m1;
+    }
+    if (c < n) {
+        i0 = d2[c] < m0 ? c : i0;
+        m0 = d2[c] < m0 ? d2[c] : m0;
+    }
+    return (m1 < m0 || (m1 == m0 && i1 < i0)) ? i1 : i0;
+}
+
 /* Keeps the k nearest of the c entries of a full buffer (nothing farther can be in the
  * answer); returns the new count, k. */
 static int32_t trim_to_k(int32_t *buf, double *buf_d2, int32_t c, int32_t k, int *trimmed)
@@ -412,9 +447,7 @@ int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, do
             const double reach = box_reach(nn, x, y, i0, i1, j0, j1);
             if (reach >= 0.0) {
                 const double reach2 = reach * reach;
-                int64_t within = 0; /* (64 bits: the comparisons' masks add up as vectors) */
-                for (int32_t c = 0; c < count; ++c)
-                    within += buf_d2[c] <= reach2;
+                const int32_t within = count_within(buf_d2, count, reach2);
                 if (within >= k && trimmed)
                     break; /* the k nearest are in the buffer: selected below */
                 if (within >= k || (within > 0 && reach2 >= max_d2)) {
@@ -423,28 +456,27 @@ int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, do
                      * Compacted in scan order in one pass, which also finds the nearest kept
                      * and the nearest of all (of equally near nodes the first found). */
                     const double lim2 = reach2 < max_d2 ? reach2 : max_d2;
-                    int32_t w = 0, best = 0, nearest = buf[0];
-                    double best_d2 = INFINITY, nearest_d2 = INFINITY;
+                    const int32_t first = buf[0];
+                    const double first_d2 = buf_d2[0];
+                    int32_t w = 0;
                     for (int32_t c = 0; c < count; ++c) {
                         const double d2 = buf_d2[c];
-                        const int32_t idx = buf[c];
-                        const int keep = d2 <= lim2;
-                        buf[w] = idx;
+                        buf[w] = buf[c];
                         buf_d2[w] = d2;
-                        nearest = d2 < nearest_d2 ? idx : nearest;
-                        nearest_d2 = d2 < nearest_d2 ? d2 : nearest_d2;
-                        best = keep && d2 < best_d2 ? w : best;
-                        best_d2 = keep && d2 < best_d2 ? d2 : best_d2;
-                        w += keep;
+                        w += d2 <= lim2;
                     }
-                    if (w == 0) { /* none within max_d: the nearest alone */
-                        buf[0] = nearest;
-                        buf_d2[0] = nearest_d2;
+                    if (w == 0) { /* none within max_d: the nearest alone (only entry 0 was written) */
+                        buf[0] = first;
+                        buf_d2[0] = first_d2;
+                        const int32_t nearest = first_min(buf_d2, count);
+                        buf[0] = buf[nearest];
+                        buf_d2[0] = buf_d2[nearest];
                         return 1;
                     }
                     count = w;
                     if (count > kmax)
                         break; /* too many: the k nearest, selected below */
+                    const int32_t best = first_min(buf_d2, count);
                     if (best != 0)
                         swap_entry(buf, buf_d2, 0, best);
                     return count;
