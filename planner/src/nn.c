@@ -25,8 +25,9 @@ int32_t gmmrrt_nn_capacity(int32_t max_nodes)
     return max_nodes < 16 ? 16 : max_nodes;
 }
 
-/* Lays an empty grid of buckets of edge >= cell over bounds, within nn->capacity buckets. */
-static void layout(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double cell)
+/* Lays a grid of buckets of edge >= cell over bounds, within nn->capacity buckets, every
+ * head set to fill (-1: empty lists; 0: zero counts for a sort). */
+static void layout(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double cell, int32_t fill)
 {
     const double w = bounds->xmax - bounds->xmin, h = bounds->ymax - bounds->ymin;
     int32_t nx, ny;
@@ -46,7 +47,7 @@ static void layout(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double cell)
     nn->cell_m = cell;
     nn->sorted_end = 1; /* no runs: every bucket a plain list */
     for (int32_t i = 0; i < nx * ny; ++i)
-        nn->heads[i] = -1;
+        nn->heads[i] = fill;
 }
 
 void gmmrrt_nn_reset(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double min_cell_m)
@@ -58,7 +59,7 @@ void gmmrrt_nn_reset(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double min_
     nn->adaptive = 0;
     nn->relayout_at = 0;
     nn->bounds = *bounds;
-    layout(nn, bounds, cell);
+    layout(nn, bounds, cell, -1);
 }
 
 /* Bucket edge for n nodes at GMMRRT_NN_NODES_PER_CELL per bucket. */
@@ -74,7 +75,7 @@ void gmmrrt_nn_reset_adaptive(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds)
     nn->adaptive = 1;
     nn->relayout_at = GMMRRT_NN_FIRST_LAYOUT;
     nn->bounds = *bounds;
-    layout(nn, bounds, cell_for(bounds, GMMRRT_NN_FIRST_LAYOUT));
+    layout(nn, bounds, cell_for(bounds, GMMRRT_NN_FIRST_LAYOUT), -1);
 }
 
 static int32_t clampi(int32_t v, int32_t lo, int32_t hi) { return v < lo ? lo : (v > hi ? hi : v); }
@@ -122,10 +123,8 @@ void gmmrrt_nn_relayout_sorted(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t n, 
     double cell = cell_for(&nn->bounds, n < 1 ? 1 : n);
     int32_t cells = 0;
     for (int pass = 0; pass < 2; ++pass) {
-        layout(nn, &nn->bounds, cell);
+        layout(nn, &nn->bounds, cell, 0);
         cells = nn->nx * nn->ny;
-        for (int32_t c = 0; c < cells; ++c)
-            nn->heads[c] = 0;
         for (int32_t i = 1; i < n; ++i)
             ++nn->heads[bucket_of(nn, &pool->xy[i])];
         if (pass > 0 || n < GMMRRT_NN_FIRST_LAYOUT)
@@ -175,12 +174,19 @@ void gmmrrt_nn_relayout_sorted(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t n, 
     }
     /* Each bucket's nodes are now one run of the pool, [end of the bucket before, heads[c])
      * (heads[] holds each bucket's end after the numbering above): heads[] to run starts
-     * (-1 when empty), and every node of a run holds the run's end. */
-    for (int32_t c = cells - 1; c >= 0; --c) {
-        const int32_t run_end = nn->heads[c], run_start = c > 0 ? nn->heads[c - 1] : 1;
-        for (int32_t i = run_start; i < run_end; ++i)
-            pool->next_in_bucket[i] = run_end;
-        nn->heads[c] = run_start < run_end ? run_start : -1;
+     * (-1 when empty), and every node of a run holds the run's end (one pass over the
+     * buckets, fewer than nodes or many more when the nodes crowd). */
+    int32_t prev_end = 1;
+    for (int32_t c = 0; c < cells; ++c) {
+        const int32_t run_end = nn->heads[c], run_start = prev_end;
+        prev_end = run_end;
+        if (run_start < run_end) {
+            nn->heads[c] = run_start;
+            for (int32_t i = run_start; i < run_end; ++i)
+                pool->next_in_bucket[i] = run_end;
+        } else {
+            nn->heads[c] = -1;
+        }
     }
     nn->sorted_end = n > 1 ? n : 1;
     if (n > 0)
@@ -205,7 +211,7 @@ void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t idx)
 {
     if (nn->adaptive && idx + 1 >= nn->relayout_at) {
         const int32_t n = idx + 1;
-        layout(nn, &nn->bounds, cell_for(&nn->bounds, n));
+        layout(nn, &nn->bounds, cell_for(&nn->bounds, n), -1);
         for (int32_t k = 0; k <= idx; ++k)
             link(nn, pool, k);
         nn->relayout_at = n > INT32_MAX / 2 ? INT32_MAX : 2 * n;
