@@ -48,9 +48,9 @@ typedef struct {
     int32_t *heads;        /* capacity buckets, owned by the planner block */
     int32_t capacity;
     int32_t nx, ny;
+    int32_t sorted_end;    /* nodes 1..sorted_end-1 lie in bucket runs (1: none) */
     double x0, y0;         /* m, lower corner of the grid */
     double cell_m;         /* bucket edge */
-    int32_t sorted_end;    /* nodes 1..sorted_end-1 lie in bucket runs (1: none) */
     /* Adaptive layout (gmmrrt_nn_reset_adaptive; all zero = fixed layout): the grid is laid
      * again for the current node count each time it doubles, so buckets hold ~1-2 nodes at
      * any tree size. */
