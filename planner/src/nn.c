@@ -459,8 +459,9 @@ int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, do
                 if (within >= k || (within > 0 && reach2 >= max_d2)) {
                     /* The answer: every node within reach and max_d (all of them are nearer
                      * than any node outside), or the nearest alone when none is within max_d.
-                     * Compacted in scan order in one pass, which also finds the nearest kept
-                     * and the nearest of all (of equally near nodes the first found). */
+                     * Compacted in scan order without branches; then the nearest kept goes
+                     * first, or, when none is kept, the nearest of all alone (first_min: of
+                     * equally near nodes the first found). */
                     const double lim2 = reach2 < max_d2 ? reach2 : max_d2;
                     const int32_t first = buf[0];
                     const double first_d2 = buf_d2[0];
