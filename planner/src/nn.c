@@ -1,8 +1,10 @@
 /*
  * nn.c - uniform bucket grid for nearest and radius queries over the tree (see nn.h).
  * Nearest grows square rings of buckets around the query's bucket until the ring is
- * farther than the best distance found; radius queries visit the buckets overlapping
- * the query disc's bounding box.
+ * farther than the best distance found; k-nearest (k-nearest RRT*, Karaman & Frazzoli 2011)
+ * grows a box of rings the same way; radius queries visit the buckets overlapping the query
+ * disc. Every query scans each bucket as its list, then its run (nn.h): the order nodes
+ * are reported in, on which the planner's trees depend.
  */
 #include "nn.h"
 
@@ -23,8 +25,9 @@ int32_t gmmrrt_nn_capacity(int32_t max_nodes)
     return max_nodes < 16 ? 16 : max_nodes;
 }
 
-/* Lays an empty grid of buckets of edge >= cell over bounds, within nn->capacity buckets. */
-static void layout(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double cell)
+/* Lays a grid of buckets of edge >= cell over bounds, within nn->capacity buckets, every
+ * head set to fill (-1: empty lists; 0: zero counts for a sort). */
+static void layout(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double cell, int32_t fill)
 {
     const double w = bounds->xmax - bounds->xmin, h = bounds->ymax - bounds->ymin;
     int32_t nx, ny;
@@ -42,8 +45,9 @@ static void layout(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double cell)
     nn->x0 = bounds->xmin;
     nn->y0 = bounds->ymin;
     nn->cell_m = cell;
+    nn->sorted_end = 1; /* no runs: every bucket a plain list */
     for (int32_t i = 0; i < nx * ny; ++i)
-        nn->heads[i] = -1;
+        nn->heads[i] = fill;
 }
 
 void gmmrrt_nn_reset(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double min_cell_m)
@@ -55,7 +59,7 @@ void gmmrrt_nn_reset(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds, double min_
     nn->adaptive = 0;
     nn->relayout_at = 0;
     nn->bounds = *bounds;
-    layout(nn, bounds, cell);
+    layout(nn, bounds, cell, -1);
 }
 
 /* Bucket edge for n nodes at GMMRRT_NN_NODES_PER_CELL per bucket. */
@@ -71,7 +75,7 @@ void gmmrrt_nn_reset_adaptive(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds)
     nn->adaptive = 1;
     nn->relayout_at = GMMRRT_NN_FIRST_LAYOUT;
     nn->bounds = *bounds;
-    layout(nn, bounds, cell_for(bounds, GMMRRT_NN_FIRST_LAYOUT));
+    layout(nn, bounds, cell_for(bounds, GMMRRT_NN_FIRST_LAYOUT), -1);
 }
 
 static int32_t clampi(int32_t v, int32_t lo, int32_t hi) { return v < lo ? lo : (v > hi ? hi : v); }
@@ -119,10 +123,8 @@ void gmmrrt_nn_relayout_sorted(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t n, 
     double cell = cell_for(&nn->bounds, n < 1 ? 1 : n);
     int32_t cells = 0;
     for (int pass = 0; pass < 2; ++pass) {
-        layout(nn, &nn->bounds, cell);
+        layout(nn, &nn->bounds, cell, 0);
         cells = nn->nx * nn->ny;
-        for (int32_t c = 0; c < cells; ++c)
-            nn->heads[c] = 0;
         for (int32_t i = 1; i < n; ++i)
             ++nn->heads[bucket_of(nn, &pool->xy[i])];
         if (pass > 0 || n < GMMRRT_NN_FIRST_LAYOUT)
@@ -170,25 +172,46 @@ void gmmrrt_nn_relayout_sorted(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t n, 
             pool->next_in_bucket[i] = tnext;
         }
     }
-    /* Bucket lists: each bucket's nodes are now one run of the pool. */
-    for (int32_t c = 0; c < cells; ++c)
-        nn->heads[c] = -1;
-    int32_t prev_bucket = -1;
-    for (int32_t i = n - 1; i >= 1; --i) {
-        const int32_t b = bucket_of(nn, &pool->xy[i]);
-        pool->next_in_bucket[i] = (b == prev_bucket) ? i + 1 : -1;
-        nn->heads[b] = i;
-        prev_bucket = b;
+    /* Each bucket's nodes are now one run of the pool, [end of the bucket before, heads[c])
+     * (heads[] holds each bucket's end after the numbering above): heads[] to run starts
+     * (-1 when empty), and every node of a run holds the run's end (one pass over the
+     * buckets, fewer than nodes or many more when the nodes crowd). */
+    int32_t prev_end = 1;
+    for (int32_t c = 0; c < cells; ++c) {
+        const int32_t run_end = nn->heads[c], run_start = prev_end;
+        prev_end = run_end;
+        if (run_start < run_end) {
+            nn->heads[c] = run_start;
+            for (int32_t i = run_start; i < run_end; ++i)
+                pool->next_in_bucket[i] = run_end;
+        } else {
+            nn->heads[c] = -1;
+        }
     }
+    nn->sorted_end = n > 1 ? n : 1;
     if (n > 0)
-        link(nn, pool, 0); /* the root heads its bucket's list */
+        link(nn, pool, 0); /* the root is its bucket's list, ahead of the run */
 }
+
+/* Scans bucket c's nodes in the index's order (list, then run; nn.h), running the
+ * statement after n (the visit) with the node index in variable n. */
+#define GMMRRT_NN_FOR_BUCKET(nn, pool, c, n, ...)                                    \
+    do {                                                                               \
+        int32_t n = (nn)->heads[c];                                                    \
+        while (n == 0 || n >= (nn)->sorted_end) {                                      \
+            __VA_ARGS__;                                                               \
+            n = (pool)->next_in_bucket[n];                                             \
+        }                                                                              \
+        if (n > 0)                                                                     \
+            for (const int32_t run_end_ = (pool)->next_in_bucket[n]; n < run_end_; ++n) \
+                __VA_ARGS__;                                                           \
+    } while (0)
 
 void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t idx)
 {
     if (nn->adaptive && idx + 1 >= nn->relayout_at) {
         const int32_t n = idx + 1;
-        layout(nn, &nn->bounds, cell_for(&nn->bounds, n));
+        layout(nn, &nn->bounds, cell_for(&nn->bounds, n), -1);
         for (int32_t k = 0; k <= idx; ++k)
             link(nn, pool, k);
         nn->relayout_at = n > INT32_MAX / 2 ? INT32_MAX : 2 * n;
@@ -200,14 +223,14 @@ void gmmrrt_nn_insert(gmmrrt_nn_t *nn, gmmrrt_pool_t *pool, int32_t idx)
 static void scan_bucket(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, int32_t i, int32_t j, double x,
                         double y, int32_t *best, double *best_d2)
 {
-    for (int32_t n = nn->heads[j * nn->nx + i]; n >= 0; n = pool->next_in_bucket[n]) {
+    GMMRRT_NN_FOR_BUCKET(nn, pool, j * nn->nx + i, n, {
         const double dx = pool->xy[n].x - x, dy = pool->xy[n].y - y;
         const double d2 = dx * dx + dy * dy;
         if (d2 < *best_d2) {
             *best_d2 = d2;
             *best = n;
         }
-    }
+    });
 }
 
 /* Distance from (x, y) to the nearest side of the bucket box [i0, i1] x [j0, j1] that is not
@@ -301,32 +324,105 @@ static void select_k(int32_t *idx, double *d2, int32_t n, int32_t k)
     }
 }
 
-/* Appends the nodes of buckets [a, b] of row j to (buf, buf_d2); when the buffer is full,
- * keeps only its k nearest (nothing farther can be in the answer) and goes on. The first
- * node of every bucket in the segment is prefetched before any is read: most buckets hold
- * one or two nodes, so pool misses overlap instead of queueing one behind the other. */
+/* Number of d2[0..n) within lim2 (four sums: no chain of dependent additions). */
+static int32_t count_within(const double *d2, int32_t n, double lim2)
+{
+    int32_t s0 = 0, s1 = 0, s2 = 0, s3 = 0, c = 0;
+    for (; c + 4 <= n; c += 4) {
+        s0 += d2[c] <= lim2;
+        s1 += d2[c + 1] <= lim2;
+        s2 += d2[c + 2] <= lim2;
+        s3 += d2[c + 3] <= lim2;
+    }
+    for (; c < n; ++c)
+        s0 += d2[c] <= lim2;
+    return s0 + s1 + s2 + s3;
+}
+
+/* Index of the smallest of d2[0..n), n >= 1 (of equal ones the first): the even and the odd
+ * entries are two independent minimum chains, merged at the end. */
+static int32_t first_min(const double *d2, int32_t n)
+{
+    int32_t i0 = 0, i1 = n > 1 ? 1 : 0;
+    double m0 = d2[0], m1 = d2[i1];
+    int32_t c = 2;
+    for (; c + 2 <= n; c += 2) {
+        i0 = d2[c] < m0 ? c : i0;
+        m0 = d2[c] < m0 ? d2[c] : m0;
+        i1 = d2[c + 1] < m1 ? c + 1 : i1;
+        m1 = d2[c + 1] < m1 ? d2[c + 1] : m1;
+    }
+    if (c < n) {
+        i0 = d2[c] < m0 ? c : i0;
+        m0 = d2[c] < m0 ? d2[c] : m0;
+    }
+    return (m1 < m0 || (m1 == m0 && i1 < i0)) ? i1 : i0;
+}
+
+/* Keeps the k nearest of the c entries of a full buffer (nothing farther can be in the
+ * answer); returns the new count, k. */
+static int32_t trim_to_k(int32_t *buf, double *buf_d2, int32_t c, int32_t k, int *trimmed)
+{
+    select_k(buf, buf_d2, c, k);
+    *trimmed = 1;
+    return k;
+}
+
+/* Appends the nodes of buckets [a, b] of row j to (buf, buf_d2) in the index's order (each
+ * bucket's list, then its run; nn.h); when the buffer is full, keeps only its k nearest and
+ * goes on. The runs of consecutive buckets are consecutive in the pool, so the runs of the
+ * buckets between two list nodes are one plain loop over a range of pool indices (no links
+ * followed, no branch per node): after a sorted re-layout most buckets have no list. */
 static void gather_row(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, int32_t j, int32_t a, int32_t b,
-                       double x, double y, int32_t k, int32_t *buf, double *buf_d2, int32_t cap, int32_t *count,
-                       int *trimmed)
+                       double x, double y, int32_t k, int32_t *restrict buf, double *restrict buf_d2, int32_t cap,
+                       int32_t *count, int *trimmed)
 {
     if (j < 0 || j >= nn->ny || a > b)
         return;
     const int32_t *heads = nn->heads + (size_t)j * (size_t)nn->nx;
+    const gmmrrt_xy_t *restrict xy = pool->xy;
+    const int32_t *next = pool->next_in_bucket;
+    const int32_t sorted_end = nn->sorted_end;
     for (int32_t i = a; i <= b; ++i)
-        if (heads[i] >= 0)
-            __builtin_prefetch(&pool->xy[heads[i]]);
+        if (heads[i] >= 0) {
+            __builtin_prefetch(&xy[heads[i]]);
+            __builtin_prefetch(&next[heads[i]]);
+        }
     int32_t c = *count;
-    for (int32_t i = a; i <= b; ++i)
-        for (int32_t n = heads[i]; n >= 0; n = pool->next_in_bucket[n]) {
-            if (c == cap) {
-                select_k(buf, buf_d2, c, k);
-                c = k;
-                *trimmed = 1;
-            }
-            const double dx = pool->xy[n].x - x, dy = pool->xy[n].y - y;
+    for (int32_t i = a; i <= b; ++i) {
+        int32_t n = heads[i];
+        while (n == 0 || n >= sorted_end) { /* the list */
+            if (c == cap)
+                c = trim_to_k(buf, buf_d2, c, k, trimmed);
+            const double dx = xy[n].x - x, dy = xy[n].y - y;
             buf[c] = n;
             buf_d2[c++] = dx * dx + dy * dy;
+            n = next[n];
         }
+        if (n < 0)
+            continue;
+        /* A run from n: it goes on through the next buckets as long as they have no list. */
+        int32_t last_start = n;
+        while (i < b) {
+            const int32_t h = heads[i + 1];
+            if (h == 0 || h >= sorted_end)
+                break;
+            if (h > 0)
+                last_start = h;
+            ++i;
+        }
+        const int32_t end = next[last_start];
+        while (n < end) {
+            if (c == cap)
+                c = trim_to_k(buf, buf_d2, c, k, trimmed);
+            const int32_t stop = end - n < cap - c ? end : n + (cap - c);
+            for (; n < stop; ++n) {
+                const double dx = xy[n].x - x, dy = xy[n].y - y;
+                buf[c] = n;
+                buf_d2[c++] = dx * dx + dy * dy;
+            }
+        }
+    }
     *count = c;
 }
 
@@ -357,39 +453,37 @@ int32_t gmmrrt_nn_nearest_k(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, do
             const double reach = box_reach(nn, x, y, i0, i1, j0, j1);
             if (reach >= 0.0) {
                 const double reach2 = reach * reach;
-                int32_t within = 0;
-                for (int32_t c = 0; c < count; ++c)
-                    within += buf_d2[c] <= reach2;
+                const int32_t within = count_within(buf_d2, count, reach2);
                 if (within >= k && trimmed)
                     break; /* the k nearest are in the buffer: selected below */
                 if (within >= k || (within > 0 && reach2 >= max_d2)) {
                     /* The answer: every node within reach and max_d (all of them are nearer
                      * than any node outside), or the nearest alone when none is within max_d.
-                     * Compacted in scan order, without branches. */
+                     * Compacted in scan order without branches; then the nearest kept goes
+                     * first, or, when none is kept, the nearest of all alone (first_min: of
+                     * equally near nodes the first found). */
                     const double lim2 = reach2 < max_d2 ? reach2 : max_d2;
-                    int32_t w = 0, best = 0;
-                    double best_d2 = INFINITY;
-                    for (int32_t c = 0; c < count; ++c)
-                        if (buf_d2[c] < best_d2) {
-                            best_d2 = buf_d2[c];
-                            best = c;
-                        }
-                    if (best_d2 > lim2) {
-                        buf[0] = buf[best];
-                        buf_d2[0] = best_d2;
-                        return 1;
-                    }
-                    best = 0;
+                    const int32_t first = buf[0];
+                    const double first_d2 = buf_d2[0];
+                    int32_t w = 0;
                     for (int32_t c = 0; c < count; ++c) {
-                        const int32_t keep = buf_d2[c] <= lim2;
+                        const double d2 = buf_d2[c];
                         buf[w] = buf[c];
-                        buf_d2[w] = buf_d2[c];
-                        best = (keep && buf_d2[c] < buf_d2[best]) ? w : best;
-                        w += keep;
+                        buf_d2[w] = d2;
+                        w += d2 <= lim2;
+                    }
+                    if (w == 0) { /* none within max_d: the nearest alone (only entry 0 was written) */
+                        buf[0] = first;
+                        buf_d2[0] = first_d2;
+                        const int32_t nearest = first_min(buf_d2, count);
+                        buf[0] = buf[nearest];
+                        buf_d2[0] = buf_d2[nearest];
+                        return 1;
                     }
                     count = w;
                     if (count > kmax)
                         break; /* too many: the k nearest, selected below */
+                    const int32_t best = first_min(buf_d2, count);
                     if (best != 0)
                         swap_entry(buf, buf_d2, 0, best);
                     return count;
@@ -452,14 +546,14 @@ int32_t gmmrrt_nn_near(const gmmrrt_nn_t *nn, const gmmrrt_pool_t *pool, double 
             b = clampi((int32_t)floor((x + half - nn->x0) / nn->cell_m), i0, i1);
         }
         for (int32_t i = a; i <= b; ++i)
-            for (int32_t n = nn->heads[j * nn->nx + i]; n >= 0; n = pool->next_in_bucket[n]) {
+            GMMRRT_NN_FOR_BUCKET(nn, pool, j * nn->nx + i, n, {
                 const double dx = pool->xy[n].x - x, ddy = pool->xy[n].y - y;
                 if (dx * dx + ddy * ddy <= r2) {
                     if (count >= cap)
                         return -1;
                     out[count++] = n;
                 }
-            }
+            });
     }
     return count;
 }

@@ -1,7 +1,8 @@
 /*
  * nn.h - internal: the nearest-neighbour index of the tree, a uniform grid of buckets over
- * the planning bounds whose lists run through the node pool (one int32_t per node, one
- * int32_t head per bucket). The RRT* needs the nearest node (extend) and the nodes within
+ * the planning bounds, each bucket a list through the node pool then a run of consecutive
+ * pool entries (one int32_t per node, one int32_t head per bucket; see gmmrrt_nn_t and
+ * docs/planner.md). The RRT* needs the nearest node (extend) and the nodes within
  * a radius (choose-parent and rewire, Karaman & Frazzoli 2011, Alg. 6). Checked against a
  * linear scan in tests/unit/planner/test_nn.c.
  */
@@ -30,13 +31,24 @@ typedef struct {
     gmmrrt_xy_t *xy;
     double *cost;          /* cost-to-come from the root */
     gmmrrt_links_t *link;
-    int32_t *next_in_bucket; /* spatial index list, -1 at the end */
+    int32_t *next_in_bucket; /* spatial index: see gmmrrt_nn_t */
 } gmmrrt_pool_t;
+
+/* A bucket's nodes are a list then a run. The list holds the nodes added since the last
+ * sorted re-layout (newest first) and the root; it starts at heads[bucket] and goes on
+ * through next_in_bucket until -1 or a run start. The run is the bucket's nodes of the last
+ * sorted re-layout: pool indices [s, next_in_bucket[s]) for its first node s, every node of
+ * the run holding the run's end (exclusive) in next_in_bucket. Runs are the nodes
+ * 1..sorted_end-1, so a node n > 0 reached through the list starts a run iff n < sorted_end
+ * (the root, node 0, is always a list node). Without a sorted re-layout sorted_end = 1:
+ * every bucket is a plain list. The scan order (list, then run) is the order queries report
+ * nodes in, and the planner's trees depend on it. */
 
 typedef struct {
     int32_t *heads;        /* capacity buckets, owned by the planner block */
     int32_t capacity;
     int32_t nx, ny;
+    int32_t sorted_end;    /* nodes 1..sorted_end-1 lie in bucket runs (1: none) */
     double x0, y0;         /* m, lower corner of the grid */
     double cell_m;         /* bucket edge */
     /* Adaptive layout (gmmrrt_nn_reset_adaptive; all zero = fixed layout): the grid is laid
@@ -64,10 +76,10 @@ void gmmrrt_nn_reset_adaptive(gmmrrt_nn_t *nn, const gmmrrt_bounds_t *bounds);
 int gmmrrt_nn_relayout_due(const gmmrrt_nn_t *nn, int32_t n_next);
 
 /* Lays the adaptive grid again for nodes 0..n-1 and renumbers nodes 1..n-1 in bucket order
- * (row-major buckets, each bucket's nodes contiguous in the pool; node 0, the root, keeps
- * its index and heads its bucket's list), so that a query's buckets
- * are a few contiguous runs of memory instead of scattered pool entries: the pool outgrows
- * the CPU caches long before planning ends, and the near-set scan is memory bound. Rewrites
+ * (row-major buckets, each bucket's nodes one run of the pool; node 0, the root, keeps
+ * its index and is its bucket's list), so that a query's buckets are a few contiguous runs
+ * of memory, scanned without following links, instead of scattered pool entries: the pool
+ * outgrows the CPU caches long before planning ends, and the near-set scan is memory bound. Rewrites
  * every tree link (parent, first_child, next_sibling) and the n_refs node indices in refs[]
  * (the caller's other references into the pool, -1 entries left alone). Uses no memory but
  * the pool and the bucket heads (next_in_bucket is the scratch). O(n). Any node index the

@@ -137,6 +137,42 @@ static void test_near_reports_overflow(void **state)
     assert_int_equal(gmmrrt_nn_near(&nn, &pool, 0.5, 0.5, 0.0025, out, 4), 3);
 }
 
+/* Bucket of (x, y) as nn.h defines it, computed here independently of nn.c. */
+static int32_t ref_bucket(const gmmrrt_nn_t *nn, double x, double y)
+{
+    double fi = floor((x - nn->x0) / nn->cell_m), fj = floor((y - nn->y0) / nn->cell_m);
+    fi = !(fi >= 0.0) ? 0.0 : (fi >= (double)nn->nx ? (double)(nn->nx - 1) : fi);
+    fj = !(fj >= 0.0) ? 0.0 : (fj >= (double)nn->ny ? (double)(nn->ny - 1) : fj);
+    return (int32_t)fj * nn->nx + (int32_t)fi;
+}
+
+/* After a sorted re-layout of n nodes: sorted_end = n, each bucket's list is at most the
+ * root, and its run (the nodes of that bucket among 1..n-1) is one range of indices whose
+ * every node holds the range's end; the runs follow the buckets' order and cover 1..n-1. */
+static void check_runs(const gmmrrt_nn_t *nn, int32_t n)
+{
+    assert_int_equal(nn->sorted_end, n);
+    int32_t expect_start = 1;
+    for (int32_t c = 0; c < nn->nx * nn->ny; ++c) {
+        int32_t h = nn->heads[c];
+        if (h == 0) {
+            assert_int_equal(ref_bucket(nn, xy[0].x, xy[0].y), c);
+            h = next_in_bucket[0];
+        }
+        if (h < 0)
+            continue;
+        assert_int_equal(h, expect_start);
+        const int32_t end = next_in_bucket[h];
+        assert_true(end > h && end <= n);
+        for (int32_t i = h; i < end; ++i) {
+            assert_int_equal(ref_bucket(nn, xy[i].x, xy[i].y), c);
+            assert_int_equal(next_in_bucket[i], end);
+        }
+        expect_start = end;
+    }
+    assert_int_equal(expect_start, n > 1 ? n : 1);
+}
+
 /* gmmrrt_nn_nearest_k's contract against a linear scan over nodes 0..n-1, with M the nodes
  * within max_d: the true nearest first; the rest distinct and within max_d; when M >= k, at
  * least k of them (exactly k when more than kmax) forming a disc (every node left out is at
@@ -292,14 +328,11 @@ static void test_sorted_relayout_keeps_the_tree(void **state)
     assert_int_equal(old_of[refs[1]], M - 1);
     assert_int_equal(refs[2], -1);
     assert_int_equal(old_of[refs[3]], 1234);
-    /* The root keeps index 0; each bucket's list is one run of consecutive indices (after
-     * the root in its bucket). */
+    /* The root keeps index 0; each bucket's nodes are one run of consecutive indices (after
+     * the root in its bucket), the runs in bucket order. */
     assert_int_equal(old_of[0], 0);
     assert_int_equal(links[0].parent, -1);
-    for (int32_t c = 0; c < nn.nx * nn.ny; ++c)
-        for (int32_t i = nn.heads[c]; i >= 0 && next_in_bucket[i] >= 0; i = next_in_bucket[i])
-            if (i != 0)
-                assert_int_equal(next_in_bucket[i], i + 1);
+    check_runs(&nn, M);
     for (int q = 0; q < 50; ++q) {
         const double qx = b.xmin + gmmrrt_rng_uniform(&rng) * 14.0, qy = b.ymin + gmmrrt_rng_uniform(&rng) * 10.0;
         double d2;
@@ -316,6 +349,162 @@ static void test_sorted_relayout_keeps_the_tree(void **state)
     assert_int_equal(gmmrrt_nn_nearest(&nn, &pool, 0.25, 0.25), M);
 }
 
+/* The order the index reports nodes in (nn.h), derived from positions and indices alone:
+ * buckets in row-major order; in each, the nodes added since the last sorted re-layout
+ * (index >= sorted_end) newest first, then the root, then the rest by index. */
+static const gmmrrt_nn_t *order_nn;
+static int32_t order_key(int32_t i)
+{
+    return i >= order_nn->sorted_end ? 0 : (i == 0 ? 1 : 2);
+}
+static int cmp_scan_order(const void *pa, const void *pb)
+{
+    const int32_t a = *(const int32_t *)pa, b = *(const int32_t *)pb;
+    const int32_t ca = ref_bucket(order_nn, xy[a].x, xy[a].y), cb = ref_bucket(order_nn, xy[b].x, xy[b].y);
+    if (ca != cb)
+        return (ca > cb) - (ca < cb);
+    const int32_t ka = order_key(a), kb = order_key(b);
+    if (ka != kb)
+        return (ka > kb) - (ka < kb);
+    return ka == 0 ? (a < b) - (a > b) : (a > b) - (a < b);
+}
+static void ref_scan_order(const gmmrrt_nn_t *nn, int32_t n, int32_t *out)
+{
+    for (int32_t i = 0; i < n; ++i)
+        out[i] = i;
+    order_nn = nn;
+    qsort(out, (size_t)n, sizeof out[0], cmp_scan_order);
+}
+
+/* A twin of the index over the same grid whose buckets are plain lists in the same order
+ * (the layout before runs existed): every query must answer it with the same nodes in the
+ * same order, which is what keeps the planner's trees the same. */
+static int32_t twin_heads[N], twin_next[N];
+static void make_list_twin(const gmmrrt_nn_t *nn, int32_t n, gmmrrt_nn_t *twin, gmmrrt_pool_t *twin_pool)
+{
+    static int32_t order[N];
+    *twin = *nn;
+    twin->heads = twin_heads;
+    twin->sorted_end = 1; /* no runs */
+    *twin_pool = pool;
+    twin_pool->next_in_bucket = twin_next;
+    for (int32_t c = 0; c < nn->nx * nn->ny; ++c)
+        twin_heads[c] = -1;
+    ref_scan_order(nn, n, order);
+    for (int32_t k = n - 1; k >= 0; --k) {
+        const int32_t c = ref_bucket(nn, xy[order[k]].x, xy[order[k]].y);
+        twin_next[order[k]] = twin_heads[c];
+        twin_heads[c] = order[k];
+    }
+}
+
+/* Every query on nn (nodes 0..n-1) against its plain-list twin, result for result, and a
+ * disc holding every node against the reference order. */
+static void check_scan_order(const gmmrrt_nn_t *nn, int32_t n, gmmrrt_rng_t *rng, const gmmrrt_bounds_t *b)
+{
+    static int32_t want[N], got[N], got_twin[N];
+    static double d2[2048], d2_twin[2048];
+    gmmrrt_nn_t twin;
+    gmmrrt_pool_t twin_pool;
+    make_list_twin(nn, n, &twin, &twin_pool);
+    ref_scan_order(nn, n, want);
+    assert_int_equal(gmmrrt_nn_near(nn, &pool, 0.0, 0.0, 1e3, got, N), n);
+    assert_memory_equal(got, want, sizeof(int32_t) * (size_t)n);
+    static int32_t rank[N]; /* place in the reference order */
+    for (int32_t i = 0; i < n; ++i)
+        rank[want[i]] = i;
+    const double w = b->xmax - b->xmin, h = b->ymax - b->ymin;
+    for (int q = 0; q < 44; ++q) {
+        const int at_root = q % 4 == 0; /* the root's bucket: list, root and run */
+        double qx = at_root ? xy[0].x + 0.01 * gmmrrt_rng_normal(rng) : b->xmin - 0.5 + (w + 1.0) * gmmrrt_rng_uniform(rng);
+        double qy = at_root ? xy[0].y + 0.01 * gmmrrt_rng_normal(rng) : b->ymin - 0.5 + (h + 1.0) * gmmrrt_rng_uniform(rng);
+        if (q >= 40) { /* where several nodes share a position (the edge nodes below): ties */
+            qx = q % 2 ? b->xmax : b->xmin - 1.0;
+            qy = q < 42 ? b->ymax + 2.0 : b->ymin;
+        }
+        const int32_t nearest = gmmrrt_nn_nearest(nn, &pool, qx, qy);
+        assert_int_equal(nearest, gmmrrt_nn_nearest(&twin, &twin_pool, qx, qy));
+        for (int32_t i = 0; i < n; ++i) /* of nodes at the same place, the first in scan order */
+            if (xy[i].x == xy[nearest].x && xy[i].y == xy[nearest].y)
+                assert_true(rank[nearest] <= rank[i]);
+        const double r = 0.02 + 0.6 * gmmrrt_rng_uniform(rng);
+        const int32_t m = gmmrrt_nn_near(nn, &pool, qx, qy, r, got, N);
+        assert_int_equal(m, gmmrrt_nn_near(&twin, &twin_pool, qx, qy, r, got_twin, N));
+        assert_memory_equal(got, got_twin, sizeof(int32_t) * (size_t)(m > 0 ? m : 0));
+        const int32_t ks[][3] = {{1, 1, 2048}, {30, 256, 2048}, {40, 40, 80}, {200, 256, 512}}; /* k, kmax, cap */
+        for (size_t t = 0; t < sizeof ks / sizeof ks[0]; ++t) {
+            const double max_d = t == 1 ? 0.3 : 100.0;
+            const int32_t c1 = gmmrrt_nn_nearest_k(nn, &pool, qx, qy, ks[t][0], ks[t][1], max_d, got, d2, ks[t][2]);
+            const int32_t c2 = gmmrrt_nn_nearest_k(&twin, &twin_pool, qx, qy, ks[t][0], ks[t][1], max_d, got_twin,
+                                                   d2_twin, ks[t][2]);
+            assert_int_equal(c1, c2);
+            assert_true(c1 >= 1);
+            assert_memory_equal(got, got_twin, sizeof(int32_t) * (size_t)c1);
+            assert_memory_equal(d2, d2_twin, sizeof(double) * (size_t)c1);
+            /* Unless the k nearest were selected (the count is then k), the first found of
+             * equally near nodes comes first. */
+            for (int32_t i = 1; i < c1 && c1 > ks[t][0]; ++i)
+                if (xy[got[i]].x == xy[got[0]].x && xy[got[i]].y == xy[got[0]].y)
+                    assert_true(rank[got[0]] < rank[got[i]]);
+        }
+    }
+}
+
+/* The index as the planner drives it (sorted re-layouts as the tree grows by a quarter,
+ * nodes added in between go to the buckets' lists) answers every query as its plain-list
+ * twin does, node for node and in the same order: right after each re-layout (runs only),
+ * midway and just before the next (runs and lists), in the root's bucket, on buckets
+ * clamped at the bounds' edges (nodes on and beyond them), among empty buckets, and with
+ * the grid at its capacity (a clustered tree wants more buckets than it may have). Also
+ * the fixed grid and the adaptive grid before any sorted re-layout (lists only). */
+static void test_runs_and_lists_scan_in_the_list_order(void **state)
+{
+    (void)state;
+    const gmmrrt_bounds_t b = {-7.0, -5.0, 7.0, 5.0};
+    for (int variant = 0; variant < 4; ++variant) {
+        gmmrrt_rng_t rng;
+        gmmrrt_rng_seed(&rng, 31u + (uint64_t)variant);
+        /* 0: uniform, fixed grid; 1: adaptive grid without sorted re-layouts (re-laid as the
+         * tree doubles); 2: clustered around the root, sorted re-layouts; 3: the same with
+         * capacity for 1000 buckets */
+        const int sorting = variant >= 2;
+        gmmrrt_nn_t nn = {.heads = heads, .capacity = variant == 3 ? 1000 : N};
+        if (variant == 0)
+            gmmrrt_nn_reset(&nn, &b, 0.1);
+        else
+            gmmrrt_nn_reset_adaptive(&nn, &b);
+        const int32_t m = 4000;
+        int32_t relayouts = 0, at_capacity = 0;
+        for (int32_t i = 0; i < m; ++i) {
+            if (sorting && i > 0 && gmmrrt_nn_relayout_due(&nn, i + 1)) {
+                gmmrrt_nn_relayout_sorted(&nn, &pool, i, NULL, 0);
+                check_runs(&nn, i);
+                check_scan_order(&nn, i, &rng, &b); /* runs only */
+                at_capacity |= nn.nx * nn.ny * 2 > nn.capacity;
+                ++relayouts;
+            }
+            const int blob = variant >= 2 && i % 8 != 0;
+            xy[i].x = blob ? 0.3 + 0.1 * gmmrrt_rng_normal(&rng) : b.xmin + gmmrrt_rng_uniform(&rng) * 14.0;
+            xy[i].y = blob ? 0.2 + 0.1 * gmmrrt_rng_normal(&rng) : b.ymin + gmmrrt_rng_uniform(&rng) * 10.0;
+            if (i % 97 == 5) { /* on and beyond the bounds' edges */
+                xy[i].x = i % 2 ? b.xmax : b.xmin - 1.0;
+                xy[i].y = i % 3 ? b.ymax + 2.0 : b.ymin;
+            }
+            if (i == 0) {
+                xy[0].x = 0.3;
+                xy[0].y = 0.2;
+            }
+            gmmrrt_nn_insert(&nn, &pool, i);
+            /* midway between re-layouts and just before the next (runs and lists) */
+            if (i + 2 == nn.relayout_at || i + 1 == m || i % 500 == 250)
+                check_scan_order(&nn, i + 1, &rng, &b);
+        }
+        assert_true(sorting ? relayouts > 10 : relayouts == 0);
+        if (variant == 3)
+            assert_true(at_capacity);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -325,6 +514,7 @@ int main(void)
         cmocka_unit_test(test_near_reports_overflow),
         cmocka_unit_test(test_nearest_k_matches_linear_scan),
         cmocka_unit_test(test_sorted_relayout_keeps_the_tree),
+        cmocka_unit_test(test_runs_and_lists_scan_in_the_list_order),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
