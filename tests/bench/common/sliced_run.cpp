@@ -49,10 +49,16 @@ void run_sliced(gmmrrt_planner_t *p, double time_ms, int32_t history_capacity, T
         if (now < end_ms) {
             gmmrrt_budget_t budget{};
             budget.time_ms = end_ms - now;
-            st = gmmrrt_planner_run(p, &budget, &stats);
+            const gmmrrt_status_t slice = gmmrrt_planner_run(p, &budget, &stats);
             slices.push_back({ms_since(t0), stats.iterations, stats.best_cost});
-            if (st != GMMRRT_OK && st != GMMRRT_NO_PATH_YET)
-                break; /* pool full (or an error): the run ends here */
+            /* TIMEOUT: this slice's budget was gone before its first iteration (a short slice
+             * and a preemption or page fault); the run goes on. It used to end the trial, and a
+             * run without a path yet then counted as never solved. */
+            if (slice != GMMRRT_TIMEOUT) {
+                st = slice;
+                if (st != GMMRRT_OK && st != GMMRRT_NO_PATH_YET)
+                    break; /* pool full (or an error): the run ends here */
+            }
         }
         if (end_ms >= time_ms)
             break;
