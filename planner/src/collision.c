@@ -391,21 +391,57 @@ static double clearance_lower_bound(const struct gmmrrt_world *w, double x, doub
     return best;
 }
 
-/* Exact clearance from the static obstacles at (x, y), closed forms of what FCL computes for
- * the grid (the robot disc against each circle and oriented box: centre distance to the shape
- * minus the robot's radius, negative inside). O(circles + boxes): only called where the grid's
- * bound cannot decide (at and within about a cell of an obstacle). */
-static double exact_static_clearance(const struct gmmrrt_world *w, double x, double y)
+/* The static obstacles that can come within reach of a region: those whose bounding circle
+ * comes within robot radius + cap of the box [xlo, xhi] x [ylo, yhi]. Every other obstacle is
+ * farther than that from each point of the box, so its clearance there exceeds the cap, and the
+ * exact clearance needs only these (a long edge along a wall probes many times; with 64 + 64
+ * obstacles each probe would otherwise test them all). Filled on first need (`ready`). */
+typedef struct {
+    int ready;
+    double xlo, ylo, xhi, yhi;
+    int32_t n_circles, n_boxes;
+    int32_t circle[GMMRRT_MAX_CIRCLES], box[GMMRRT_MAX_BOXES];
+} near_statics_t;
+
+static void find_near_statics(const struct gmmrrt_world *w, near_statics_t *n)
 {
     const gmmrrt_obstacle_set_t *o = &w->obstacles;
-    double best = INFINITY;
+    const double reach = w->robot_radius_m + w->cap_m;
+    n->n_circles = n->n_boxes = 0;
     for (int32_t k = 0; k < o->num_circles; ++k) {
         const gmmrrt_circle_t *c = &o->circles[k];
+        const double r = c->radius_m + reach;
+        if (!(c->x < n->xlo - r || c->x > n->xhi + r || c->y < n->ylo - r || c->y > n->yhi + r))
+            n->circle[n->n_circles++] = k;
+    }
+    for (int32_t k = 0; k < o->num_boxes; ++k) {
+        const gmmrrt_box_t *b = &o->boxes[k];
+        const double r = 0.5 * sqrt(b->width_m * b->width_m + b->height_m * b->height_m) + reach;
+        if (!(b->x < n->xlo - r || b->x > n->xhi + r || b->y < n->ylo - r || b->y > n->yhi + r))
+            n->box[n->n_boxes++] = k;
+    }
+    n->ready = 1;
+}
+
+/* Exact clearance from the static obstacles at (x, y) inside n's box, at most the cap: closed
+ * forms of what FCL computes for the grid (the robot disc against each circle and oriented
+ * box: centre distance to the shape minus the robot's radius, negative inside). Only called
+ * where the grid's bound cannot decide (at and within about a cell of an obstacle), where the
+ * true clearance is below the cap, so the cap changes nothing there. */
+static double exact_static_clearance(const struct gmmrrt_world *w, near_statics_t *n, double x, double y)
+{
+    if (!n->ready)
+        find_near_statics(w, n);
+    const gmmrrt_obstacle_set_t *o = &w->obstacles;
+    double best = w->robot_radius_m + w->cap_m; /* obstacles not in n are farther */
+    for (int32_t q = 0; q < n->n_circles; ++q) {
+        const gmmrrt_circle_t *c = &o->circles[n->circle[q]];
         const double dx = x - c->x, dy = y - c->y;
         const double d = sqrt(dx * dx + dy * dy) - c->radius_m; /* plain sqrt: map coordinates */
         best = d < best ? d : best;
     }
-    for (int32_t k = 0; k < o->num_boxes; ++k) {
+    for (int32_t q = 0; q < n->n_boxes; ++q) {
+        const int32_t k = n->box[q];
         const gmmrrt_box_t *b = &o->boxes[k];
         const double dx = x - b->x, dy = y - b->y;
         const double lx = dx * w->box_cos[k] + dy * w->box_sin[k], ly = -dx * w->box_sin[k] + dy * w->box_cos[k];
@@ -420,14 +456,15 @@ static double exact_static_clearance(const struct gmmrrt_world *w, double x, dou
 
 /* The grid's bound at (x, y), or the exact clearance where the bound is at most `need` (so it
  * cannot prove what the caller needs); both are lower bounds of the true clearance and
- * 1-Lipschitz in (x, y). EXACT_MARGIN_M absorbs the closed forms' rounding against FCL. */
+ * 1-Lipschitz in (x, y). EXACT_MARGIN_M absorbs the closed forms' rounding against FCL.
+ * (x, y) must lie in n's box. */
 #define EXACT_MARGIN_M 1e-9
-static double static_clearance(const struct gmmrrt_world *w, double x, double y, double need)
+static double static_clearance(const struct gmmrrt_world *w, near_statics_t *n, double x, double y, double need)
 {
     const double lb = clearance_lower_bound(w, x, y);
     if (lb > need)
         return lb;
-    const double exact = exact_static_clearance(w, x, y) - EXACT_MARGIN_M;
+    const double exact = exact_static_clearance(w, n, x, y) - EXACT_MARGIN_M;
     return exact > lb ? exact : lb;
 }
 
@@ -475,7 +512,8 @@ int gmmrrt_world_point_free(const gmmrrt_world_t *world, double x, double y)
 {
     if (!world || !isfinite(x) || !isfinite(y) || !inside_bounds(world, x, y))
         return 0;
-    return static_clearance(world, x, y, 0.0) > 0.0 && people_point_free(world, x, y);
+    near_statics_t near = {.ready = 0, .xlo = x, .ylo = y, .xhi = x, .yhi = y};
+    return static_clearance(world, &near, x, y, 0.0) > 0.0 && people_point_free(world, x, y);
 }
 
 int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0, double x1, double y1)
@@ -496,7 +534,8 @@ int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0,
         return 0;
     /* The end points' clearance bounds (as gmmrrt_world_point_free) are also the first probes. */
     const double m = GMMRRT_EDGE_MIN_CLEARANCE_M;
-    const double lb0 = static_clearance(world, x0, y0, m), lb1 = static_clearance(world, x1, y1, m);
+    near_statics_t near = {.ready = 0, .xlo = x0, .xhi = x1, .ylo = y0 < y1 ? y0 : y1, .yhi = y0 < y1 ? y1 : y0};
+    const double lb0 = static_clearance(world, &near, x0, y0, m), lb1 = static_clearance(world, &near, x1, y1, m);
     if (!(lb0 > 0.0) || !(lb1 > 0.0))
         return 0;
     const double dx = x1 - x0, dy = y1 - y0;
@@ -524,7 +563,7 @@ int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0,
     if (s >= len)
         return 1;
     for (;;) {
-        const double lb = static_clearance(world, x0 + s * ux, y0 + s * uy, m);
+        const double lb = static_clearance(world, &near, x0 + s * ux, y0 + s * uy, m);
         if (!(lb > GMMRRT_EDGE_MIN_CLEARANCE_M))
             return 0;
         s += lb;

@@ -68,6 +68,8 @@ int gmmrrt_gmm_task_cost_batch_lanes(const gmmrrt_model_t *model, const double *
                                      double delta, double *cost, int lanes)
 {
     assert(model != NULL && model->dim == 2 && n >= 0 && (n == 0 || (f0 && f1 && cost)) && delta > 0.0);
+    if (lanes != 0 && lanes != 2 && !(lanes == 4 && use_avx2()))
+        return 0; /* that width is not available here: nothing written */
     if (!(delta >= TC_MIN_KERNEL_DELTA)) {
         for (int32_t i = 0; i < n; ++i) {
             const double f[2] = {f0[i], f1[i]};
@@ -77,8 +79,6 @@ int gmmrrt_gmm_task_cost_batch_lanes(const gmmrrt_model_t *model, const double *
     }
     if (lanes == 0)
         lanes = use_avx2() ? 4 : 2;
-    if (lanes != 2 && !(lanes == 4 && use_avx2()))
-        return 0;
     const int wide = lanes == 4;
     (void)wide; /* without the AVX2 kernel (not x86-64) only the baseline runs */
     for (int32_t start = 0; start < n; start += lanes) {

@@ -332,41 +332,101 @@ static void test_task_cost_batch_agrees_with_one_point_calls_and_the_density(voi
     }
 }
 
+/* The fixture model with angle mask `mask` (2: the planner's (d, theta); others as generic). */
+static void masked_fixture(gmmrrt_model_t *m, uint32_t mask)
+{
+    fixture_features_model(m);
+    if (mask != 2u) {
+        m->kind = GMMRRT_MODEL_KIND_GENERIC;
+        m->angle_mask = mask;
+        m->mean[0][0] = 0.5;
+    }
+    prepare_or_fail(m);
+}
+
 static void test_task_cost_vector_widths_give_the_same_bits(void **state)
 {
     (void)state;
-    gmmrrt_model_t m;
-    fixture_features_model(&m);
-    prepare_or_fail(&m);
-    double f0[300], f1[300], w2[300], w4[300], wide[300];
-    const int n = batch_points(f0, f1, 300, 99);
-    assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w2, 2), 1);
-    assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, wide, 0), 1);
-    assert_memory_equal(w2, wide, sizeof(double) * (size_t)n);
-    assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w2, 3), 0); /* no such width */
-    if (gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w4, 4) == 1) {
-        assert_memory_equal(w2, w4, sizeof(double) * (size_t)n);
-    } else {
-        print_message("this CPU has no AVX2: the 4-lane kernel was not compared (the 2-lane one was)\n");
+    for (uint32_t mask = 0; mask < 4; ++mask) { /* the unrolled (d, theta) branch and the generic one */
+        gmmrrt_model_t m;
+        masked_fixture(&m, mask);
+        double f0[300], f1[300], w2[300], w4[300], wide[300];
+        const int n = batch_points(f0, f1, 300, 99 + mask);
+        assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w2, 2), 1);
+        assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, wide, 0), 1);
+        assert_memory_equal(w2, wide, sizeof(double) * (size_t)n);
+        assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w2, 3), 0); /* no such width */
+        assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, 1e-300, w2, 3), 0); /* scalar path too */
+        if (gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w4, 4) == 1) {
+            assert_memory_equal(w2, w4, sizeof(double) * (size_t)n);
+        } else if (mask == 0) {
+            print_message("this CPU has no AVX2: the 4-lane kernel was not compared (the 2-lane one was)\n");
+        }
     }
 }
 
+/* The kernel returns 1 without the sum where n e^max <= delta for every lane (n terms, each at
+ * most e^max). Where the largest term is below delta but the mixture is above it (several
+ * components add up), the cost must still be delta / p < 1: an exit on e^max <= delta alone
+ * would give 1 there. */
+static void test_task_cost_early_exit_needs_every_term(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    masked_fixture(&m, 2u);
+    gmmrrt_rng_t rng;
+    gmmrrt_rng_seed(&rng, 21);
+    int checked = 0;
+    for (int t = 0; t < 4000 && checked < 50; ++t) {
+        const double f[2] = {6.0 * gmmrrt_rng_uniform(&rng) - 0.5, 7.0 * gmmrrt_rng_uniform(&rng) - 3.5};
+        const double p = gmmrrt_gmm_density(&m, f);
+        double top = 0.0; /* the largest component (all its images): at least the largest term */
+        for (int i = 0; i < m.k; ++i)
+            top = fmax(top, exp(gmmrrt_gmm_component_log_density(&m, i, f)));
+        if (!(p > 0.0) || !(top < 0.85 * p))
+            continue;
+        const double delta = 0.9 * p; /* above every term, below p */
+        double c[4], fd[4] = {f[0], f[0], f[0], f[0]}, ft[4] = {f[1], f[1], f[1], f[1]};
+        for (int lanes = 2; lanes <= 4; lanes += 2) {
+            if (gmmrrt_gmm_task_cost_batch_lanes(&m, fd, ft, 4, delta, c, lanes) == 0)
+                continue; /* no AVX2 here */
+            for (int q = 0; q < 4; ++q)
+                assert_rel(c[q], 0.9, 1e-12, "cost where every term is below delta but p is not");
+        }
+        ++checked;
+    }
+    assert_true(checked >= 10); /* such points exist in the fixture (components overlap) */
+}
+
+/* A point whose density is below the kernel's floor (e^-700) but above delta = 1e-320 must get
+ * delta / p (the scalar path), not the 1 the kernel's floor would give. The point is found by
+ * bisection on d for log p = -720 (a double holds down to about e^-744). */
 static void test_task_cost_below_the_kernel_floor_uses_the_exact_density(void **state)
 {
     (void)state;
     gmmrrt_model_t m;
-    fixture_features_model(&m);
-    prepare_or_fail(&m);
-    /* p ~ e^-800 here: under the kernel's e^-700 floor, above a delta of 1e-320 (subnormal). */
-    const double d[3] = {20.0, 25.0, 1.0}, th[3] = {0.1, -2.0, 0.3};
-    double c[3];
-    const double delta = 1e-320;
-    gmmrrt_gmm_task_cost_batch(&m, d, th, 3, delta, c);
-    for (int i = 0; i < 3; ++i) {
-        const double f[2] = {d[i], th[i]};
-        const double p = gmmrrt_gmm_density(&m, f);
-        assert_true(c[i] == (p > delta ? delta / p : 1.0));
+    masked_fixture(&m, 2u);
+    const double theta = 0.3;
+    double lo = 2.0, hi = 200.0; /* log p(lo) > -720 > log p(hi), decreasing beyond the data */
+    for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (lo + hi), f[2] = {mid, theta};
+        if (gmmrrt_gmm_log_density(&m, f) > -720.0)
+            lo = mid;
+        else
+            hi = mid;
     }
+    const double d[3] = {lo, lo, 1.0}, th[3] = {theta, theta, theta};
+    const double f[2] = {lo, theta};
+    const double lp = gmmrrt_gmm_log_density(&m, f);
+    if (!(lp < -710.0 && lp > -730.0))
+        fail_msg("set-up: log p = %g at d = %g, wanted about -720", lp, lo);
+    const double delta = 1e-320, p = gmmrrt_gmm_density(&m, f);
+    double c[3];
+    gmmrrt_gmm_task_cost_batch(&m, d, th, 3, delta, c);
+    assert_true(c[0] < 1e-5 && c[0] == delta / p); /* about 5e-8 */
+    assert_true(c[1] == c[0]);
+    const double near[2] = {1.0, theta};
+    assert_true(c[2] == delta / gmmrrt_gmm_density(&m, near));
 }
 
 static void test_nan_features_give_nan_log_density_in_every_path(void **state)
@@ -609,6 +669,7 @@ int main(void)
         cmocka_unit_test(test_task_cost_is_delta_over_max_p_delta),
         cmocka_unit_test(test_task_cost_batch_agrees_with_one_point_calls_and_the_density),
         cmocka_unit_test(test_task_cost_vector_widths_give_the_same_bits),
+        cmocka_unit_test(test_task_cost_early_exit_needs_every_term),
         cmocka_unit_test(test_task_cost_below_the_kernel_floor_uses_the_exact_density),
         cmocka_unit_test(test_nan_features_give_nan_log_density_in_every_path),
         cmocka_unit_test(test_shared_vectors_features_seam),
