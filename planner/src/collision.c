@@ -403,6 +403,15 @@ typedef struct {
     int32_t circle[GMMRRT_MAX_CIRCLES], box[GMMRRT_MAX_BOXES];
 } near_statics_t;
 
+static void set_near_box(near_statics_t *n, double xlo, double ylo, double xhi, double yhi)
+{
+    n->ready = 0;
+    n->xlo = xlo;
+    n->ylo = ylo;
+    n->xhi = xhi;
+    n->yhi = yhi;
+}
+
 static void find_near_statics(const struct gmmrrt_world *w, near_statics_t *n)
 {
     const gmmrrt_obstacle_set_t *o = &w->obstacles;
@@ -512,7 +521,8 @@ int gmmrrt_world_point_free(const gmmrrt_world_t *world, double x, double y)
 {
     if (!world || !isfinite(x) || !isfinite(y) || !inside_bounds(world, x, y))
         return 0;
-    near_statics_t near = {.ready = 0, .xlo = x, .ylo = y, .xhi = x, .yhi = y};
+    near_statics_t near; /* not zero-initialised: 0.5 KB per query; filled on first need */
+    set_near_box(&near, x, y, x, y);
     return static_clearance(world, &near, x, y, 0.0) > 0.0 && people_point_free(world, x, y);
 }
 
@@ -534,7 +544,8 @@ int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0,
         return 0;
     /* The end points' clearance bounds (as gmmrrt_world_point_free) are also the first probes. */
     const double m = GMMRRT_EDGE_MIN_CLEARANCE_M;
-    near_statics_t near = {.ready = 0, .xlo = x0, .xhi = x1, .ylo = y0 < y1 ? y0 : y1, .yhi = y0 < y1 ? y1 : y0};
+    near_statics_t near; /* not zero-initialised: 0.5 KB per query; filled on first need */
+    set_near_box(&near, x0, y0 < y1 ? y0 : y1, x1, y0 < y1 ? y1 : y0);
     const double lb0 = static_clearance(world, &near, x0, y0, m), lb1 = static_clearance(world, &near, x1, y1, m);
     if (!(lb0 > 0.0) || !(lb1 > 0.0))
         return 0;
