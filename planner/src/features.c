@@ -16,12 +16,17 @@ double gmmrrt_wrap_angle(double angle_rad)
     return a - M_PI;     /* (-pi, pi] */
 }
 
-void gmmrrt_world_to_person(const gmmrrt_pose_t *person, double x, double y, double *xp, double *yp)
+/* World point -> person frame with the yaw's cos c and sin s given. */
+static void to_person_cs(const gmmrrt_pose_t *person, double c, double s, double x, double y, double *xp, double *yp)
 {
     const double dx = x - person->x, dy = y - person->y;
-    const double c = cos(person->yaw), s = sin(person->yaw);
     *xp = dx * c + dy * s;
     *yp = -dx * s + dy * c;
+}
+
+void gmmrrt_world_to_person(const gmmrrt_pose_t *person, double x, double y, double *xp, double *yp)
+{
+    to_person_cs(person, cos(person->yaw), sin(person->yaw), x, y, xp, yp);
 }
 
 void gmmrrt_person_to_world(const gmmrrt_pose_t *person, double xp, double yp, double *x, double *y)
@@ -33,8 +38,14 @@ void gmmrrt_person_to_world(const gmmrrt_pose_t *person, double xp, double yp, d
 
 void gmmrrt_features_from_xy(const gmmrrt_pose_t *person, double x, double y, double *d_m, double *theta_rad)
 {
+    gmmrrt_features_from_xy_cs(person, cos(person->yaw), sin(person->yaw), x, y, d_m, theta_rad);
+}
+
+void gmmrrt_features_from_xy_cs(const gmmrrt_pose_t *person, double cos_yaw, double sin_yaw, double x, double y,
+                                double *d_m, double *theta_rad)
+{
     double xp, yp;
-    gmmrrt_world_to_person(person, x, y, &xp, &yp);
+    to_person_cs(person, cos_yaw, sin_yaw, x, y, &xp, &yp);
     /* plain sqrt on map-sized numbers (hypot is several times slower); hypot where x'^2 could overflow */
     *d_m = (fabs(xp) < 1e150 && fabs(yp) < 1e150) ? sqrt(xp * xp + yp * yp) : hypot(xp, yp);
     /* atan2 gives [-pi, pi]; -pi (exactly behind, y' = -0) is folded onto +pi. */

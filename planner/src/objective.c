@@ -20,8 +20,7 @@
 #define EDGE_CHUNK 64
 
 /* Task costs of the n points (x[i], y[i]) into c[i]: the largest over the active people.
- * The features are gmmrrt_features_from_xy's, with the person's cos/sin of yaw taken once
- * (set_problem) instead of per point. */
+ * The person's cos/sin of yaw are taken once (set_problem) instead of per point. */
 static void task_costs(const struct gmmrrt_planner *p, const double *x, const double *y, int32_t n, double *c)
 {
     double d[EDGE_CHUNK], theta[EDGE_CHUNK], ck[EDGE_CHUNK];
@@ -29,13 +28,8 @@ static void task_costs(const struct gmmrrt_planner *p, const double *x, const do
         c[i] = 0.0;
     for (int32_t k = 0; k < p->num_active; ++k) {
         const gmmrrt_pose_t *person = &p->problem.obstacles.people[p->active[k]];
-        const double cs = p->active_cos[k], sn = p->active_sin[k];
-        for (int32_t i = 0; i < n; ++i) {
-            const double dx = x[i] - person->x, dy = y[i] - person->y;
-            const double xp = dx * cs + dy * sn, yp = -dx * sn + dy * cs;
-            d[i] = sqrt(xp * xp + yp * yp); /* map coordinates: plain sqrt (features.c) */
-            theta[i] = (d[i] > 0.0) ? gmmrrt_wrap_angle(atan2(yp, xp)) : 0.0;
-        }
+        for (int32_t i = 0; i < n; ++i)
+            gmmrrt_features_from_xy_cs(person, p->active_cos[k], p->active_sin[k], x[i], y[i], &d[i], &theta[i]);
         gmmrrt_gmm_task_cost_batch(p->problem.model, d, theta, n, p->delta, ck);
         for (int32_t i = 0; i < n; ++i)
             if (ck[i] > c[i])

@@ -34,6 +34,11 @@ double gmmrrt_wrap_angle(double angle_rad);
 void gmmrrt_features_from_xy(const gmmrrt_pose_t *person, double x, double y, double *d_m,
                              double *theta_rad);
 
+/* The same with the person's cos(yaw) and sin(yaw) given, for callers that take the features
+ * of many points around one person (the planner's edge quadrature): the same bits. */
+void gmmrrt_features_from_xy_cs(const gmmrrt_pose_t *person, double cos_yaw, double sin_yaw, double x, double y,
+                                double *d_m, double *theta_rad);
+
 /* Inverse: features (d [m], theta [rad]) around `person` -> world position (x, y) [m].
  * Any theta is accepted (it is a direction); d < 0 mirrors through the person. */
 void gmmrrt_features_to_xy(const gmmrrt_pose_t *person, double d_m, double theta_rad, double *x,
