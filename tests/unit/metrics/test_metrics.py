@@ -134,7 +134,7 @@ def _core_or_skip():
     try:
         core.lib()
     except core.CoreNotBuilt as exc:  # pragma: no cover - only without a build
-        pytest.skip(f"libgmmrrt.so not built: {exc}")
+        pytest.fail(f"libgmmrrt.so not built: {exc}")
     return core
 
 

@@ -16,7 +16,7 @@ def mixture():
     try:
         core.lib()
     except core.CoreNotBuilt as exc:
-        pytest.skip(f"libgmmrrt.so not built: {exc}")
+        pytest.fail(f"libgmmrrt.so not built: {exc}")
     from gmmrrt_tools import mixture as mx
     return mx
 

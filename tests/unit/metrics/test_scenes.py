@@ -31,7 +31,7 @@ def _need_core():
     try:
         core.lib()
     except core.CoreNotBuilt as exc:
-        pytest.skip(f"libgmmrrt.so not built: {exc}")
+        pytest.fail(f"libgmmrrt.so not built: {exc}")
 
 
 def test_read_episodes_groups_rows_and_filters_by_split(files):
