@@ -1,7 +1,10 @@
 """planner.model_vectors: the shared test vectors are current, and the Python encoder/oracle
 of tools/gen_model_vectors.py agrees with the C core (build/lib/libgmmrrt.so via ctypes).
 
-- `gen_model_vectors.py --check`: the checked-in files are exactly what the script makes.
+- `gen_model_vectors.py --check`: the checked-in files are what the script makes, every header
+  field exactly and every number within the script's CHECK_RTOL (other BLAS kernels change the
+  last bits; tools/run test runs this file again under a second OpenBLAS kernel); a copy
+  changed by 1e-9 relative in one value, or in one header byte, fails the check.
 - Every vector file decodes in C and re-encodes to the same bytes (both byte layouts agree).
 - Random models for every D in 1..8 with random angle dimensions (up to 3^A images),
   encoded in Python: the C log-density matches the numpy/scipy oracle.
@@ -48,10 +51,36 @@ def c_decode(lib, data):
     return st, err.value.decode(), model
 
 
+def check(out=None):
+    cmd = [sys.executable, str(REPO / "tools" / "gen_model_vectors.py"), "--check"]
+    return subprocess.run(cmd + (["--out", str(out)] if out else []), capture_output=True, text=True)
+
+
 def test_checked_in_vectors_are_what_the_script_makes():
-    r = subprocess.run([sys.executable, str(REPO / "tools" / "gen_model_vectors.py"), "--check"],
-                       capture_output=True, text=True)
+    r = check()
     assert r.returncode == 0, r.stderr
+    assert "6 of 6 files current" in r.stdout, r.stdout
+
+
+def test_check_fails_on_a_change_a_consumer_could_notice(tmp_path):
+    import shutil
+    shutil.copytree(VECTORS, tmp_path, dirs_exist_ok=True)
+    csv = tmp_path / "xy.csv"
+    lines = csv.read_text().splitlines()
+    cells = lines[5].split(",")
+    cells[-1] = repr(float(cells[-1]) * (1.0 + 1e-9))  # the consumers' own tolerance
+    lines[5] = ",".join(cells)
+    csv.write_text("\n".join(lines) + "\n")
+    r = check(tmp_path)
+    assert r.returncode == 1 and "xy.csv differs by" in r.stderr, (r.stdout, r.stderr)
+
+    shutil.copy(VECTORS / "xy.csv", csv)
+    gmm = tmp_path / "generic_d4.gmm"
+    data = bytearray(gmm.read_bytes())
+    data[13] ^= 1  # the task byte of the header (its CRC no longer matches either)
+    gmm.write_bytes(bytes(data))
+    r = check(tmp_path)
+    assert r.returncode == 1 and "generic_d4.gmm" in r.stderr, (r.stdout, r.stderr)
 
 
 @pytest.mark.parametrize("name", ["features_seam", "xy", "generic_d4"])
