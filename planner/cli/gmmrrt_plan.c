@@ -35,13 +35,16 @@ static void usage(FILE *out)
             "       [--planner gmm-rrt-star|rrt-star|gmm-rrt] [--bias B] [--budget-ms N]\n"
             "       [--iterations N] [--seed S] [--robot-radius R] [--bounds xmin,ymin,xmax,ymax]\n"
             "       [--task avoid|approach] [--target-person I] [--goal-tolerance M]\n"
-            "       [--delta D] [--w-task W] [--rewire-k F] [--informed 0|1] [--json]\n"
+            "       [--delta D] [--w-task W] [--rewire-k F] [--informed 0|1] [--max-nodes N] [--json]\n"
             "\n"
             "Plans a path with GMM-RRT* (the paper's planner), plain RRT* or the GMM-RRT baseline\n"
             "and prints it as x,y CSV (header line first), or with --json one object:\n"
             "  {\"status\": ..., \"path\": [[x, y], ...], \"stats\": {\"iterations\": ..., \"nodes\": ...,\n"
             "   \"first_solution_ms\": ..., \"best_cost\": ..., \"length_m\": ..., \"time_ms\": ...,\n"
-            "   \"cost_history\": [[iteration, best cost], ...], \"cost_history_complete\": true}}\n"
+            "   \"cost_history\": [[iteration, best cost], ...], \"cost_history_complete\": true,\n"
+            "   \"max_nodes\": ..., \"pool_full\": false}}\n"
+            "pool_full is true when the node pool filled before the budget ran out: planning stopped\n"
+            "early (a note on stderr says so too); --max-nodes raises the pool.\n"
             "cost_history lists every improvement of the best cost (iteration = samples drawn so far,\n"
             "1-based); the best cost after N iterations is the last entry with iteration <= N.\n"
             "\n"
@@ -58,7 +61,8 @@ static void usage(FILE *out)
             "  --seed S            random seed (default 1); same seed, same path\n"
             "  --robot-radius R    robot disc radius [m] (default 0.3; 0 = point robot)\n"
             "  --bounds ...        planning area [m] (default: everything given, padded 3 m)\n"
-            "  --task NAME         avoid or approach (default: the model's task, else avoid)\n"
+            "  --task NAME         avoid or approach (default: the model's task, else avoid); a model\n"
+            "                      learned for the other task is refused, as gmmrrtd does\n"
             "  --target-person I   person index (0-based) for approach (default 0)\n"
             "  --goal-tolerance M  goal region radius [m] (default 0.1)\n"
             "  --delta D           task-cost floor delta > 0 of c = delta / max(p, delta) (default: the\n"
@@ -67,11 +71,17 @@ static void usage(FILE *out)
             "  --rewire-k F        near set: at least the F ln(n+1) nearest nodes (default 4.485,\n"
             "                      OMPL's k_rrg); 0: the radius 15 sqrt(ln n / n)\n"
             "  --informed 0|1      informed sampling once a path exists (default 1)\n"
+            "  --max-nodes N       tree node pool, 2..%d (default %d); memory grows with it\n"
             "  --json              print one JSON object instead of CSV\n"
             "  -h, --help          this text\n"
             "\n"
             "Exit: 0 path found, 1 bad input or refused problem, 3 no path within the budget.\n",
-            prog);
+            prog, GMMRRT_MAX_NODES_CEILING, GMMRRT_DEFAULT_MAX_NODES);
+}
+
+static const char *task_name(int32_t task)
+{
+    return task == GMMRRT_TASK_AVOID ? "avoid" : task == GMMRRT_TASK_APPROACH ? "approach" : "none";
 }
 
 static int fail(const char *fmt, const char *a, const char *b)
@@ -138,7 +148,7 @@ int main(int argc, char **argv)
 {
     enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_PLANNER, OPT_BIAS, OPT_BUDGET,
            OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_DELTA,
-           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED };
+           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_MAX_NODES };
     static const struct option opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
         {"goal", required_argument, NULL, OPT_GOAL},         {"person", required_argument, NULL, OPT_PERSON},
@@ -150,6 +160,7 @@ int main(int argc, char **argv)
         {"goal-tolerance", required_argument, NULL, OPT_TOL}, {"json", no_argument, NULL, OPT_JSON},
         {"delta", required_argument, NULL, OPT_DELTA},       {"w-task", required_argument, NULL, OPT_WTASK},
         {"rewire-k", required_argument, NULL, OPT_REWIRE_K}, {"informed", required_argument, NULL, OPT_INFORMED},
+        {"max-nodes", required_argument, NULL, OPT_MAX_NODES},
         {"help", no_argument, NULL, 'h'},                    {NULL, 0, NULL, 0}};
 
     static gmmrrt_problem_t pr; /* large (obstacle arrays): static, zeroed */
@@ -295,6 +306,14 @@ int main(int argc, char **argv)
                 return fail("--informed '%s': expected 0 or 1%s", optarg, "");
             cfg.informed_sampling = optarg[0] == '1';
             break;
+        case OPT_MAX_NODES:
+            if (!parse_int64(optarg, &n) || n < 2 || n > GMMRRT_MAX_NODES_CEILING) {
+                char ceiling[16];
+                snprintf(ceiling, sizeof ceiling, "%d", GMMRRT_MAX_NODES_CEILING);
+                return fail("--max-nodes '%s': expected an integer in 2..%s (limits.h)", optarg, ceiling);
+            }
+            cfg.max_nodes = (int32_t)n;
+            break;
         case ':':
             return fail("option '%s' needs a value (see --help)%s", argv[optind - 1], "");
         default:
@@ -322,6 +341,14 @@ int main(int argc, char **argv)
         pr.model = &model;
         if (task == 0)
             task = model.task == GMMRRT_TASK_APPROACH ? GMMRRT_TASK_APPROACH : GMMRRT_TASK_AVOID;
+        /* gmmrrtd's rule (planner/daemon/models.c): a model learned for one task never plans the
+         * other; a model without a task (generic, xy) serves either. */
+        if (model.task != GMMRRT_TASK_NONE && model.task != task) {
+            fprintf(stderr, "%s: error: --task %s, but --model %s was learned for task %s; give a model of task %s or "
+                    "--task %s\n", prog, task_name(task), model_path, task_name(model.task), task_name(task),
+                    task_name(model.task));
+            return EXIT_BAD_INPUT;
+        }
         pr.task = task;
         if (task == GMMRRT_TASK_APPROACH) {
             if (target >= pr.obstacles.num_people)
@@ -384,6 +411,13 @@ int main(int argc, char **argv)
     const int32_t num_hist = gmmrrt_planner_cost_history(p, hist_iter, hist_cost, GMMRRT_CLI_MAX_HISTORY);
     free(mem);
     const int found = ps == GMMRRT_OK;
+    /* The pool filling ends the run before its budget: say so, with the way out. */
+    const int pool_full = st == GMMRRT_POOL_FULL;
+    if (pool_full)
+        fprintf(stderr,
+                "%s: note: the node pool (%d nodes) filled after %lld iterations and %.1f ms, before the budget "
+                "ran out; --max-nodes raises it\n",
+                prog, (int)cfg.max_nodes, (long long)stats.iterations, stats.time_ms);
     if (json) {
         printf("{\"status\": \"%s\", \"status_code\": %d, \"path\": [", found ? "ok" : gmmrrt_status_str(st),
                found ? 0 : (int)st);
@@ -404,7 +438,8 @@ int main(int argc, char **argv)
             json_number(hist_cost[i]);
             printf("]");
         }
-        printf("], \"cost_history_complete\": %s}}\n", num_hist < GMMRRT_CLI_MAX_HISTORY ? "true" : "false");
+        printf("], \"cost_history_complete\": %s, \"max_nodes\": %d, \"pool_full\": %s}}\n",
+               num_hist < GMMRRT_CLI_MAX_HISTORY ? "true" : "false", (int)cfg.max_nodes, pool_full ? "true" : "false");
     } else if (found) {
         printf("x,y\n");
         for (int32_t i = 0; i < path.num_points; ++i)

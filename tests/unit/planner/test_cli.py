@@ -112,6 +112,9 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0", "--goal", "1,1", "--rewire-k", "-1"], "--rewire-k"),
     (["--start", "0,0", "--goal", "1,1", "--rewire-k", "x"], "--rewire-k"),
     (["--start", "0,0", "--goal", "1,1", "--informed", "2"], "--informed"),
+    (["--start", "0,0", "--goal", "1,1", "--max-nodes", "1"], "--max-nodes '1': expected an integer in 2.."),
+    (["--start", "0,0", "--goal", "1,1", "--max-nodes", "99999999"], "--max-nodes"),
+    (["--start", "0,0", "--goal", "1,1", "--max-nodes", "1e4"], "--max-nodes"),
 ])
 def test_bad_input_is_refused_with_a_clear_error(args, message):
     r = run(*args)
@@ -129,6 +132,34 @@ def test_corrupt_model_is_refused(tmp_path):
     r = run("--model", str(model), "--start", "-4,0", "--goal", "4,0", "--person", "0,0,0")
     assert r.returncode == 1 and r.stdout == ""
     assert "CRC" in r.stderr or "checksum" in r.stderr
+
+
+def test_pool_full_before_the_budget_is_flagged_and_max_nodes_raises_the_pool():
+    r = run(*DISC, "--iterations", "20000", "--max-nodes", "300", "--json")
+    assert r.returncode in (0, 3), r.stderr
+    stats = json.loads(r.stdout)["stats"]
+    assert stats["pool_full"] is True and stats["max_nodes"] == 300
+    assert stats["nodes"] <= 300 and stats["iterations"] < 20000
+    assert "node pool (300 nodes) filled" in r.stderr and "--max-nodes" in r.stderr
+
+    r = run(*DISC, "--iterations", "20000", "--max-nodes", "100000", "--json")
+    assert r.returncode == 0, r.stderr
+    stats = json.loads(r.stdout)["stats"]
+    assert stats["pool_full"] is False and stats["max_nodes"] == 100000
+    assert stats["iterations"] == 20000 and "filled" not in r.stderr
+
+
+@pytest.mark.parametrize("model_task,flag,other", [(2, "avoid", "approach"), (1, "approach", "avoid")])
+def test_model_of_the_other_task_is_refused_naming_both(tmp_path, model_task, flag, other):
+    model = write_features_model(tmp_path / "m.gmm", [1.0, 2.0], task=model_task)
+    r = run("--model", str(model), "--task", flag, "--start", "-4,0", "--goal", "4,0", "--person", "0,0,0",
+            "--iterations", "100")
+    assert r.returncode == 1 and r.stdout == ""
+    assert "--task %s" % flag in r.stderr and "learned for task %s" % other in r.stderr, r.stderr
+    # The model's own task still plans.
+    r = run("--model", str(model), "--task", other, "--start", "-4,0", "--goal", "4,0", "--person", "0,0,0",
+            "--iterations", "300")
+    assert r.returncode in (0, 3) and "learned for task" not in r.stderr, r.stderr
 
 
 def test_xy_planner_with_features_model_is_a_mismatch(tmp_path):
