@@ -13,6 +13,7 @@
 #ifndef GMMRRTD_DAEMON_H
 #define GMMRRTD_DAEMON_H
 
+#include <regex.h>
 #include <stdint.h>
 
 #include <lcm/lcm.h>
@@ -57,6 +58,8 @@ typedef struct {
     gmmrrtd_clock_mode_t clock_mode;
     lcm_t *lcm_in;
     lcm_t *lcm_out;          /* == lcm_in unless --lcm-out-url */
+    lcm_eventlog_t *replay;  /* a file:// input, read event by event (dispatch.c); NULL live */
+    regex_t replay_re[GMMRRTD_NUM_INPUTS];
 
     /* Latest accepted inputs. */
     int have[GMMRRTD_NUM_INPUTS];
@@ -126,6 +129,12 @@ int gmmrrtd_subscribe(gmmrrtd_t *d);
  * are only read, never kept. The entry point of the LCM handlers, the unit tests and
  * tests/fuzz/fuzz_daemon_inputs.c. */
 void gmmrrtd_handle_message(gmmrrtd_t *d, int input, int64_t recv_utime, const void *buf, size_t len);
+
+/* dispatch.c: a file:// input read with its event times. open: 0 or -1 (logged); step: 1
+ * when an event was read (and handled when it is on an input channel), 0 at the end. */
+int gmmrrtd_replay_open(gmmrrtd_t *d);
+int gmmrrtd_replay_step(gmmrrtd_t *d);
+void gmmrrtd_replay_close(gmmrrtd_t *d);
 
 /* inputs.c: decodes, validates and time-checks one message arriving at local time local_us;
  * rejections are counted. 1 when it is staged in d->staged (apply with gmmrrtd_inputs_apply),

@@ -5,12 +5,15 @@
  * cycle that was due before it arrived, which keeps replays deterministic (docs/daemon.md,
  * "Clock").
  *
- * Log mode's time base is the log's event time (lcm_recv_buf_t.recv_utime: the recorder's
- * receive time, which no sender sets), made non-decreasing. Cycles run at t0 + k / rate_hz,
+ * Log mode's time base is the log's event time (the recorder's receive time, which no
+ * sender sets; file:// logs are read below for it), made non-decreasing. Cycles run at t0 + k / rate_hz,
  * t0 = the first message's event time; a jump of more than k_max_catch_up cycles (a long
  * silence in a log) runs only the last of them.
  */
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
+#include <string.h>
 
 #include "daemon.h"
 
@@ -84,4 +87,77 @@ int gmmrrtd_subscribe(gmmrrtd_t *d)
         return -1;
     }
     return 0;
+}
+
+/* --- file:// replays ---------------------------------------------------------------------
+ * LCM's file provider hands a handler the wall-clock time of the call as recv_utime, not the
+ * event's timestamp, so a replay reads the log itself with LCM's eventlog reader: each event's
+ * timestamp (the recorder's receive time) is its arrival. Channels match as LCM's
+ * subscriptions do: the name is a POSIX extended regular expression anchored at both ends. */
+
+/* The path of a file:// URL, without its ?options. 0, or -1 when it is not one. */
+static int url_path(const char *url, char *out, size_t cap)
+{
+    if (strncmp(url, "file://", 7) != 0)
+        return -1;
+    const char *p = url + 7, *q = strchr(p, '?');
+    const size_t n = q ? (size_t)(q - p) : strlen(p);
+    if (n == 0 || n >= cap)
+        return -1;
+    memcpy(out, p, n);
+    out[n] = '\0';
+    return 0;
+}
+
+int gmmrrtd_replay_open(gmmrrtd_t *d)
+{
+    char path[GMMRRTD_PATH_MAX];
+    if (url_path(d->set.lcm_url, path, sizeof path) != 0) {
+        LOG_ERROR("%s: not a file:// URL with a path", d->set.lcm_url);
+        return -1;
+    }
+    const char *names[GMMRRTD_NUM_INPUTS] = {d->set.ch_pose, d->set.ch_people, d->set.ch_goal, d->set.ch_obstacles};
+    for (int i = 0; i < GMMRRTD_NUM_INPUTS; ++i) {
+        char re[128];
+        snprintf(re, sizeof re, "^(%s)$", names[i]);
+        if (regcomp(&d->replay_re[i], re, REG_EXTENDED | REG_NOSUB) != 0) {
+            LOG_ERROR("channel \"%s\" is not a valid regular expression", names[i]);
+            for (int j = 0; j < i; ++j)
+                regfree(&d->replay_re[j]);
+            return -1;
+        }
+    }
+    d->replay = lcm_eventlog_create(path, "r");
+    if (d->replay == NULL) {
+        LOG_ERROR("cannot open LCM log %s: %s", path, strerror(errno));
+        for (int i = 0; i < GMMRRTD_NUM_INPUTS; ++i)
+            regfree(&d->replay_re[i]);
+        return -1;
+    }
+    return 0;
+}
+
+int gmmrrtd_replay_step(gmmrrtd_t *d)
+{
+    lcm_eventlog_event_t *ev = lcm_eventlog_read_next_event(d->replay);
+    if (ev == NULL)
+        return 0;
+    for (int i = 0; i < GMMRRTD_NUM_INPUTS; ++i) {
+        if (ev->channel != NULL && regexec(&d->replay_re[i], ev->channel, 0, NULL, 0) == 0) {
+            gmmrrtd_handle_message(d, i, ev->timestamp, ev->data, ev->datalen > 0 ? (size_t)ev->datalen : 0);
+            break;
+        }
+    }
+    lcm_eventlog_free_event(ev);
+    return 1;
+}
+
+void gmmrrtd_replay_close(gmmrrtd_t *d)
+{
+    if (d->replay == NULL)
+        return;
+    lcm_eventlog_destroy(d->replay);
+    d->replay = NULL;
+    for (int i = 0; i < GMMRRTD_NUM_INPUTS; ++i)
+        regfree(&d->replay_re[i]);
 }

@@ -138,8 +138,38 @@ static void reload(gmmrrtd_t *d, int argc, char **argv)
     NOTIFY("READY=1");
 }
 
+/* A file:// input: events in order, each at its recorded time; cycles run from dispatch.c. */
+static int run_replay(gmmrrtd_t *d, int argc, char **argv)
+{
+    int eof = 0;
+    int64_t events = 0;
+    while (!g_stop) {
+        if (g_reload) {
+            g_reload = 0;
+            reload(d, argc, argv);
+        }
+        if (eof) {
+            if (d->set.exit_at_eof)
+                break;
+            (void)poll(NULL, 0, 500);
+            gmmrrtd_watchdog_ping(d);
+            continue;
+        }
+        if (!gmmrrtd_replay_step(d)) {
+            LOG_INFO("end of input log after %lld cycles, %lld plans", (long long)d->cycles,
+                     (long long)d->status.plans_published);
+            eof = 1;
+        }
+        if ((++events & 255) == 0)
+            gmmrrtd_watchdog_ping(d);
+    }
+    return 0;
+}
+
 static int run(gmmrrtd_t *d, int argc, char **argv)
 {
+    if (d->replay != NULL)
+        return run_replay(d, argc, argv);
     const int fd = lcm_get_fileno(d->lcm_in);
     int64_t period_us = (int64_t)llround(1e6 / d->set.rate_hz);
     int64_t next_tick = gmmrrtd_mono_us() + period_us;
@@ -255,22 +285,30 @@ int main(int argc, char **argv)
     if (sd_watchdog_enabled(0, &wd_usec) > 0)
         d->watchdog_usec = (int64_t)wd_usec;
 #endif
-    d->lcm_in = lcm_create(d->set.lcm_url);
-    if (d->lcm_in == NULL) {
-        LOG_ERROR("cannot open LCM input %s", d->set.lcm_url);
-        return 1;
+    d->staged.input = -1;
+    const int file_input = strncmp(d->set.lcm_url, "file://", 7) == 0;
+    if (file_input) {
+        if (gmmrrtd_replay_open(d) != 0)
+            return 1;
+    } else {
+        d->lcm_in = lcm_create(d->set.lcm_url);
+        if (d->lcm_in == NULL) {
+            LOG_ERROR("cannot open LCM input %s", d->set.lcm_url);
+            return 1;
+        }
     }
     d->lcm_out = d->lcm_in;
     if (d->set.lcm_out_url[0] != '\0') {
         d->lcm_out = lcm_create(d->set.lcm_out_url);
         if (d->lcm_out == NULL) {
             LOG_ERROR("cannot open LCM output %s", d->set.lcm_out_url);
-            lcm_destroy(d->lcm_in);
+            if (d->lcm_in != NULL)
+                lcm_destroy(d->lcm_in);
+            gmmrrtd_replay_close(d);
             return 1;
         }
     }
-    d->staged.input = -1;
-    if (gmmrrtd_subscribe(d) != 0)
+    if (!file_input && gmmrrtd_subscribe(d) != 0)
         return 1;
     LOG_INFO("running: %s clock, %.1f Hz, budget %g ms / %lld iterations, in %s%s%s",
              d->clock_mode == GMMRRTD_CLOCK_LOG ? "log" : "live", d->set.rate_hz, d->set.budget_ms,
@@ -290,7 +328,9 @@ int main(int argc, char **argv)
              (long long)d->grid_updates[GMMRRT_GRID_SHIFTED], (long long)d->grid_updates[GMMRRT_GRID_KEPT]);
     if (d->lcm_out != d->lcm_in)
         lcm_destroy(d->lcm_out);
-    lcm_destroy(d->lcm_in);
+    if (d->lcm_in != NULL)
+        lcm_destroy(d->lcm_in);
+    gmmrrtd_replay_close(d);
     free(d->mem);
     return result == 0 ? 0 : 1;
 }

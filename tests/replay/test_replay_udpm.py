@@ -18,7 +18,7 @@ from daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, SCENARIOS, venv_bin
 from gmmrrt import waypoints_t
 from gmmrrt_tools import replay_check
 
-GMMRRT_STOP_POSE_STALE = 50  # planner/include/gmmrrt/status.h
+GMMRRT_STOP_POSE_STALE = 50  # gmmrrtd's stop code (planner/daemon/stop.h)
 # Longer than the 0.5 s of the log-clock tests: on a loaded shared machine lcm-logplayer itself can
 # stall for a few hundred ms, which a 0.5 s limit would count as an extra pose gap. The planted gap
 # is 1.5 s, so it still counts exactly once.
