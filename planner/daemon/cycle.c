@@ -1,14 +1,16 @@
 /*
- * cycle.c - one gmmrrtd planning cycle (issue 6, "Behaviour"): from the latest inputs to a
- * plan. Picks the model by the goal's task (avoid / approach, paper Sect. 4-5), plans from
+ * cycle.c - one gmmrrtd planning cycle: from the latest inputs to a plan. Picks the model by the goal's task (avoid / approach, paper Sect. 4-5), plans from
  * the latest robot pose with gmmrrt_planner_set_problem + run, warm-starts from the last
  * published path when the situation has not changed much, and publishes PLAN and
- * PLANNER_STATUS. A stale pose, a missing model or target, an unusable goal or no path
- * publishes a stop (an empty plan whose status says why), never an old plan.
+ * PLANNER_STATUS. A stale pose or obstacle list, a missing model or target, an unusable goal
+ * or no path publishes a stop (an empty plan whose status says why), never an old plan; every
+ * stop is counted by reason (planner_status_t.stops) and logged rate-limited. A stale people
+ * list is dropped: the plan no longer avoids people who may have left.
  */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 #include "daemon.h"
 
@@ -29,18 +31,29 @@ static void reject_once_per_goal(gmmrrtd_t *d, int reason, gmmrrt_status_t why)
     if (d->counted_goal_version[reason] == d->goal_version)
         return;
     d->counted_goal_version[reason] = d->goal_version;
-    gmmrrtd_reject(d, GMMRRTD_NUM_INPUTS, reason, "goal (%.2f, %.2f): %s", d->goal.x, d->goal.y,
-                   gmmrrt_status_str(why));
+    gmmrrtd_reject(d, GMMRRTD_RL_PLANNER, reason, "goal (%.2f, %.2f): %s", d->goal.x, d->goal.y,
+                   gmmrrtd_stop_str((int)why));
+}
+
+/* The status's time label: the log time in a replay, the host's wall clock live. */
+static int64_t status_utime(const gmmrrtd_t *d, int64_t now_us)
+{
+    if (d->clock_mode == GMMRRTD_CLOCK_LOG)
+        return now_us;
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
 }
 
 static void publish_status(gmmrrtd_t *d, int64_t now_utime, int8_t state)
 {
-    d->status.utime = now_utime;
+    d->status.utime = status_utime(d, now_utime);
+    d->status.stale_inputs = d->stale_mask;
     d->status.state = state;
     gmmrrt_planner_status_t_publish(d->lcm_out, d->set.ch_status, &d->status);
 }
 
-static void publish_plan(gmmrrtd_t *d, const gmmrrt_path_t *path, gmmrrt_status_t status)
+static void publish_plan(gmmrrtd_t *d, const gmmrrt_path_t *path, int status)
 {
     gmmrrt_waypoints_t *m = &d->plan_msg;
     m->utime = d->pose.utime;
@@ -71,13 +84,41 @@ static void clear_stats(gmmrrtd_t *d)
     d->status.best_cost = -1.0;
 }
 
-/* Stats of the cycle stay as they are (cleared by the callers that did not plan). */
-static void publish_stop(gmmrrtd_t *d, int64_t now_utime, gmmrrt_status_t why, int8_t state)
+/* The stops[] slot of a stop code. */
+static int stop_slot(int why)
 {
+    switch (why) {
+    case GMMRRTD_STOP_POSE_STALE: return ST(STOP_POSE_STALE);
+    case GMMRRTD_STOP_NO_MODEL: return ST(STOP_NO_MODEL);
+    case GMMRRTD_STOP_UNKNOWN_TARGET: return ST(STOP_UNKNOWN_TARGET);
+    case GMMRRTD_STOP_OBSTACLES_STALE: return ST(STOP_OBSTACLES_STALE);
+    case GMMRRTD_STOP_PLANNING_BOX: return ST(STOP_PLANNING_BOX);
+    case GMMRRT_ERR_START_IN_COLLISION:
+    case GMMRRT_ERR_START_OUT_OF_BOUNDS: return ST(STOP_START_BLOCKED);
+    case GMMRRT_ERR_GOAL_IN_COLLISION:
+    case GMMRRT_ERR_GOAL_OUT_OF_BOUNDS: return ST(STOP_GOAL_BLOCKED);
+    case GMMRRT_NO_PATH_YET: return ST(STOP_NO_PATH);
+    default: return ST(STOP_SETUP);
+    }
+}
+
+/* Stats of the cycle stay as they are (cleared by the callers that did not plan). Every stop
+ * is counted by reason and logged (rate-limited). */
+static void publish_stop(gmmrrtd_t *d, int64_t now_utime, int why, int8_t state)
+{
+    gmmrrtd_count_stop(d, stop_slot(why), "%s (code %d, goal (%.2f, %.2f))", gmmrrtd_stop_str(why), why,
+                       d->goal.x, d->goal.y);
     d->last.valid = 0; /* never warm-start across a stop */
     d->status.last_error = (int32_t)why;
     publish_plan(d, NULL, why);
     publish_status(d, now_utime, state);
+}
+
+/* The people list is used only while it is fresh (people_timeout_ms): a stale list is
+ * dropped, not planned around (the people may have left). */
+static int people_usable(const gmmrrtd_t *d)
+{
+    return d->have[GMMRRTD_IN_PEOPLE] && !(d->stale_mask & ST(STALE_PEOPLE));
 }
 
 static int find_person(const gmmrrt_people_t *people, int32_t id)
@@ -117,7 +158,7 @@ static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_
             p->obstacles.boxes[i] =
                 (gmmrrt_box_t){o->box_x[i], o->box_y[i], o->box_width[i], o->box_height[i], o->box_yaw[i]};
     }
-    if (d->have[GMMRRTD_IN_PEOPLE]) {
+    if (people_usable(d)) {
         p->obstacles.num_people = d->people.num_people;
         for (int32_t i = 0; i < d->people.num_people; ++i)
             p->obstacles.people[i] =
@@ -137,7 +178,7 @@ static int32_t warm_start_seed(gmmrrtd_t *d)
         hypot(s->goal_x - d->goal.x, s->goal_y - d->goal.y) >= set->warm_goal_shift_m ||
         s->obstacles_version != d->obstacles_version)
         return 0;
-    const int32_t np = d->have[GMMRRTD_IN_PEOPLE] ? d->people.num_people : 0;
+    const int32_t np = people_usable(d) ? d->people.num_people : 0;
     if (np != s->num_people)
         return 0;
     for (int32_t i = 0; i < np; ++i) {
@@ -178,7 +219,7 @@ static void remember_situation(gmmrrtd_t *d)
     s->task = d->goal.task;
     s->target_id = d->goal.target_person_id;
     s->obstacles_version = d->obstacles_version;
-    s->num_people = d->have[GMMRRTD_IN_PEOPLE] ? d->people.num_people : 0;
+    s->num_people = people_usable(d) ? d->people.num_people : 0;
     for (int32_t i = 0; i < s->num_people; ++i) {
         s->people_id[i] = d->people.people[i].id;
         s->people_x[i] = d->people.people[i].x;
@@ -187,26 +228,80 @@ static void remember_situation(gmmrrtd_t *d)
     d->last_path = d->path;
 }
 
-void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_utime)
+/* Per-channel staleness at local time now_us (clock.h: each source's data time on the local
+ * time base). Sets d->stale_mask; while there is a goal (`count`), the first stale cycle of
+ * each gap is counted and logged. */
+static void judge_staleness(gmmrrtd_t *d, int64_t now_us, int count)
+{
+    static const struct {
+        int input, bit, reason;
+    } k_ch[] = {
+        {GMMRRTD_IN_POSE, ST(STALE_POSE), ST(REJECT_POSE_STALE)},
+        {GMMRRTD_IN_PEOPLE, ST(STALE_PEOPLE), ST(REJECT_PEOPLE_STALE)},
+        {GMMRRTD_IN_OBSTACLES, ST(STALE_OBSTACLES), ST(REJECT_OBSTACLES_STALE)},
+    };
+    const double timeout_ms[] = {d->set.pose_timeout_ms, d->set.people_timeout_ms, d->set.obstacles_timeout_ms};
+    d->stale_mask = 0;
+    for (int i = 0; i < (int)(sizeof k_ch / sizeof k_ch[0]); ++i) {
+        const int in = k_ch[i].input;
+        if (timeout_ms[i] <= 0.0 || !d->have[in])
+            continue; /* no timeout; or never seen (the pose's absence is handled by the caller) */
+        const int64_t age_us = gmmrrtd_clock_age_us(&d->src[in], now_us);
+        if ((double)age_us <= timeout_ms[i] * 1e3)
+            continue;
+        d->stale_mask |= k_ch[i].bit;
+        if (count && !d->stale_counted[in]) {
+            d->stale_counted[in] = 1;
+            gmmrrtd_reject(d, GMMRRTD_RL_PLANNER, k_ch[i].reason, "no %s for %.3f s (limit %.3f s)%s",
+                           in == GMMRRTD_IN_POSE ? "robot pose" : in == GMMRRTD_IN_PEOPLE ? "people list" : "obstacle list",
+                           (double)age_us * 1e-6, timeout_ms[i] * 1e-3,
+                           in == GMMRRTD_IN_PEOPLE ? ": planning without people until the tracker is back" : "");
+        }
+    }
+}
+
+/* The planning box does not fit the clearance grid: a counted, logged reason with the numbers. */
+static void planning_box_too_large(gmmrrtd_t *d, int64_t now_us)
+{
+    const gmmrrt_bounds_t *b = &d->problem.obstacles.bounds;
+    const double res = d->set.cfg.grid_resolution_m;
+    const double cells = ceil((b->xmax - b->xmin) / res) * ceil((b->ymax - b->ymin) / res);
+    if (d->counted_goal_version[ST(REJECT_PLANNING_BOX)] != d->goal_version) {
+        d->counted_goal_version[ST(REJECT_PLANNING_BOX)] = d->goal_version;
+        gmmrrtd_reject(d, GMMRRTD_RL_PLANNER, ST(REJECT_PLANNING_BOX),
+                       "goal (%.2f, %.2f): the planning box %.1f x %.1f m (robot, goal, margin %.1f m) needs %.0f "
+                       "cells of %.3f m; grid_max_cells is %d",
+                       d->goal.x, d->goal.y, b->xmax - b->xmin, b->ymax - b->ymin, d->set.bounds_margin_m, cells, res,
+                       (int)d->set.cfg.grid_max_cells);
+    }
+    publish_stop(d, now_us, GMMRRTD_STOP_PLANNING_BOX, ST(STATE_ERROR));
+}
+
+void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
 {
     d->cycles++;
     d->status.plan_time_ms = 0.0;
+    d->status.setup_time_ms = 0.0;
     clear_stats(d);
+    judge_staleness(d, now_us, d->have[GMMRRTD_IN_GOAL]);
     if (!d->have[GMMRRTD_IN_GOAL]) {
-        publish_status(d, now_utime, ST(STATE_IDLE));
+        publish_status(d, now_us, ST(STATE_IDLE));
         return;
     }
 
-    /* No pose, or none newer than pose_timeout_ms: stop; the gap is counted once. */
-    const int64_t timeout_us = (int64_t)(d->set.pose_timeout_ms * 1000.0);
-    if (!d->have[GMMRRTD_IN_POSE] || now_utime - d->pose.utime > timeout_us) {
-        if (!d->pose_stale_counted) {
-            d->pose_stale_counted = 1;
-            gmmrrtd_reject(d, GMMRRTD_NUM_INPUTS, ST(REJECT_POSE_STALE), "no robot pose for %.3f s (limit %.3f s)",
-                           d->have[GMMRRTD_IN_POSE] ? (double)(now_utime - d->pose.utime) * 1e-6 : INFINITY,
-                           d->set.pose_timeout_ms * 1e-3);
+    /* No pose, or none newer than pose_timeout_ms: stop. */
+    if (!d->have[GMMRRTD_IN_POSE] || (d->stale_mask & ST(STALE_POSE))) {
+        if (!d->have[GMMRRTD_IN_POSE] && !d->stale_counted[GMMRRTD_IN_POSE]) {
+            d->stale_counted[GMMRRTD_IN_POSE] = 1;
+            gmmrrtd_reject(d, GMMRRTD_RL_PLANNER, ST(REJECT_POSE_STALE), "a goal but no robot pose yet");
         }
-        publish_stop(d, now_utime, GMMRRT_STOP_POSE_STALE, ST(STATE_STOPPED));
+        d->stale_mask |= ST(STALE_POSE);
+        publish_stop(d, now_us, GMMRRTD_STOP_POSE_STALE, ST(STATE_STOPPED));
+        return;
+    }
+    /* A stale obstacle list: the world may have changed; stop as for a stale pose. */
+    if (d->stale_mask & ST(STALE_OBSTACLES)) {
+        publish_stop(d, now_us, GMMRRTD_STOP_OBSTACLES_STALE, ST(STATE_STOPPED));
         return;
     }
 
@@ -214,17 +309,18 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_utime)
     int target = -1;
     if (d->goal.task == GMMRRT_NAV_GOAL_T_TASK_AVOID || d->goal.task == GMMRRT_NAV_GOAL_T_TASK_APPROACH) {
         const int avoid = d->goal.task == GMMRRT_NAV_GOAL_T_TASK_AVOID;
-        if (!(avoid ? d->have_avoid : d->have_approach)) {
-            publish_stop(d, now_utime, GMMRRT_STOP_NO_MODEL, ST(STATE_ERROR));
+        if (!(avoid ? d->have_avoid : d->have_approach) && d->set.cfg.planner != GMMRRT_PLANNER_RRT_STAR) {
+            reject_once_per_goal(d, ST(REJECT_NO_MODEL), (gmmrrt_status_t)GMMRRTD_STOP_NO_MODEL);
+            publish_stop(d, now_us, GMMRRTD_STOP_NO_MODEL, ST(STATE_ERROR));
             return;
         }
         model = avoid ? &d->model_avoid : &d->model_approach;
     }
     if (d->goal.task == GMMRRT_NAV_GOAL_T_TASK_APPROACH) {
-        target = d->have[GMMRRTD_IN_PEOPLE] ? find_person(&d->people, d->goal.target_person_id) : -1;
+        target = people_usable(d) ? find_person(&d->people, d->goal.target_person_id) : -1;
         if (target < 0) {
-            reject_once_per_goal(d, ST(REJECT_UNKNOWN_TARGET), GMMRRT_STOP_UNKNOWN_TARGET);
-            publish_stop(d, now_utime, GMMRRT_STOP_UNKNOWN_TARGET, ST(STATE_STOPPED));
+            reject_once_per_goal(d, ST(REJECT_UNKNOWN_TARGET), (gmmrrt_status_t)GMMRRTD_STOP_UNKNOWN_TARGET);
+            publish_stop(d, now_us, GMMRRTD_STOP_UNKNOWN_TARGET, ST(STATE_STOPPED));
             return;
         }
     }
@@ -233,16 +329,27 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_utime)
 
     const int64_t setup_start_us = gmmrrtd_mono_us();
     build_problem(d, model, target);
+    /* The world's set-up (a clearance-grid build after an obstacle change) may take long: the
+     * watchdog gets long_step_ms for it (watchdog.c). */
+    gmmrrtd_watchdog_long_step(d, 1);
     gmmrrt_status_t st = gmmrrt_planner_set_problem(d->planner, &d->problem);
+    gmmrrtd_watchdog_long_step(d, 0);
+    d->status.setup_time_ms = (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3;
     if (st != GMMRRT_OK) {
         int8_t state = ST(STATE_STOPPED);
-        if (st == GMMRRT_ERR_GOAL_IN_COLLISION || st == GMMRRT_ERR_GOAL_OUT_OF_BOUNDS)
+        if (st == GMMRRT_ERR_BUFFER_TOO_SMALL) {
+            planning_box_too_large(d, now_us);
+            return;
+        }
+        if (st == GMMRRT_ERR_GOAL_IN_COLLISION || st == GMMRRT_ERR_GOAL_OUT_OF_BOUNDS) {
             reject_once_per_goal(d, ST(REJECT_GOAL_IN_COLLISION), st);
-        else if (st == GMMRRT_ERR_START_IN_COLLISION || st == GMMRRT_ERR_START_OUT_OF_BOUNDS)
+        } else if (st == GMMRRT_ERR_START_IN_COLLISION || st == GMMRRT_ERR_START_OUT_OF_BOUNDS) {
             reject_once_per_goal(d, ST(REJECT_START_IN_COLLISION), st);
-        else
-            state = ST(STATE_ERROR); /* model mismatch, bad argument: the set-up is wrong */
-        publish_stop(d, now_utime, st, state);
+        } else {
+            reject_once_per_goal(d, ST(REJECT_SETUP), st); /* model mismatch, bad argument: the set-up is wrong */
+            state = ST(STATE_ERROR);
+        }
+        publish_stop(d, now_us, st, state);
         return;
     }
 
@@ -259,6 +366,7 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_utime)
 
     /* The budget covers the whole cycle: set_problem (world build) and the seed come out of it. */
     const double setup_ms = (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3;
+    d->status.setup_time_ms = setup_ms;
     const double time_ms = d->set.budget_ms > 0.0 ? fmax(d->set.budget_ms - setup_ms, 1.0) : 0.0;
     LOG_DEBUG("cycle set-up %.2f ms (grid %s, %lld cells), planning %.2f ms", setup_ms,
               grid.last == GMMRRT_GRID_KEPT ? "kept" : grid.last == GMMRRT_GRID_SHIFTED ? "shifted" : "built",
@@ -286,12 +394,12 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_utime)
         d->status.last_error = st == GMMRRT_POOL_FULL ? (int32_t)st : 0;
         remember_situation(d);
         publish_plan(d, &d->path, GMMRRT_OK);
-        publish_status(d, now_utime, ST(STATE_PLANNING));
+        publish_status(d, now_us, ST(STATE_PLANNING));
         return;
     }
     if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL)
         st = GMMRRT_NO_PATH_YET;
     if (++d->no_path_cycles >= d->set.unreachable_after_cycles)
         reject_once_per_goal(d, ST(REJECT_GOAL_UNREACHABLE), st);
-    publish_stop(d, now_utime, st, ST(STATE_STOPPED));
+    publish_stop(d, now_us, st, ST(STATE_STOPPED));
 }

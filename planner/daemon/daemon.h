@@ -1,8 +1,11 @@
 /*
- * daemon.h - gmmrrtd's state and the three jobs of its shell (STYLE.md 10, issue 6):
- * inputs.c takes LCM messages in (decode, validate, time checks, counters), cycle.c makes
- * one planning cycle (problem from the latest inputs, library call, plan and status out),
- * main.c runs the loop (poll, ticks, signals, reload, systemd).
+ * daemon.h - gmmrrtd's state and the jobs of its shell (STYLE.md 10): dispatch.c takes each
+ * LCM message through decode -> run the cycles due -> apply; inputs.c decodes, validates and
+ * time-checks a message (clock.c, one clock model per source) and applies it; cycle.c makes
+ * one planning cycle (problem from the latest inputs, library call, plan and status out);
+ * counters.c counts and logs rejections and stops; main.c runs the loop (poll, ticks,
+ * signals, reload, systemd). Calls go one way: dispatch -> inputs, dispatch -> cycle, and
+ * everything -> counters.
  *
  * Everything lives in one gmmrrtd_t, allocated statically by main.c; the planner's block is
  * allocated once at start-up. Nothing here allocates after that.
@@ -10,6 +13,7 @@
 #ifndef GMMRRTD_DAEMON_H
 #define GMMRRTD_DAEMON_H
 
+#include <regex.h>
 #include <stdint.h>
 
 #include <lcm/lcm.h>
@@ -19,11 +23,12 @@
 #include "gmmrrt/rrtstar.h"
 #include "log.h"
 #include "settings.h"
-
-/* Largest input utime accepted (us); larger or negative ones count as REJECT_BAD_VALUE. */
-#define GMMRRTD_MAX_UTIME ((int64_t)1 << 53)
+#include "clock.h"
+#include "stop.h"
 
 enum { GMMRRTD_IN_POSE = 0, GMMRRTD_IN_PEOPLE = 1, GMMRRTD_IN_GOAL = 2, GMMRRTD_IN_OBSTACLES = 3, GMMRRTD_NUM_INPUTS = 4 };
+/* Rate-limiter rows: one per input, then the daemon's own (planner, reload, stops). */
+enum { GMMRRTD_RL_PLANNER = GMMRRTD_NUM_INPUTS, GMMRRTD_RL_STOP = GMMRRTD_NUM_INPUTS + 1, GMMRRTD_RL_ROWS = GMMRRTD_NUM_INPUTS + 2 };
 
 /* What the last published plan was made in: the warm start compares against it. */
 typedef struct {
@@ -36,32 +41,43 @@ typedef struct {
     int64_t obstacles_version;
 } gmmrrtd_snapshot_t;
 
+/* One decoded message waiting to be applied (dispatch.c: decode -> cycles due -> apply). */
+typedef struct {
+    int input;                   /* GMMRRTD_IN_* or -1: nothing staged */
+    gmmrrtd_source_clock_t clock;/* the source's clock model once the message is applied */
+    union {
+        gmmrrt_pose2d_t pose;
+        gmmrrt_people_t people;
+        gmmrrt_nav_goal_t goal;
+        gmmrrt_obstacles_t obstacles;
+    } m;
+} gmmrrtd_staged_t;
+
 typedef struct {
     gmmrrtd_settings_t set;
     gmmrrtd_clock_mode_t clock_mode;
     lcm_t *lcm_in;
     lcm_t *lcm_out;          /* == lcm_in unless --lcm-out-url */
+    lcm_eventlog_t *replay;  /* a file:// input, read event by event (dispatch.c); NULL live */
+    regex_t replay_re[GMMRRTD_NUM_INPUTS];
 
     /* Latest accepted inputs. */
     int have[GMMRRTD_NUM_INPUTS];
-    int64_t last_utime[GMMRRTD_NUM_INPUTS]; /* per channel: older messages are rejected */
+    gmmrrtd_source_clock_t src[GMMRRTD_NUM_INPUTS]; /* each source's clock model (clock.h) */
     gmmrrt_pose2d_t pose;
     gmmrrt_people_t people;
     gmmrrt_nav_goal_t goal;
     gmmrrt_obstacles_t obstacles;
     int64_t obstacles_version;   /* +1 whenever the obstacle content changes */
     int64_t goal_version;        /* +1 whenever the goal's content changes */
+    gmmrrtd_staged_t staged;
 
-    /* Planning clock (docs/daemon.md): the newest accepted input utime, plus in live mode
-     * the monotonic time since it arrived. */
-    int have_clock;
-    int64_t clock_utime;
-    int64_t clock_mono_us;
-    int64_t next_tick_utime;     /* log mode: the next cycle's time */
-    /* Time guard (docs/daemon.md, "Clock steps"): per channel, the direction (+1 future,
-     * -1 backwards, 0 none) and length of the current run of messages off the clock. */
-    int time_off_dir[GMMRRTD_NUM_INPUTS];
-    int32_t time_off_run[GMMRRTD_NUM_INPUTS];
+    /* Local time base (clock.h): live, CLOCK_MONOTONIC; log, the log's event times made
+     * non-decreasing. In log mode cycles run at t0 + k / rate_hz as the log time passes them. */
+    int have_time;
+    int64_t log_now_us;
+    int64_t next_tick_us;        /* log mode: the next cycle's local time */
+    int32_t stale_mask;          /* STALE_* bits of the last cycle */
 
     /* Models by task; loaded at start, replaced on SIGHUP only when the new file is good. */
     gmmrrt_model_t model_avoid, model_approach, model_scratch;
@@ -80,7 +96,7 @@ typedef struct {
     /* Per-goal bookkeeping: planning faults are counted once per goal (docs/daemon.md). */
     int64_t counted_goal_version[GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS];
     int32_t no_path_cycles;
-    int pose_stale_counted;      /* the current pose gap was counted */
+    int stale_counted[GMMRRTD_NUM_INPUTS]; /* the current gap of this input was counted */
 
     /* Outputs. */
     gmmrrt_planner_status_t status;
@@ -90,31 +106,66 @@ typedef struct {
     int64_t warm_starts;
     int64_t grid_updates[3]; /* set_problem's clearance grid: built, kept, shifted (gmmrrt_grid_update_t) */
 
-    gmmrrtd_ratelimit_t rl[GMMRRTD_NUM_INPUTS + 1][GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS];
+    /* Watchdog (systemd): the normal interval, 0 when not supervised. main.c sets it. */
+    int64_t watchdog_usec;
+
+    gmmrrtd_ratelimit_t rl[GMMRRTD_RL_ROWS][GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS];
+    gmmrrtd_ratelimit_t rl_stop[GMMRRT_PLANNER_STATUS_T_NUM_STOP_REASONS];
+    gmmrrtd_ratelimit_t rl_goal;  /* the "new goal" line */
 } gmmrrtd_t;
 
 /* CLOCK_MONOTONIC in microseconds. */
 int64_t gmmrrtd_mono_us(void);
 
-/* inputs.c: subscribes the four input channels. 0 or -1 (logged). */
-int gmmrrtd_inputs_subscribe(gmmrrtd_t *d);
+/* The local time now: CLOCK_MONOTONIC live, the log time in log mode. */
+int64_t gmmrrtd_now_us(const gmmrrtd_t *d);
 
-/* inputs.c: decodes, validates and applies one message of `input` (GMMRRTD_IN_*; other values
- * are ignored) from len raw bytes at buf, exactly as the LCM handler of its channel does:
- * rejections are counted, in log-clock mode due cycles run first. The bytes are only read,
- * never kept. The entry point of the handlers and of tests/fuzz/fuzz_daemon_inputs.c. */
-void gmmrrtd_inputs_handle(gmmrrtd_t *d, int input, const void *buf, size_t len);
+/* dispatch.c: subscribes the four input channels. 0 or -1 (logged). */
+int gmmrrtd_subscribe(gmmrrtd_t *d);
 
-/* inputs.c: counts a rejection and logs it rate-limited. input = GMMRRTD_IN_* or
- * GMMRRTD_NUM_INPUTS for the planner's own reasons. */
-void gmmrrtd_reject(gmmrrtd_t *d, int input, int reason, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+/* dispatch.c: one message of `input` (GMMRRTD_IN_*; other values are ignored), len raw bytes
+ * at buf, received at recv_utime (the log's event time; only read in log mode): decode and
+ * judge it (inputs.c), run the cycles due by its arrival (log mode), then apply it. The bytes
+ * are only read, never kept. The entry point of the LCM handlers, the unit tests and
+ * tests/fuzz/fuzz_daemon_inputs.c. */
+void gmmrrtd_handle_message(gmmrrtd_t *d, int input, int64_t recv_utime, const void *buf, size_t len);
 
-/* cycle.c: one planning cycle at planner time now_utime; publishes PLAN (unless idle) and
+/* dispatch.c: a file:// input read with its event times. open: 0 or -1 (logged); step: 1
+ * when an event was read (and handled when it is on an input channel), 0 at the end. */
+int gmmrrtd_replay_open(gmmrrtd_t *d);
+int gmmrrtd_replay_step(gmmrrtd_t *d);
+void gmmrrtd_replay_close(gmmrrtd_t *d);
+
+/* inputs.c: decodes, validates and time-checks one message arriving at local time local_us;
+ * rejections are counted. 1 when it is staged in d->staged (apply with gmmrrtd_inputs_apply),
+ * 0 when rejected. */
+int gmmrrtd_inputs_decode(gmmrrtd_t *d, int input, int64_t local_us, const void *buf, size_t len);
+
+/* inputs.c: makes the staged message the latest value of its channel. */
+void gmmrrtd_inputs_apply(gmmrrtd_t *d);
+
+/* counters.c: counts a rejection and logs it rate-limited. row = GMMRRTD_IN_* or
+ * GMMRRTD_RL_PLANNER for the daemon's own reasons. */
+void gmmrrtd_reject(gmmrrtd_t *d, int row, int reason, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+
+/* counters.c: counts one stopped cycle under `stop` (STOP_* of planner_status_t) and logs
+ * it rate-limited (one line per reason per log_interval_ms, with the count suppressed). */
+void gmmrrtd_count_stop(gmmrrtd_t *d, int stop, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+/* cycle.c: one planning cycle at local time now_us; publishes PLAN (unless idle) and
  * PLANNER_STATUS. */
-void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_utime);
+void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us);
 
-/* models.c: loads both model files. At start-up (`reload` 0) a failure is fatal (-1);
- * on reload a failure keeps the old model and counts REJECT_MODEL_RELOAD. */
+/* models.c: loads both model files and checks each against its use (task, and the feature
+ * space the configured planner needs: gmmrrt_planner_model_fits). At start-up (`reload` 0)
+ * a failure is fatal (-1); on reload a failure keeps the old model, counts
+ * REJECT_MODEL_RELOAD and logs every time. */
 int gmmrrtd_models_load(gmmrrtd_t *d, int reload);
+
+/* main.c / watchdog.c: tells systemd's watchdog the daemon is alive; before a step that may
+ * take long, gmmrrtd_watchdog_long_step(d, 1) stretches the interval to long_step_ms, and
+ * (d, 0) restores it. No-ops without libsystemd or outside systemd. */
+void gmmrrtd_watchdog_ping(const gmmrrtd_t *d);
+void gmmrrtd_watchdog_long_step(const gmmrrtd_t *d, int begin);
 
 #endif /* GMMRRTD_DAEMON_H */

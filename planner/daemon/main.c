@@ -1,10 +1,10 @@
 /*
- * main.c - gmmrrtd's main loop, like Redis's (STYLE.md 10; issue 6): poll() on the LCM file
+ * main.c - gmmrrtd's main loop, like Redis's (STYLE.md 10): poll() on the LCM file
  * descriptor with a timeout to the next tick, a fixed cycle rate with a planning budget
  * inside each period, signal handlers that only set flags (SIGINT/SIGTERM: exit cleanly;
  * SIGHUP: reload config and models), systemd readiness and watchdog via sd_notify when
- * built with libsystemd. Two clocks (docs/daemon.md): live (ticks on CLOCK_MONOTONIC) and
- * log (ticks on the inputs' utime, for deterministic file:// replays).
+ * built with libsystemd. Two time bases (docs/daemon.md, clock.h): live (ticks on
+ * CLOCK_MONOTONIC) and log (ticks on the log's event times, for deterministic file:// replays).
  */
 #include <errno.h>
 #include <math.h>
@@ -79,13 +79,16 @@ static int settings_differ_str(const char *a, const char *b) { return strcmp(a, 
 static void reload(gmmrrtd_t *d, int argc, char **argv)
 {
     NOTIFY("RELOADING=1");
+    gmmrrtd_watchdog_long_step(d, 1); /* files are read: bounded by long_step_ms, not by WatchdogSec */
     static gmmrrtd_settings_t s;
     char err[512];
     gmmrrtd_settings_default(&s);
     if (gmmrrtd_settings_from_args(&s, argc, argv, err, sizeof err) != 0 ||
         gmmrrtd_settings_validate(&s, err, sizeof err) != 0) {
-        LOG_ERROR("reload: %s; keeping the running configuration", err);
         d->status.rejected[GMMRRT_PLANNER_STATUS_T_REJECT_MODEL_RELOAD]++;
+        LOG_ERROR("reload rejected (total %lld): %s; keeping the running configuration",
+                  (long long)d->status.rejected[GMMRRT_PLANNER_STATUS_T_REJECT_MODEL_RELOAD], err);
+        gmmrrtd_watchdog_long_step(d, 0);
         NOTIFY("READY=1");
         return;
     }
@@ -118,7 +121,8 @@ static void reload(gmmrrtd_t *d, int argc, char **argv)
         }
         d->last.valid = 0;
     }
-    /* Models: each replaced only when its new file is good. */
+    /* Models: each replaced only when its new file is good and fits the (new) planner. */
+    d->set.cfg = s.cfg;
     memcpy(d->set.model_avoid, s.model_avoid, sizeof s.model_avoid);
     memcpy(d->set.model_approach, s.model_approach, sizeof s.model_approach);
     (void)gmmrrtd_models_load(d, 1);
@@ -130,17 +134,42 @@ static void reload(gmmrrtd_t *d, int argc, char **argv)
         gmmrrtd_log_set_level(lvl);
     d->last.valid = 0;
     LOG_INFO("reloaded");
+    gmmrrtd_watchdog_long_step(d, 0);
     NOTIFY("READY=1");
 }
 
-/* Live clock: the newest input utime plus the monotonic time since it arrived. */
-static int64_t live_clock_utime(const gmmrrtd_t *d, int64_t mono_us)
+/* A file:// input: events in order, each at its recorded time; cycles run from dispatch.c. */
+static int run_replay(gmmrrtd_t *d, int argc, char **argv)
 {
-    return d->have_clock ? d->clock_utime + (mono_us - d->clock_mono_us) : 0;
+    int eof = 0;
+    int64_t events = 0;
+    while (!g_stop) {
+        if (g_reload) {
+            g_reload = 0;
+            reload(d, argc, argv);
+        }
+        if (eof) {
+            if (d->set.exit_at_eof)
+                break;
+            (void)poll(NULL, 0, 500);
+            gmmrrtd_watchdog_ping(d);
+            continue;
+        }
+        if (!gmmrrtd_replay_step(d)) {
+            LOG_INFO("end of input log after %lld cycles, %lld plans", (long long)d->cycles,
+                     (long long)d->status.plans_published);
+            eof = 1;
+        }
+        if ((++events & 255) == 0)
+            gmmrrtd_watchdog_ping(d);
+    }
+    return 0;
 }
 
 static int run(gmmrrtd_t *d, int argc, char **argv)
 {
+    if (d->replay != NULL)
+        return run_replay(d, argc, argv);
     const int fd = lcm_get_fileno(d->lcm_in);
     int64_t period_us = (int64_t)llround(1e6 / d->set.rate_hz);
     int64_t next_tick = gmmrrtd_mono_us() + period_us;
@@ -156,8 +185,8 @@ static int run(gmmrrtd_t *d, int argc, char **argv)
         if (d->clock_mode == GMMRRTD_CLOCK_LIVE) {
             if (now >= next_tick) {
                 const int64_t tick = next_tick;
-                gmmrrtd_cycle(d, live_clock_utime(d, now));
-                NOTIFY("WATCHDOG=1");
+                gmmrrtd_cycle(d, now);
+                gmmrrtd_watchdog_ping(d);
                 const int64_t done = gmmrrtd_mono_us();
                 if (done > tick + period_us) {
                     d->status.missed_deadlines++;
@@ -171,7 +200,7 @@ static int run(gmmrrtd_t *d, int argc, char **argv)
             timeout_ms = (int)((next_tick - now + 999) / 1000);
         } else {
             timeout_ms = 500; /* log clock: cycles run from the input handlers */
-            NOTIFY("WATCHDOG=1");
+            gmmrrtd_watchdog_ping(d);
         }
         if (eof) {
             if (d->set.exit_at_eof)
@@ -194,13 +223,34 @@ static int run(gmmrrtd_t *d, int argc, char **argv)
                              (long long)d->status.plans_published);
                     eof = 1;
                 } else {
-                    gmmrrtd_log_limited(&d->rl[GMMRRTD_NUM_INPUTS][0], gmmrrtd_mono_us() / 1000,
+                    gmmrrtd_log_limited(&d->rl[GMMRRTD_RL_PLANNER][0], gmmrrtd_mono_us() / 1000,
                                         (int64_t)d->set.log_interval_ms, GMMRRTD_LOG_ERROR, "lcm_handle failed");
                 }
             }
         }
     }
     return 0;
+}
+
+/* The exit line's counters, by name (every non-zero one). */
+static void summarize(const gmmrrtd_t *d, char *rej, size_t rcap, char *stp, size_t scap)
+{
+    static const char *const k_rej[GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS] = {
+        "decode", "count", "not_finite", "backwards", "goal_coll", "unreachable", "pose_stale", "bad_value",
+        "unknown_target", "start_coll", "model_reload", "time_future", "clock_resync", "people_stale",
+        "obstacles_stale", "planning_box", "scan_stale", "grid_stale", "setup", "no_model"};
+    static const char *const k_stop[GMMRRT_PLANNER_STATUS_T_NUM_STOP_REASONS] = {
+        "pose_stale", "no_model", "unknown_target", "obstacles_stale", "start_blocked", "goal_blocked", "no_path",
+        "planning_box", "setup", "scan_stale", "grid_stale"};
+    size_t off = 0;
+    rej[0] = stp[0] = '\0';
+    for (int i = 0; i < GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS && off < rcap; ++i)
+        if (k_rej[i] != NULL)
+            off += (size_t)snprintf(rej + off, rcap - off, " %s=%lld", k_rej[i], (long long)d->status.rejected[i]);
+    off = 0;
+    for (int i = 0; i < GMMRRT_PLANNER_STATUS_T_NUM_STOP_REASONS && off < scap; ++i)
+        if (k_stop[i] != NULL)
+            off += (size_t)snprintf(stp + off, scap - off, " %s=%lld", k_stop[i], (long long)d->status.stops[i]);
 }
 
 int main(int argc, char **argv)
@@ -230,21 +280,35 @@ int main(int argc, char **argv)
         return 1;
     if (planner_setup(d) != 0)
         return 1;
-    d->lcm_in = lcm_create(d->set.lcm_url);
-    if (d->lcm_in == NULL) {
-        LOG_ERROR("cannot open LCM input %s", d->set.lcm_url);
-        return 1;
+#ifdef GMMRRT_HAVE_SYSTEMD
+    uint64_t wd_usec = 0;
+    if (sd_watchdog_enabled(0, &wd_usec) > 0)
+        d->watchdog_usec = (int64_t)wd_usec;
+#endif
+    d->staged.input = -1;
+    const int file_input = strncmp(d->set.lcm_url, "file://", 7) == 0;
+    if (file_input) {
+        if (gmmrrtd_replay_open(d) != 0)
+            return 1;
+    } else {
+        d->lcm_in = lcm_create(d->set.lcm_url);
+        if (d->lcm_in == NULL) {
+            LOG_ERROR("cannot open LCM input %s", d->set.lcm_url);
+            return 1;
+        }
     }
     d->lcm_out = d->lcm_in;
     if (d->set.lcm_out_url[0] != '\0') {
         d->lcm_out = lcm_create(d->set.lcm_out_url);
         if (d->lcm_out == NULL) {
             LOG_ERROR("cannot open LCM output %s", d->set.lcm_out_url);
-            lcm_destroy(d->lcm_in);
+            if (d->lcm_in != NULL)
+                lcm_destroy(d->lcm_in);
+            gmmrrtd_replay_close(d);
             return 1;
         }
     }
-    if (gmmrrtd_inputs_subscribe(d) != 0)
+    if (!file_input && gmmrrtd_subscribe(d) != 0)
         return 1;
     LOG_INFO("running: %s clock, %.1f Hz, budget %g ms / %lld iterations, in %s%s%s",
              d->clock_mode == GMMRRTD_CLOCK_LOG ? "log" : "live", d->set.rate_hz, d->set.budget_ms,
@@ -255,22 +319,18 @@ int main(int argc, char **argv)
     const int result = run(d, argc, argv);
 
     NOTIFY("STOPPING=1");
-    const char *names[] = {"decode", "count", "not_finite", "backwards", "goal_coll", "unreachable", "pose_stale",
-                           "bad_value", "unknown_target", "start_coll", "model_reload", "time_future",
-                           "clock_resync"};
-    char summary[512];
-    int off = 0;
-    for (int i = 0; i < (int)(sizeof names / sizeof names[0]); ++i)
-        off += snprintf(summary + off, sizeof summary - (size_t)off, " %s=%lld", names[i],
-                        (long long)d->status.rejected[i]);
-    LOG_INFO("exiting: %lld cycles, %lld plans, %lld warm starts, %lld missed deadlines; rejected:%s",
+    char summary[1024], stops[512];
+    summarize(d, summary, sizeof summary, stops, sizeof stops);
+    LOG_INFO("exiting: %lld cycles, %lld plans, %lld warm starts, %lld missed deadlines; rejected:%s; stops:%s",
              (long long)d->cycles, (long long)d->status.plans_published, (long long)d->warm_starts,
-             (long long)d->status.missed_deadlines, summary);
+             (long long)d->status.missed_deadlines, summary, stops);
     LOG_INFO("clearance grid: %lld built, %lld shifted, %lld kept", (long long)d->grid_updates[GMMRRT_GRID_BUILT],
              (long long)d->grid_updates[GMMRRT_GRID_SHIFTED], (long long)d->grid_updates[GMMRRT_GRID_KEPT]);
     if (d->lcm_out != d->lcm_in)
         lcm_destroy(d->lcm_out);
-    lcm_destroy(d->lcm_in);
+    if (d->lcm_in != NULL)
+        lcm_destroy(d->lcm_in);
+    gmmrrtd_replay_close(d);
     free(d->mem);
     return result == 0 ? 0 : 1;
 }

@@ -1,15 +1,54 @@
 /*
  * models.c - gmmrrtd's models (paper Sect. 5: one mixture per task): loaded with
- * gmmrrt_model_load_file (planner/io), which validates everything before it overwrites
- * anything. Like a cFE table: a new file goes into a scratch model and replaces the model
- * in use only when it is good; on SIGHUP a bad file keeps the old model running and is
- * counted in planner_status_t.rejected[REJECT_MODEL_RELOAD].
+ * gmmrrt_model_load_file (planner/io: a regular file only, opened without blocking, every
+ * field validated before anything is overwritten), then checked against their use: the task
+ * they were learned for and the feature space the configured planner needs
+ * (gmmrrt_planner_model_fits, the rule gmmrrt_planner_set_problem applies; an x-y or generic
+ * model for GMM-RRT* would make every goal of its task stop with MODEL_MISMATCH). Like a cFE
+ * table: a new file goes into a scratch model and replaces the model in use only when it is
+ * good; on SIGHUP a bad file keeps the old model running, is counted in
+ * planner_status_t.rejected[REJECT_MODEL_RELOAD] and logged every time (error level, not
+ * rate-limited: a reload is an operator's act and each failure deserves its line).
  */
 #include <stdio.h>
 #include <string.h>
 
 #include "daemon.h"
 #include "gmmrrt/model_file.h"
+
+static const char *kind_name(int32_t kind)
+{
+    switch (kind) {
+    case GMMRRT_MODEL_KIND_FEATURES: return "features (d, theta)";
+    case GMMRRT_MODEL_KIND_XY: return "x-y (s, x', y')";
+    case GMMRRT_MODEL_KIND_GENERIC: return "generic";
+    default: return "unknown";
+    }
+}
+
+static const char *planner_name(int32_t planner)
+{
+    switch (planner) {
+    case GMMRRT_PLANNER_GMM_RRT_STAR: return "gmm-rrt-star";
+    case GMMRRT_PLANNER_RRT_STAR: return "rrt-star";
+    case GMMRRT_PLANNER_GMM_RRT: return "gmm-rrt";
+    default: return "?";
+    }
+}
+
+static int refuse(gmmrrtd_t *d, int reload, int have, gmmrrt_status_t st, const char *what)
+{
+    if (!reload) {
+        LOG_ERROR("%s", what);
+        return -1;
+    }
+    d->status.rejected[GMMRRT_PLANNER_STATUS_T_REJECT_MODEL_RELOAD]++;
+    d->status.last_error = (int32_t)st;
+    LOG_ERROR("reload rejected (total %lld): %s%s",
+              (long long)d->status.rejected[GMMRRT_PLANNER_STATUS_T_REJECT_MODEL_RELOAD], what,
+              have ? " (old model kept)" : "");
+    return -1;
+}
 
 static int load_one(gmmrrtd_t *d, const char *path, int32_t want_task, gmmrrt_model_t *slot, int *have, int reload)
 {
@@ -20,30 +59,27 @@ static int load_one(gmmrrtd_t *d, const char *path, int32_t want_task, gmmrrt_mo
         *have = 0;
         return 0;
     }
-    char err[512];
+    char err[512], what[768];
     const gmmrrt_status_t st = gmmrrt_model_load_file(path, &d->model_scratch, err, sizeof err);
-    if (st == GMMRRT_OK && d->model_scratch.task != want_task && d->model_scratch.task != GMMRRT_TASK_NONE) {
-        snprintf(err, sizeof err, "%s: model is for task %d, not %s", path, (int)d->model_scratch.task, task_name);
-        if (!reload) {
-            LOG_ERROR("%s", err);
-            return -1;
-        }
-        gmmrrtd_reject(d, GMMRRTD_NUM_INPUTS, GMMRRT_PLANNER_STATUS_T_REJECT_MODEL_RELOAD, "%s (old model kept)", err);
-        return -1;
-    }
     if (st != GMMRRT_OK) {
-        if (!reload) {
-            LOG_ERROR("%s model: %s (%s)", task_name, err, gmmrrt_status_str(st));
-            return -1;
-        }
-        gmmrrtd_reject(d, GMMRRTD_NUM_INPUTS, GMMRRT_PLANNER_STATUS_T_REJECT_MODEL_RELOAD, "%s model: %s%s", task_name,
-                       err, *have ? " (old model kept)" : "");
-        d->status.last_error = (int32_t)st;
-        return -1;
+        snprintf(what, sizeof what, "%s model: %s (%s)", task_name, err, gmmrrt_status_str(st));
+        return refuse(d, reload, *have, st, what);
     }
-    *slot = d->model_scratch;
+    const gmmrrt_model_t *m = &d->model_scratch;
+    if (m->task != want_task && m->task != GMMRRT_TASK_NONE) {
+        snprintf(what, sizeof what, "%s model %s: learned for task %d, not %s", task_name, path, (int)m->task,
+                 task_name);
+        return refuse(d, reload, *have, GMMRRT_ERR_MODEL_MISMATCH, what);
+    }
+    const gmmrrt_status_t fit = gmmrrt_planner_model_fits(&d->set.cfg, m);
+    if (fit != GMMRRT_OK) {
+        snprintf(what, sizeof what, "%s model %s: a %s model with D = %d does not fit the %s planner (%s)", task_name,
+                 path, kind_name(m->kind), (int)m->dim, planner_name(d->set.cfg.planner), gmmrrt_status_str(fit));
+        return refuse(d, reload, *have, fit, what);
+    }
+    *slot = *m;
     *have = 1;
-    LOG_INFO("%s model %s: K = %d, D = %d", task_name, path, (int)slot->k, (int)slot->dim);
+    LOG_INFO("%s model %s: %s, K = %d, D = %d", task_name, path, kind_name(slot->kind), (int)slot->k, (int)slot->dim);
     return 0;
 }
 

@@ -5,6 +5,7 @@
 #include "settings.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <getopt.h>
 #include <ini.h>
 #include <math.h>
@@ -12,6 +13,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "log.h"
 
@@ -54,12 +57,24 @@ static const key_t_ k_keys[] = {
     NUM("timing", "pose_timeout_ms", "pose-timeout-ms", K_F64, pose_timeout_ms, 1, 1e7, "stop when the pose is older, ms"),
     NUM("timing", "unreachable_after_cycles", "unreachable-after", K_I32, unreachable_after_cycles, 1, 1e6,
         "cycles without a path before a goal counts as unreachable"),
-    NUM("timing", "max_future_ms", "max-future-ms", K_F64, max_future_ms, 0, 1e9,
-        "live clock: reject a message further ahead of the clock, ms"),
-    NUM("timing", "log_max_future_ms", "log-max-future-ms", K_F64, log_max_future_ms, 0, 1e9,
-        "log clock: reject a message further ahead of the clock, ms"),
+    NUM("timing", "people_timeout_ms", "people-timeout-ms", K_F64, people_timeout_ms, 0, 1e7,
+        "drop the people list when older, ms (0: never)"),
+    NUM("timing", "obstacles_timeout_ms", "obstacles-timeout-ms", K_F64, obstacles_timeout_ms, 0, 1e7,
+        "stop when the obstacle list is older, ms (0: never; static obstacles)"),
+    NUM("timing", "scan_timeout_ms", "scan-timeout-ms", K_F64, scan_timeout_ms, 0, 1e7,
+        "reserved for a laser-scan input: stop when the scan is older, ms"),
+    NUM("timing", "grid_timeout_ms", "grid-timeout-ms", K_F64, grid_timeout_ms, 0, 1e7,
+        "reserved for a local-grid input: stop when the grid is older, ms"),
+    NUM("timing", "max_future_ms", "max-future-ms", K_F64, max_future_ms, 1, 1e9,
+        "reject a message stamped further than this from its own source's clock, ms"),
     NUM("timing", "time_resync_count", "time-resync-count", K_I32, time_resync_count, 1, 1e6,
-        "consecutive off-clock messages of a channel before the clock adopts its time"),
+        "consecutive consistent off-clock messages of a source before its clock offset steps"),
+    NUM("timing", "time_resync_ms", "time-resync-ms", K_F64, time_resync_ms, 0, 1e7,
+        "...and the local time such a run must span, ms"),
+    NUM("timing", "clock_slew_ms_per_s", "clock-slew", K_F64, clock_slew_ms_per_s, 0, 500,
+        "how fast a source's clock offset may follow its messages, ms per s"),
+    NUM("timing", "long_step_ms", "long-step-ms", K_F64, long_step_ms, 100, 1e7,
+        "watchdog interval granted around a step that may take long (world set-up, reload), ms"),
     NUM("world", "bounds_margin_m", "bounds-margin", K_F64, bounds_margin_m, 0.1, 1e4, "planning bounds margin, m"),
     NUM("warm_start", "goal_shift_m", "warm-goal-shift", K_F64, warm_goal_shift_m, 0, 1e4, "warm start: goal moved less, m"),
     NUM("warm_start", "people_shift_m", "warm-people-shift", K_F64, warm_people_shift_m, 0, 1e4,
@@ -67,7 +82,7 @@ static const key_t_ k_keys[] = {
     NUM("warm_start", "robot_offset_m", "warm-robot-offset", K_F64, warm_robot_offset_m, 0, 1e4,
         "warm start: robot within this of the last path, m"),
     NUM("planner", "planner", "planner", K_PLANNER, cfg.planner, 0, 0, "gmm-rrt-star | rrt-star | gmm-rrt"),
-    NUM("planner", "seed", "seed", K_U64, cfg.seed, 0, 1.8e19, "RNG seed"),
+    NUM("planner", "seed", "seed", K_U64, cfg.seed, 0, 18446744073709551615.0, "RNG seed"),
     NUM("planner", "max_nodes", "max-nodes", K_I32, cfg.max_nodes, 2, 4194304, "tree node pool (memory)"),
     NUM("planner", "grid_max_cells", "grid-max-cells", K_I32, cfg.grid_max_cells, 1, 2147483647.0, "clearance grid cells (memory)"),
     NUM("planner", "robot_radius_m", "robot-radius", K_F64, cfg.robot_radius_m, 0, 100, "robot radius, m"),
@@ -118,9 +133,15 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->budget_iterations = 0;
     s->pose_timeout_ms = 500.0;
     s->unreachable_after_cycles = 5;
+    s->people_timeout_ms = 1000.0;
+    s->obstacles_timeout_ms = 0.0;
+    s->scan_timeout_ms = 500.0;
+    s->grid_timeout_ms = 1000.0;
     s->max_future_ms = 2000.0;
-    s->log_max_future_ms = 60000.0;
-    s->time_resync_count = 10;
+    s->time_resync_count = 5;
+    s->time_resync_ms = 1000.0;
+    s->clock_slew_ms_per_s = 10.0;
+    s->long_step_ms = 30000.0;
     s->bounds_margin_m = 3.0;
     s->warm_goal_shift_m = 0.25;
     s->warm_people_shift_m = 0.3;
@@ -161,21 +182,45 @@ static int set_key(gmmrrtd_settings_t *s, const key_t_ *k, const char *value, ch
             }
         return fail(err, errcap, "%s = \"%s\": expected gmm-rrt-star, rrt-star or gmm-rrt", k->key, value);
     }
+    /* Each number is parsed once, by the parser of the type it is stored in: a whole-number
+     * key takes digits only ("1e3" or "2.5" are errors, never 1 or 2). */
     errno = 0;
     char *end = NULL;
-    const double v = strtod(value, &end);
-    if (end == value || *end != '\0' || errno == ERANGE || !isfinite(v))
-        return fail(err, errcap, "%s = \"%s\": not a number", k->key, value);
-    if (v < k->min || v > k->max)
+    if (k->type == K_F64) {
+        const double v = strtod(value, &end);
+        if (end == value || *end != '\0' || errno == ERANGE || !isfinite(v))
+            return fail(err, errcap, "%s = \"%s\": not a number", k->key, value);
+        if (v < k->min || v > k->max)
+            return fail(err, errcap, "%s = %s: outside %g..%g", k->key, value, k->min, k->max);
+        memcpy(field, &v, sizeof v);
+        return 0;
+    }
+    if (k->type == K_U64) {
+        const char *p = value;
+        while (*p == ' ' || *p == '\t')
+            ++p;
+        if (*p == '-' || *p == '+')
+            return fail(err, errcap, "%s = \"%s\": expected a whole number of digits 0..%g", k->key, value, k->max);
+        const unsigned long long x = strtoull(value, &end, 10);
+        if (end == value || *end != '\0' || errno == ERANGE)
+            return fail(err, errcap, "%s = \"%s\": expected a whole number of digits 0..%g", k->key, value, k->max);
+        if ((double)x < k->min || (double)x > k->max)
+            return fail(err, errcap, "%s = %s: outside %g..%g", k->key, value, k->min, k->max);
+        const uint64_t u = (uint64_t)x;
+        memcpy(field, &u, sizeof u);
+        return 0;
+    }
+    const long long x = strtoll(value, &end, 10);
+    if (end == value || *end != '\0' || errno == ERANGE)
+        return fail(err, errcap, "%s = \"%s\": expected a whole number of digits", k->key, value);
+    if ((double)x < k->min || (double)x > k->max)
         return fail(err, errcap, "%s = %s: outside %g..%g", k->key, value, k->min, k->max);
-    if ((k->type == K_I32 || k->type == K_I64 || k->type == K_U64) && v != floor(v))
-        return fail(err, errcap, "%s = %s: must be a whole number", k->key, value);
-    switch (k->type) {
-    case K_F64: memcpy(field, &v, sizeof v); break;
-    case K_I32: { int32_t x = (int32_t)v; memcpy(field, &x, sizeof x); break; }
-    case K_I64: { int64_t x = (int64_t)v; memcpy(field, &x, sizeof x); break; }
-    case K_U64: { uint64_t x = strtoull(value, NULL, 10); memcpy(field, &x, sizeof x); break; }
-    default: break;
+    if (k->type == K_I32) {
+        const int32_t v = (int32_t)x;
+        memcpy(field, &v, sizeof v);
+    } else {
+        const int64_t v = (int64_t)x;
+        memcpy(field, &v, sizeof v);
     }
     return 0;
 }
@@ -205,13 +250,37 @@ static int on_ini_line(void *user, const char *section, const char *name, const 
 
 int gmmrrtd_settings_load_ini(gmmrrtd_settings_t *s, const char *path, char *err, size_t errcap)
 {
-    ini_ctx_t ctx = {.s = s, .first_err = ""};
-    const int rc = ini_parse(path, on_ini_line, &ctx);
-    if (rc == -1)
+    /* Only a regular file of sane size: a directory would read as empty (defaults, no models),
+     * /dev/zero would never end, a FIFO would block start-up or a reload. O_NONBLOCK so that
+     * even the open() of a FIFO returns; fstat decides. */
+    const int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0)
         return fail(err, errcap, "%s: cannot open: %s", path, strerror(errno));
+    struct stat sb;
+    const int stat_ok = fstat(fd, &sb) == 0;
+    if (!stat_ok || !S_ISREG(sb.st_mode)) {
+        const int is_dir = stat_ok && S_ISDIR(sb.st_mode);
+        close(fd);
+        return fail(err, errcap, "%s: %s, not a configuration file", path,
+                    is_dir ? "is a directory" : "is not a regular file (a FIFO, device or socket)");
+    }
+    if (sb.st_size > GMMRRTD_CONFIG_MAX_BYTES) {
+        close(fd);
+        return fail(err, errcap, "%s: %lld bytes, more than any configuration (%d)", path, (long long)sb.st_size,
+                    GMMRRTD_CONFIG_MAX_BYTES);
+    }
+    FILE *f = fdopen(fd, "r");
+    if (f == NULL) {
+        const int e = errno;
+        close(fd);
+        return fail(err, errcap, "%s: cannot read: %s", path, strerror(e));
+    }
+    ini_ctx_t ctx = {.s = s, .first_err = ""};
+    const int rc = ini_parse_file(f, on_ini_line, &ctx);
+    fclose(f);
     if (rc == -2)
         return fail(err, errcap, "%s: out of memory while parsing", path);
-    if (rc > 0)
+    if (rc != 0)
         return fail(err, errcap, "%s:%d: %s", path, rc, ctx.first_err[0] ? ctx.first_err : "syntax error");
     return 0;
 }

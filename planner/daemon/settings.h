@@ -13,6 +13,8 @@
 #include "gmmrrt/config.h"
 
 #define GMMRRTD_PATH_MAX 512
+/* Largest configuration file read (bytes): anything longer is not one. */
+#define GMMRRTD_CONFIG_MAX_BYTES (1 << 20)
 #define GMMRRTD_DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
 
 typedef enum { GMMRRTD_CLOCK_AUTO = 0, GMMRRTD_CLOCK_LIVE = 1, GMMRRTD_CLOCK_LOG = 2 } gmmrrtd_clock_mode_t;
@@ -34,10 +36,16 @@ typedef struct {
     int64_t budget_iterations;   /* samples per cycle, >= 0; 0 = no cap. Deterministic replays use this */
     double pose_timeout_ms;      /* > 0: no pose newer than this -> stop */
     int32_t unreachable_after_cycles; /* consecutive cycles without a path before the goal counts unreachable */
-    double max_future_ms;        /* live clock: a message further ahead of the expected now -> REJECT_TIME_FUTURE */
-    double log_max_future_ms;    /* the same bound on the log clock (which does not run during input silence) */
-    int32_t time_resync_count;   /* this many consecutive messages of one channel off the clock in the same
-                                    direction (future or backwards): the clock adopts the channel's time */
+    double people_timeout_ms;    /* >= 0: a people list older than this is dropped (0: never) */
+    double obstacles_timeout_ms; /* >= 0: an obstacle list older than this stops the robot (0: never) */
+    double scan_timeout_ms;      /* reserved for a laser-scan input (stop when older) */
+    double grid_timeout_ms;      /* reserved for a local occupancy-grid input (stop when older) */
+    double max_future_ms;        /* a message stamped further than this from its own source's clock (ahead:
+                                    REJECT_TIME_FUTURE, behind: REJECT_TIME_BACKWARDS) is refused (clock.h) */
+    int32_t time_resync_count;   /* a consistent off-clock run of one source this long ...            */
+    double time_resync_ms;       /* ... and spanning this much local time steps that source's offset */
+    double clock_slew_ms_per_s;  /* how fast an accepted message may move its source's offset */
+    double long_step_ms;         /* watchdog interval granted around a step that may take long */
     /* [world] */
     double bounds_margin_m;      /* planning bounds: box around robot, goal, people, obstacles + this */
     /* [warm_start]: the situation "has not changed much" when all hold */

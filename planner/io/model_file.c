@@ -48,16 +48,21 @@ gmmrrt_status_t gmmrrt_model_load_file(const char *path, gmmrrt_model_t *model, 
         st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: out of memory reading the model", path);
         goto done;
     }
-    const int fd = open(path, O_RDONLY | O_CLOEXEC);
+    /* O_NONBLOCK: opening a FIFO (or a device) must not block the caller (a daemon reloading
+     * on SIGHUP, its watchdog waiting); anything but a regular file is refused below. */
+    const int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     if (fd < 0) {
         st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: cannot open model file: %s", path,
                               strerror(errno));
         goto done;
     }
     struct stat sb;
-    if (fstat(fd, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+    const int stat_ok = fstat(fd, &sb) == 0;
+    if (!stat_ok || !S_ISREG(sb.st_mode)) {
+        const int is_dir = stat_ok && S_ISDIR(sb.st_mode);
         close(fd);
-        st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: is a directory, not a model file", path);
+        st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: %s, not a model file", path,
+                              is_dir ? "is a directory" : "is not a regular file (a FIFO, device or socket)");
         goto done;
     }
     const ssize_t n = read_up_to(fd, buf, cap);

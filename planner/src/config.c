@@ -79,8 +79,10 @@ gmmrrt_status_t gmmrrt_planner_config_validate(const gmmrrt_planner_config_t *cf
     CHECK(isfinite(cfg->rewire_k_factor) && cfg->rewire_k_factor >= 0.0 && cfg->rewire_k_factor <= 64.0,
           "rewire_k_factor", "must be in [0, 64] (0: radius rewiring)");
     CHECK(cfg->informed_sampling == 0 || cfg->informed_sampling == 1, "informed_sampling", "must be 0 or 1");
-    CHECK(isfinite(cfg->w_length) && cfg->w_length >= 0.0, "w_length", "must be finite and >= 0");
-    CHECK(isfinite(cfg->w_task) && cfg->w_task >= 0.0, "w_task", "must be finite and >= 0");
+    CHECK(isfinite(cfg->w_length) && cfg->w_length >= 0.0 && cfg->w_length <= GMMRRT_MAX_COST_WEIGHT, "w_length",
+          "must be in [0, 1e6] (GMMRRT_MAX_COST_WEIGHT)");
+    CHECK(isfinite(cfg->w_task) && cfg->w_task >= 0.0 && cfg->w_task <= GMMRRT_MAX_COST_WEIGHT, "w_task",
+          "must be in [0, 1e6] (GMMRRT_MAX_COST_WEIGHT)");
     CHECK(cfg->w_length > 0.0 || cfg->w_task > 0.0, "w_length", "and w_task must not both be 0");
     CHECK(isfinite(cfg->delta) && cfg->delta >= 0.0, "delta", "must be finite and >= 0 (0: the model's)");
     CHECK(isfinite(cfg->person_influence_m) && cfg->person_influence_m > 0.0, "person_influence_m",

@@ -145,6 +145,25 @@ static void reset_tree(struct gmmrrt_planner *p)
     gmmrrt_rng_seed(&p->rng, p->cfg.seed);
 }
 
+gmmrrt_status_t gmmrrt_planner_model_fits(const gmmrrt_planner_config_t *cfg, const gmmrrt_model_t *m)
+{
+    if (!cfg)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    if (cfg->planner == GMMRRT_PLANNER_RRT_STAR)
+        return GMMRRT_OK; /* no model is used */
+    if (!m)
+        return GMMRRT_ERR_MODEL_MISMATCH;
+    if (cfg->planner == GMMRRT_PLANNER_GMM_RRT_STAR && (m->kind != GMMRRT_MODEL_KIND_FEATURES || m->dim != 2))
+        return GMMRRT_ERR_MODEL_MISMATCH;
+    if (cfg->planner == GMMRRT_PLANNER_GMM_RRT && (m->kind != GMMRRT_MODEL_KIND_XY || m->dim != 3))
+        return GMMRRT_ERR_MODEL_MISMATCH;
+    if (m->k < 1 || m->k > GMMRRT_MAX_K)
+        return GMMRRT_ERR_MODEL_MISMATCH;
+    if (cfg->delta == 0.0 && !(isfinite(m->delta) && m->delta > 0.0))
+        return GMMRRT_ERR_MODEL_MISMATCH;
+    return GMMRRT_OK;
+}
+
 gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_problem_t *pr)
 {
     if (!p || !pr)
@@ -165,16 +184,9 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
     const gmmrrt_model_t *m = pr->model;
     const int wants_model = pr->task != GMMRRT_TASK_NONE && p->cfg.planner != GMMRRT_PLANNER_RRT_STAR;
     if (wants_model) {
-        if (!m)
-            return GMMRRT_ERR_MODEL_MISMATCH;
-        if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT_STAR && (m->kind != GMMRRT_MODEL_KIND_FEATURES || m->dim != 2))
-            return GMMRRT_ERR_MODEL_MISMATCH;
-        if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT && (m->kind != GMMRRT_MODEL_KIND_XY || m->dim != 3))
-            return GMMRRT_ERR_MODEL_MISMATCH;
-        if (m->k < 1 || m->k > GMMRRT_MAX_K)
-            return GMMRRT_ERR_MODEL_MISMATCH;
-        if (p->cfg.delta == 0.0 && !(isfinite(m->delta) && m->delta > 0.0))
-            return GMMRRT_ERR_MODEL_MISMATCH;
+        const gmmrrt_status_t fit = gmmrrt_planner_model_fits(&p->cfg, pr->model);
+        if (fit != GMMRRT_OK)
+            return fit;
     }
 
     /* Builds the world (validates every obstacle number and the bounds); keeps the last

@@ -27,9 +27,6 @@ const char *gmmrrt_status_str(gmmrrt_status_t status)
     case GMMRRT_NO_PATH_YET: return "no path yet";
     case GMMRRT_POOL_FULL: return "node pool full";
     case GMMRRT_TIMEOUT: return "timeout";
-    case GMMRRT_STOP_POSE_STALE: return "stopped: robot pose is stale";
-    case GMMRRT_STOP_NO_MODEL: return "stopped: no model for the task";
-    case GMMRRT_STOP_UNKNOWN_TARGET: return "stopped: approach target not tracked";
     }
     return "unknown status";
 }

@@ -1,7 +1,7 @@
 /*
  * fuzz_daemon_inputs.c - libFuzzer target for gmmrrtd's message handling (issue 6, "Bad
  * and missing input"; issue 9): the bytes of a sequence of LCM messages go through
- * gmmrrtd_inputs_handle, the function behind the daemon's four LCM handlers (decode and
+ * gmmrrtd_handle_message, the function behind the daemon's four LCM handlers (decode and
  * validate, time checks, counters, state update, and in log-clock mode the planning
  * cycles that fall due), so the fuzzer drives the whole daemon from its inputs: the
  * problem it builds, the GMM-RRT* run (paper Alg. 1 with the mixture of eq. 1) and the
@@ -10,6 +10,9 @@
  * Input format (tools/fuzz_corpus.py writes seeds from the scenario logs): records of
  *   [channel: 1 byte, low 2 bits = GMMRRTD_IN_*][length: 2 bytes LE][payload: length bytes]
  * (a length past the end takes what is left), then one more cycle after the last record.
+ * Each record is received at the log time of its own utime (bytes 8..15, big-endian, as in
+ * a recorded log, where the recorder stamps a message as it arrives); a record too short for
+ * one arrives at the previous record's time.
  *
  * Each input starts from the same state (a copy taken after set-up). Properties checked
  * (abort = finding): the sanitizers' (memory, UB); the daemon's accepted state is always
@@ -83,6 +86,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
         abort();
     }
     d->clock_mode = GMMRRTD_CLOCK_LOG;
+    d->staged.input = -1;
     d->status.first_solution_ms = -1.0;
     d->status.best_cost = -1.0;
     make_model(&d->model_avoid, GMMRRT_TASK_AVOID, 1.5707963267948966, -1.5707963267948966);
@@ -128,20 +132,27 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     *d = g_initial;
     int64_t before[GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS];
     size_t off = 0;
+    int64_t recv = 0;
     while (size - off >= 3) {
         const int input = data[off] & 3;
         size_t len = (size_t)data[off + 1] | (size_t)data[off + 2] << 8;
         off += 3;
         if (len > size - off)
             len = size - off;
+        if (len >= 16) {
+            uint64_t u = 0;
+            for (int b = 8; b < 16; ++b)
+                u = u << 8 | data[off + (size_t)b];
+            recv = (int64_t)u;
+        }
         memcpy(before, d->status.rejected, sizeof before);
-        gmmrrtd_inputs_handle(d, input, data + off, len);
+        gmmrrtd_handle_message(d, input, recv, data + off, len);
         check_state(d, before);
         off += len;
     }
-    if (d->have_clock) {
+    if (d->have_time) {
         memcpy(before, d->status.rejected, sizeof before);
-        gmmrrtd_cycle(d, d->clock_utime);
+        gmmrrtd_cycle(d, d->log_now_us);
         check_state(d, before);
     }
     return 0;

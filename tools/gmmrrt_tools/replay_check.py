@@ -6,7 +6,13 @@ the daemon knew at each cycle from the valid inputs, and checks that
 
   * every non-empty plan starts at the robot pose it names (waypoints_t.utime),
   * ends within the goal's tolerance of the goal in force and was made for its task,
-  * is collision-free: robot disc against circles, oriented boxes and people (discs),
+  * is collision-free: robot disc against circles, oriented boxes and people (discs), with no
+    tolerance beyond floating-point rounding (CLEARANCE_SLACK_M): the planner refuses any tree
+    edge that comes within 1 mm of an obstacle or person, and every published chord passes the
+    same check (planner/src/path.c), so a plan's clearance is >= 0 exactly. The checker samples
+    each chord every 2 cm, so it can miss a violation between samples but never invent one. A
+    people list the daemon reports stale (planner_status_t.stale_inputs) was dropped: the plan
+    is checked without people then,
   * every empty plan (a stop) carries a non-zero status saying why,
   * cycles come at the promised rate (log clock: one per period of input time; live: the
     median interval between status messages within 15 % of the period),
@@ -28,6 +34,9 @@ import lcm
 from gmmrrt import nav_goal_t, obstacles_t, people_t, planner_status_t, pose2d_t, waypoints_t
 
 REASONS = {getattr(planner_status_t, n): n for n in dir(planner_status_t) if n.startswith("REJECT_")}
+# Rounding between this Python and the planner's C, m; not a safety margin (module comment).
+CLEARANCE_SLACK_M = 1e-6
+LIVE_INPUTS = ("ROBOT_POSE", "PEOPLE", "NAV_GOAL", "OBSTACLES")
 
 
 def read_events(path):
@@ -159,11 +168,40 @@ def plan_clearance(plan, obstacles, people, robot_radius, person_radius, step=0.
     return worst_static, worst_people
 
 
+def _live_candidates(recorded):
+    """Live: for each plan (by its position in the recording), the inputs the daemon may have
+    planned with. The recording (lcm-logger on the same multicast group) holds the inputs and the
+    outputs in the order they reached one socket: the daemon had received the pose its plan
+    names before planning and published the plan after, so the goal, people and obstacles in
+    force were among those valid ones recorded from the last one before that pose up to the plan.
+    Order, not time: nothing here races a stalled player."""
+    out = {}
+    latest = {c: None for c in LIVE_INPUTS}
+    since = {c: [] for c in LIVE_INPUTS}
+    pose_pos = {}  # pose utime -> snapshot of the latest inputs when it was recorded
+    for _, channel, data in recorded:
+        if channel in LIVE_INPUTS:
+            m = _valid(channel, data)
+            if m is None:
+                continue
+            if channel == "ROBOT_POSE":
+                pose_pos[m.utime] = {c: len(since[c]) - 1 for c in LIVE_INPUTS}
+            since[channel].append(m)
+        elif channel == "PLAN":
+            plan = waypoints_t.decode(data)
+            snap = pose_pos.get(plan.utime)
+            out[plan.seq] = {c: (since[c][max(snap[c], 0):] if snap is not None else since[c][-1:]) or [None]
+                             for c in LIVE_INPUTS}
+    return out
+
+
 def check(in_log, out_log, rate_hz=10.0, robot_radius=0.3, person_radius=0.25, expected_rejected=None,
-          live=False, static_slack=0.03, people_slack=0.08, live_window_us=300_000):
-    """Returns (summary, failures). failures is a list of one-line reasons; empty = all checks pass."""
+          live=False, static_slack=CLEARANCE_SLACK_M, people_slack=CLEARANCE_SLACK_M):
+    """Returns (summary, failures). failures is a list of one-line reasons; empty = all checks pass.
+    live: out_log was recorded by lcm-logger with the input channels too (see _live_candidates)."""
     lines, first, last = read_inputs(in_log)
     cycles = read_outputs(out_log)
+    live_sets = _live_candidates(read_events(out_log)) if live else {}
     failures = []
     period_us = 1e6 / rate_hz
     plans = [c for c in cycles if c[2] is not None]
@@ -182,19 +220,21 @@ def check(in_log, out_log, rate_hz=10.0, robot_radius=0.3, person_radius=0.25, e
         elif math.hypot(plan.x[0] - pose.x, plan.y[0] - pose.y) > 1e-3:
             failures.append("plan seq %d starts at (%.3f, %.3f), the robot was at (%.3f, %.3f)"
                             % (plan.seq, plan.x[0], plan.y[0], pose.x, pose.y))
-        goal = lines["NAV_GOAL"].latest_before(tick, inclusive=live)
-        # Live: the daemon's clock runs ahead of the messages in flight, so the goal in force may
-        # be any valid goal sent within live_window_us around the cycle.
-        candidates = [goal] if goal is not None else []
         if live:
-            early = lines["NAV_GOAL"].latest_before(tick - live_window_us) if tick else None
-            candidates += [g for g in lines["NAV_GOAL"].msgs if abs(g.utime - tick) <= live_window_us]
-            candidates += [early] if early is not None else []
-        if not candidates:
+            cand = live_sets.get(plan.seq, {c: [None] for c in LIVE_INPUTS})
+            goals = [g for g in cand["NAV_GOAL"] if g is not None]
+            obst_c, ppl_c = cand["OBSTACLES"], cand["PEOPLE"]
+        else:
+            goal = lines["NAV_GOAL"].latest_before(tick)
+            goals = [goal] if goal is not None else []
+            obst_c, ppl_c = [lines["OBSTACLES"].latest_before(tick)], [lines["PEOPLE"].latest_before(tick)]
+        if status.stale_inputs & planner_status_t.STALE_PEOPLE:
+            ppl_c = [None]  # the daemon dropped a stale people list
+        if not goals:
             failures.append("plan seq %d made before any goal" % plan.seq)
         else:
             n = plan.num_waypoints
-            ends = [(math.hypot(plan.x[n - 1] - g.x, plan.y[n - 1] - g.y) - g.tolerance_m, g) for g in candidates]
+            ends = [(math.hypot(plan.x[n - 1] - g.x, plan.y[n - 1] - g.y) - g.tolerance_m, g) for g in goals]
             margin, goal = min(ends, key=lambda e: e[0])
             d = margin + goal.tolerance_m
             if plan.task != goal.task:
@@ -202,14 +242,14 @@ def check(in_log, out_log, rate_hz=10.0, robot_radius=0.3, person_radius=0.25, e
             if d > goal.tolerance_m + 1e-6:
                 failures.append("plan seq %d ends %.3f m from the goal (%.2f, %.2f), tolerance %.2f"
                                 % (plan.seq, d, goal.x, goal.y, goal.tolerance_m))
-        obst = lines["OBSTACLES"].latest_before(tick, inclusive=live)
-        ppl = lines["PEOPLE"].latest_before(tick, inclusive=live)
-        cs, cp = plan_clearance(plan, obst, ppl, robot_radius, person_radius)
+        # The plan must be clear of the inputs it was made with: of one candidate each (one only, log).
+        cs = max(plan_clearance(plan, o, None, robot_radius, person_radius)[0] for o in obst_c)
+        cp = max(plan_clearance(plan, None, q, robot_radius, person_radius)[1] for q in ppl_c)
         worst_static, worst_people = min(worst_static, cs), min(worst_people, cp)
         if cs < -static_slack:
-            failures.append("plan seq %d goes %.3f m into an obstacle" % (plan.seq, -cs))
+            failures.append("plan seq %d goes %.4f m into an obstacle" % (plan.seq, -cs))
         if cp < -people_slack:
-            failures.append("plan seq %d goes %.3f m into a person" % (plan.seq, -cp))
+            failures.append("plan seq %d goes %.4f m into a person" % (plan.seq, -cp))
         lengths.append(plan.length_m)
         costs.append(plan.total_cost)
 
@@ -282,7 +322,8 @@ def main(argv=None):
     ap.add_argument("--rate-hz", type=float, default=10.0)
     ap.add_argument("--robot-radius", type=float, default=0.3)
     ap.add_argument("--person-radius", type=float, default=0.25)
-    ap.add_argument("--live", action="store_true", help="output recorded live (lcm-logger), not by the log clock")
+    ap.add_argument("--live", action="store_true",
+                    help="output recorded live by lcm-logger with the input channels too, not by the log clock")
     ap.add_argument("--expected", help="scenarios.json with expected_rejected per scenario")
     ap.add_argument("--scenario", help="scenario name in --expected")
     args = ap.parse_args(argv)

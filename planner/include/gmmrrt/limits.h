@@ -37,6 +37,12 @@
 #define GMMRRT_MAX_WAYPOINTS 256
 #endif
 
+/* Largest weight of a cost term (w_length, w_task). An edge costs at most (w_length + w_task)
+ * times its length (the task term's factor delta / max(p, delta) is <= 1), so with weights up
+ * to 1e6 a path's cost stays far inside a double; 1e308 turned every cost into inf and every
+ * plan into "no path yet". Not overridable: it guards arithmetic, not memory. */
+#define GMMRRT_MAX_COST_WEIGHT 1e6
+
 /* Tree nodes: nodes link by int32_t index, so the ceiling keeps every index and
  * every byte offset into the pool well inside int32_t. */
 #define GMMRRT_MAX_NODES_CEILING (1 << 22)

@@ -82,6 +82,13 @@ gmmrrt_status_t gmmrrt_planner_init(gmmrrt_planner_t **out, void *mem, size_t si
  * GMMRRT_ERR_BUFFER_TOO_SMALL (world larger than grid_max_cells). */
 gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_problem_t *problem);
 
+/* Whether `model` can drive a planner configured by `cfg` (the rule set_problem applies to a
+ * task's model): GMM-RRT* needs a features model (D = 2), GMM-RRT an xy model (D = 3), and a
+ * usable delta when the config gives none; RRT* uses no model (always GMMRRT_OK).
+ * GMMRRT_OK, GMMRRT_ERR_MODEL_MISMATCH, or GMMRRT_ERR_INVALID_ARGUMENT for a NULL cfg.
+ * Lets a caller refuse a model when it is loaded instead of at every planning call. */
+gmmrrt_status_t gmmrrt_planner_model_fits(const gmmrrt_planner_config_t *cfg, const gmmrrt_model_t *model);
+
 /* Warm start: inserts a previous path (world x-y points, start first) into the fresh tree
  * where its edges are still free. Call right after set_problem. */
 gmmrrt_status_t gmmrrt_planner_seed_path(gmmrrt_planner_t *p, const double *x, const double *y, int32_t n);

@@ -43,12 +43,9 @@ typedef enum {
     /* Planning outcomes that are not failures of the call */
     GMMRRT_NO_PATH_YET = 40,             /* budget spent, goal not reached (yet) */
     GMMRRT_POOL_FULL = 41,               /* node pool exhausted; best path so far kept */
-    GMMRRT_TIMEOUT = 42,                 /* deadline reached before any work could be done */
+    GMMRRT_TIMEOUT = 42                  /* deadline reached before any work could be done */
 
-    /* Why gmmrrtd published a stop (an empty plan) when the planner was not asked */
-    GMMRRT_STOP_POSE_STALE = 50,         /* no robot pose newer than the configured limit */
-    GMMRRT_STOP_NO_MODEL = 51,           /* no usable model for the goal's task */
-    GMMRRT_STOP_UNKNOWN_TARGET = 52      /* the person to approach is not among the tracked people */
+    /* 50 and above are not the library's: gmmrrtd's stop codes (planner/daemon/stop.h). */
 } gmmrrt_status_t;
 
 /* A short, static, human-readable description of `status` ("start in collision").

@@ -1,10 +1,11 @@
 /*
- * test_timeguard.c - unit tests of gmmrrtd's time guard (planner/daemon/inputs.c,
- * docs/daemon.md "Clock steps"; issue 6, "timestamps going backwards"): the bounded-future
- * rule (REJECT_TIME_FUTURE) and the resynchronisation after time_resync_count consecutive
- * messages of one channel off the clock in the same direction (REJECT_CLOCK_RESYNC), driven
- * through gmmrrtd_inputs_handle with encoded pose2d_t / people_t messages. No goal is ever
- * sent, so the cycles that fall due are idle and need no model or planner.
+ * test_timeguard.c - gmmrrtd's inputs through its seam gmmrrtd_handle_message (the function
+ * behind the LCM handlers), log mode, with a real planner: no sender can drag the daemon's
+ * time (a ratchet of goal re-sends, a far-future first stamp, a tracker whose clock is ahead),
+ * each input goes stale on its own timeout (a stale people list is dropped, a stale obstacle
+ * list stops), every stop is counted by reason, and a goal whose planning box does not fit the
+ * clearance grid gets its own counted reason. Arrivals are passed explicitly (the recorder's
+ * receive time of a log), so each case says when a message came and what it claimed.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -17,15 +18,10 @@
 
 #include "daemon.h"
 
+#define S ((int64_t)1000000)
+#define MS ((int64_t)1000)
 #define T0 ((int64_t)1700000000000000)
-#define HOUR_US ((int64_t)3600000000)
-#define RESYNC 10
-
-enum {
-    FUTURE = GMMRRT_PLANNER_STATUS_T_REJECT_TIME_FUTURE,
-    BACKWARDS = GMMRRT_PLANNER_STATUS_T_REJECT_TIME_BACKWARDS,
-    RESYNCS = GMMRRT_PLANNER_STATUS_T_REJECT_CLOCK_RESYNC,
-};
+#define ST(x) GMMRRT_PLANNER_STATUS_T_##x
 
 static gmmrrtd_t g_d;
 
@@ -35,8 +31,17 @@ static int setup(void **state)
     memset(d, 0, sizeof *d);
     gmmrrtd_log_set_level(GMMRRTD_LOG_ERROR);
     gmmrrtd_settings_default(&d->set);
-    d->set.time_resync_count = RESYNC;
+    d->set.budget_ms = 0.0;
+    d->set.budget_iterations = 200;
+    d->set.cfg.max_nodes = 1024;
+    d->set.cfg.seed = 7;
+    d->set.cfg.planner = GMMRRT_PLANNER_RRT_STAR; /* no model needed: these cases are about inputs */
     d->clock_mode = GMMRRTD_CLOCK_LOG;
+    d->staged.input = -1;
+    d->mem_size = gmmrrt_planner_mem_size(&d->set.cfg);
+    d->mem = aligned_alloc(64, (d->mem_size + 63u) / 64u * 64u);
+    assert_non_null(d->mem);
+    assert_int_equal(gmmrrt_planner_init(&d->planner, d->mem, d->mem_size, &d->set.cfg), GMMRRT_OK);
     d->lcm_in = d->lcm_out = lcm_create("file:///dev/null?mode=w");
     assert_non_null(d->lcm_out);
     *state = d;
@@ -47,10 +52,11 @@ static int teardown(void **state)
 {
     gmmrrtd_t *d = *state;
     lcm_destroy(d->lcm_out);
+    free(d->mem);
     return 0;
 }
 
-static void send_pose(gmmrrtd_t *d, int64_t utime, double x)
+static void send_pose(gmmrrtd_t *d, int64_t recv, int64_t utime, double x)
 {
     gmmrrt_pose2d_t m;
     memset(&m, 0, sizeof m);
@@ -59,148 +65,190 @@ static void send_pose(gmmrrtd_t *d, int64_t utime, double x)
     uint8_t buf[256];
     const int n = gmmrrt_pose2d_t_encode(buf, 0, (int)sizeof buf, &m);
     assert_true(n > 0);
-    gmmrrtd_inputs_handle(d, GMMRRTD_IN_POSE, buf, (size_t)n);
+    gmmrrtd_handle_message(d, GMMRRTD_IN_POSE, recv, buf, (size_t)n);
 }
 
-static void send_people(gmmrrtd_t *d, int64_t utime)
+static void send_people(gmmrrtd_t *d, int64_t recv, int64_t utime, int n_people)
 {
     static gmmrrt_people_t m;
-    static uint8_t buf[8192];
+    static uint8_t buf[16384];
     memset(&m, 0, sizeof m);
     m.utime = utime;
+    m.num_people = n_people;
+    for (int i = 0; i < n_people; ++i) {
+        m.people[i].id = i + 1;
+        m.people[i].x = 2.0;
+        m.people[i].y = 1.5 + i;
+    }
     const int n = gmmrrt_people_t_encode(buf, 0, (int)sizeof buf, &m);
     assert_true(n > 0);
-    gmmrrtd_inputs_handle(d, GMMRRTD_IN_PEOPLE, buf, (size_t)n);
+    gmmrrtd_handle_message(d, GMMRRTD_IN_PEOPLE, recv, buf, (size_t)n);
 }
 
-/* Poses every 100 ms from T0 for n messages; returns the last utime. */
-static int64_t good_poses(gmmrrtd_t *d, int64_t from, int n)
+static void send_goal(gmmrrtd_t *d, int64_t recv, int64_t utime, double x, double y)
+{
+    gmmrrt_nav_goal_t m;
+    memset(&m, 0, sizeof m);
+    m.utime = utime;
+    m.x = x;
+    m.y = y;
+    m.tolerance_m = 0.3;
+    m.task = GMMRRT_NAV_GOAL_T_TASK_AVOID;
+    uint8_t buf[256];
+    const int n = gmmrrt_nav_goal_t_encode(buf, 0, (int)sizeof buf, &m);
+    assert_true(n > 0);
+    gmmrrtd_handle_message(d, GMMRRTD_IN_GOAL, recv, buf, (size_t)n);
+}
+
+static void send_obstacles(gmmrrtd_t *d, int64_t recv, int64_t utime)
+{
+    static gmmrrt_obstacles_t m;
+    static uint8_t buf[16384];
+    memset(&m, 0, sizeof m);
+    m.utime = utime;
+    m.num_circles = 1;
+    m.circle_x[0] = 2.0;
+    m.circle_y[0] = -1.5;
+    m.circle_radius[0] = 0.3;
+    const int n = gmmrrt_obstacles_t_encode(buf, 0, (int)sizeof buf, &m);
+    assert_true(n > 0);
+    gmmrrtd_handle_message(d, GMMRRTD_IN_OBSTACLES, recv, buf, (size_t)n);
+}
+
+/* Poses at 10 Hz for n messages from local time l (stamps T0 + l); the plans that follow. */
+static void drive(gmmrrtd_t *d, int64_t l, int n)
 {
     for (int i = 0; i < n; ++i)
-        send_pose(d, from + (int64_t)i * 100000, (double)i);
-    return from + (int64_t)(n - 1) * 100000;
+        send_pose(d, l + i * 100 * MS, T0 + l + i * 100 * MS, 0.01 * i);
 }
 
-static void test_one_future_pose_changes_nothing(void **state)
+static void test_ratchet_of_goal_resends_stops_nothing(void **state)
 {
     gmmrrtd_t *d = *state;
-    const int64_t last = good_poses(d, T0, 10);
-    send_pose(d, last + HOUR_US, 99.0);
-    assert_int_equal(d->status.rejected[FUTURE], 1);
-    assert_true(d->clock_utime == last);
-    assert_true(d->pose.utime == last && d->pose.x != 99.0);
-    good_poses(d, last + 100000, 10); /* the next good poses are all accepted */
-    assert_int_equal(d->status.rejected[FUTURE], 1);
-    assert_int_equal(d->status.rejected[BACKWARDS], 0);
-    assert_int_equal(d->status.rejected[RESYNCS], 0);
-    assert_true(d->pose.utime == last + 1000000);
+    send_goal(d, 0, T0, 4.0, 0.0);
+    drive(d, 0, 20);
+    const int64_t cycles_before = d->cycles;
+    for (int i = 1; i <= 60; ++i) /* the same goal, each re-send stamped 1.9 s later, 2 ms apart */
+        send_goal(d, 1950 * MS + i * 2 * MS, T0 + 1950 * MS + i * 1900 * MS, 4.0, 0.0);
+    drive(d, 2100 * MS, 100);
+    /* 10 s of log: 100 cycles, each with a plan; no stop of any kind. */
+    assert_int_equal(d->cycles - cycles_before, 101);
+    for (int i = 0; i < ST(NUM_STOP_REASONS); ++i)
+        assert_int_equal(d->status.stops[i], 0);
+    assert_int_equal(d->status.rejected[ST(REJECT_CLOCK_RESYNC)], 0);
+    assert_true(d->status.rejected[ST(REJECT_TIME_FUTURE)] >= 55);
+    assert_int_equal(d->status.state, ST(STATE_PLANNING));
+    /* A new correctly stamped goal on the attacked channel is taken at once. */
+    send_goal(d, 12100 * MS, T0 + 12100 * MS, 3.0, 0.5);
+    drive(d, 12150 * MS, 3);
+    assert_true(d->goal.x == 3.0);
 }
 
-static void test_log_bound_allows_silence(void **state)
+static void test_far_future_first_goal_stops_nothing(void **state)
 {
     gmmrrtd_t *d = *state;
-    const int64_t last = good_poses(d, T0, 5);
-    /* A 50 s silence in a log is within log_max_future_ms (60 s): accepted at once. */
-    send_pose(d, last + 50 * (int64_t)1000000, 1.0);
-    assert_int_equal(d->status.rejected[FUTURE], 0);
-    assert_true(d->clock_utime == last + 50 * (int64_t)1000000);
-    /* With the bound at 1 s the same jump is refused. */
-    d->set.log_max_future_ms = 1000.0;
-    send_pose(d, d->clock_utime + 2 * (int64_t)1000000, 2.0);
-    assert_int_equal(d->status.rejected[FUTURE], 1);
+    send_goal(d, 0, GMMRRTD_MAX_UTIME - 1, 4.0, 0.0);
+    drive(d, 50 * MS, 50);
+    assert_int_equal(d->status.stops[ST(STOP_POSE_STALE)], 0);
+    assert_int_equal(d->status.state, ST(STATE_PLANNING));
 }
 
-static void test_live_bound(void **state)
+static void test_far_future_first_pose_costs_no_stop(void **state)
 {
     gmmrrtd_t *d = *state;
-    d->clock_mode = GMMRRTD_CLOCK_LIVE;
-    const int64_t last = good_poses(d, T0, 3);
-    send_pose(d, last + 3 * (int64_t)1000000, 1.0); /* 3 s ahead, limit 2 s */
-    assert_int_equal(d->status.rejected[FUTURE], 1);
-    assert_true(d->clock_utime == last);
-    send_pose(d, last + 1 * (int64_t)1000000, 2.0); /* 1 s ahead: a late clock, accepted */
-    assert_int_equal(d->status.rejected[FUTURE], 1);
-    assert_true(d->clock_utime == last + 1000000);
+    send_goal(d, 0, T0, 4.0, 0.0);
+    send_pose(d, 10 * MS, GMMRRTD_MAX_UTIME - 1, 0.0);
+    drive(d, 100 * MS, 30); /* the next correct pose replaces the unconfirmed first offset */
+    assert_int_equal(d->status.stops[ST(STOP_POSE_STALE)], 0);
+    assert_int_equal(d->status.state, ST(STATE_PLANNING));
 }
 
-static void test_forward_step_resyncs(void **state)
+static void skew_case(gmmrrtd_t *d, int64_t skew_us)
 {
-    gmmrrtd_t *d = *state;
-    const int64_t last = good_poses(d, T0, 10);
-    const int64_t stepped = last + HOUR_US;
-    for (int i = 1; i < RESYNC; ++i) {
-        send_pose(d, stepped + (int64_t)i * 100000, 0.0);
-        assert_int_equal(d->status.rejected[RESYNCS], 0);
+    send_goal(d, 0, T0, 4.0, 0.0);
+    for (int i = 0; i < 100; ++i) { /* tracker on a second computer, its clock skew_us ahead */
+        send_pose(d, i * 100 * MS, T0 + i * 100 * MS, 0.01 * i);
+        send_people(d, i * 100 * MS + 30 * MS, T0 + i * 100 * MS + 30 * MS + skew_us, 1);
     }
-    assert_int_equal(d->status.rejected[FUTURE], RESYNC - 1);
-    assert_true(d->clock_utime == last);
-    send_pose(d, stepped + (int64_t)RESYNC * 100000, 5.0);
-    assert_int_equal(d->status.rejected[FUTURE], RESYNC - 1);
-    assert_int_equal(d->status.rejected[RESYNCS], 1);
-    assert_true(d->clock_utime == stepped + (int64_t)RESYNC * 100000);
-    assert_true(d->pose.x == 5.0);
-    /* Other channels on the new time line are accepted right away. */
-    send_people(d, stepped + (int64_t)RESYNC * 100000 + 50000);
-    assert_true(d->last_utime[GMMRRTD_IN_PEOPLE] == stepped + (int64_t)RESYNC * 100000 + 50000);
-    assert_int_equal(d->status.rejected[FUTURE], RESYNC - 1);
+    for (int i = 0; i < ST(NUM_REJECT_REASONS); ++i)
+        assert_int_equal(d->status.rejected[i], 0);
+    for (int i = 0; i < ST(NUM_STOP_REASONS); ++i)
+        assert_int_equal(d->status.stops[i], 0);
+    assert_int_equal(d->status.stale_inputs, 0);
+    assert_int_equal(d->problem.obstacles.num_people, 1); /* the people are planned around */
 }
 
-static void test_backward_step_resyncs(void **state)
-{
-    gmmrrtd_t *d = *state;
-    const int64_t last = good_poses(d, T0 + HOUR_US, 10);
-    send_people(d, last);
-    for (int i = 1; i < RESYNC; ++i)
-        send_pose(d, T0 + (int64_t)i * 100000, 0.0);
-    assert_int_equal(d->status.rejected[BACKWARDS], RESYNC - 1);
-    assert_int_equal(d->status.rejected[RESYNCS], 0);
-    send_pose(d, T0 + (int64_t)RESYNC * 100000, 7.0);
-    assert_int_equal(d->status.rejected[RESYNCS], 1);
-    assert_true(d->clock_utime == T0 + (int64_t)RESYNC * 100000);
-    assert_true(d->pose.x == 7.0);
-    /* The people channel's order restarts with the clock: its next message (on the new time
-     * line, hence older than its last one) is accepted. */
-    send_people(d, T0 + (int64_t)RESYNC * 100000 + 50000);
-    assert_int_equal(d->status.rejected[BACKWARDS], RESYNC - 1);
-    assert_true(d->last_utime[GMMRRTD_IN_PEOPLE] == T0 + (int64_t)RESYNC * 100000 + 50000);
-}
+static void test_tracker_0_6_s_ahead(void **state) { skew_case(*state, 600 * MS); }
+static void test_tracker_1_9_s_ahead(void **state) { skew_case(*state, 1900 * MS); }
 
-static void test_good_messages_break_the_run(void **state)
+static void test_stale_people_are_dropped_and_counted_once(void **state)
 {
     gmmrrtd_t *d = *state;
-    int64_t t = good_poses(d, T0, 5);
-    for (int round = 0; round < 3; ++round) {
-        for (int i = 0; i < RESYNC - 1; ++i)
-            send_pose(d, t + HOUR_US, 0.0); /* a stray run one short of a resync */
-        t += 100000;
-        send_pose(d, t, 1.0); /* one good pose in between */
+    send_goal(d, 0, T0, 4.0, 0.0);
+    for (int i = 0; i < 10; ++i) {
+        send_pose(d, i * 100 * MS, T0 + i * 100 * MS, 0.0);
+        send_people(d, i * 100 * MS + 10 * MS, T0 + i * 100 * MS + 10 * MS, 1);
     }
-    assert_int_equal(d->status.rejected[FUTURE], 3 * (RESYNC - 1));
-    assert_int_equal(d->status.rejected[RESYNCS], 0);
-    assert_true(d->clock_utime == t);
+    assert_int_equal(d->problem.obstacles.num_people, 1);
+    drive(d, 1000 * MS, 30); /* the tracker went quiet: after people_timeout_ms (1 s) it is forgotten */
+    assert_int_equal(d->problem.obstacles.num_people, 0);
+    assert_true(d->status.stale_inputs & ST(STALE_PEOPLE));
+    assert_int_equal(d->status.rejected[ST(REJECT_PEOPLE_STALE)], 1);
+    assert_int_equal(d->status.state, ST(STATE_PLANNING)); /* people gone is no reason to stop */
+    send_people(d, 4000 * MS, T0 + 4000 * MS, 1);
+    drive(d, 4010 * MS, 3);
+    assert_int_equal(d->problem.obstacles.num_people, 1);
+    assert_int_equal(d->status.stale_inputs, 0);
 }
 
-static void test_directions_do_not_add_up(void **state)
+static void test_stale_obstacles_stop_when_a_timeout_is_set(void **state)
 {
     gmmrrtd_t *d = *state;
-    const int64_t last = good_poses(d, T0 + HOUR_US, 5);
-    for (int i = 0; i < 2 * RESYNC; ++i)
-        send_pose(d, i % 2 ? last + HOUR_US : T0, 0.0); /* future, backwards, future, ... */
-    assert_int_equal(d->status.rejected[FUTURE] + d->status.rejected[BACKWARDS], 2 * RESYNC);
-    assert_int_equal(d->status.rejected[RESYNCS], 0);
-    assert_true(d->clock_utime == last);
+    d->set.obstacles_timeout_ms = 1500.0;
+    send_goal(d, 0, T0, 4.0, 0.0);
+    send_obstacles(d, 0, T0);
+    drive(d, 0, 40);
+    assert_true(d->status.stops[ST(STOP_OBSTACLES_STALE)] > 0);
+    assert_int_equal(d->status.rejected[ST(REJECT_OBSTACLES_STALE)], 1);
+    assert_true(d->status.stale_inputs & ST(STALE_OBSTACLES));
+    assert_int_equal(d->plan_msg.status, GMMRRTD_STOP_OBSTACLES_STALE);
+}
+
+static void test_stale_pose_stops_are_counted(void **state)
+{
+    gmmrrtd_t *d = *state;
+    send_goal(d, 0, T0, 4.0, 0.0);
+    drive(d, 0, 5);
+    send_people(d, 2000 * MS, T0 + 2000 * MS, 0); /* time passes, no pose */
+    assert_true(d->status.stops[ST(STOP_POSE_STALE)] >= 10);
+    assert_int_equal(d->status.rejected[ST(REJECT_POSE_STALE)], 1);
+    assert_int_equal(d->plan_msg.status, GMMRRTD_STOP_POSE_STALE);
+}
+
+static void test_goal_beyond_the_grid_has_a_counted_reason(void **state)
+{
+    gmmrrtd_t *d = *state;
+    send_goal(d, 0, T0, 46.0, 0.0); /* 52 x 6 m at 0.05 m: more than the default 2^20 cells? */
+    d->set.cfg.grid_max_cells = 1000; /* the planner block keeps its size; only the check changes */
+    assert_int_equal(gmmrrt_planner_init(&d->planner, d->mem, d->mem_size, &d->set.cfg), GMMRRT_OK);
+    drive(d, 0, 10);
+    assert_int_equal(d->status.rejected[ST(REJECT_PLANNING_BOX)], 1);
+    assert_true(d->status.stops[ST(STOP_PLANNING_BOX)] >= 9);
+    assert_int_equal(d->plan_msg.status, GMMRRTD_STOP_PLANNING_BOX);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test_setup_teardown(test_one_future_pose_changes_nothing, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_log_bound_allows_silence, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_live_bound, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_forward_step_resyncs, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_backward_step_resyncs, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_good_messages_break_the_run, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_directions_do_not_add_up, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_ratchet_of_goal_resends_stops_nothing, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_far_future_first_goal_stops_nothing, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_far_future_first_pose_costs_no_stop, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_tracker_0_6_s_ahead, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_tracker_1_9_s_ahead, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_stale_people_are_dropped_and_counted_once, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_stale_obstacles_stop_when_a_timeout_is_set, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_stale_pose_stops_are_counted, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_goal_beyond_the_grid_has_a_counted_reason, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
