@@ -42,6 +42,8 @@ const char kFitHelp[] =
     "  -r, --k-range A..B      range of the BIC sweep (default 1..30; implies --k auto)\n"
     "  -P, --bic-patience N    stop the sweep once N K in a row have a BIC above the lowest\n"
     "                          so far (default 3; 0 fits the whole range)\n"
+    "  -L, --split-starts N    BIC sweep: splits of the K - 1 fit screened as extra starts for K\n"
+    "                          (default 4; 0: fresh k-means++ starts only)\n"
     "  -S, --seed S            random seed (default 1); same seed, same model\n"
     "  -R, --restarts N        candidate starts (k-means++ + Lloyd + 20 EM steps each, on a\n"
     "                          seeded sample of 20 000 points when there are more); the best\n"
@@ -93,12 +95,12 @@ int RunFit(int argc, char** argv) {
       {"output", required_argument, nullptr, 'o'},
       {"quiet", no_argument, nullptr, 'q'},          {"help", no_argument, nullptr, 'h'},
       {"bic-patience", required_argument, nullptr, 'P'}, {"screen-points", required_argument, nullptr, 'p'},
-      {"accel", required_argument, nullptr, 'A'},    {"threads", required_argument, nullptr, 'j'},
+      {"accel", required_argument, nullptr, 'A'},    {"split-starts", required_argument, nullptr, 'L'},    {"threads", required_argument, nullptr, 'j'},
       {nullptr, 0, nullptr, 0}};
   DataSpec spec;
   FitOptions options;
   std::string output, task_name, homotopy_name = "all", kind_name, angle_dims, k_text;
-  int k_min = 1, k_max = 30, bic_patience = kBicStopAfterRises;
+  int k_min = 1, k_max = 30, bic_patience = kBicStopAfterRises, split_starts = kBicSplitStarts;
   bool auto_k = false, k_range_given = false;
   double delta = GMMRRT_MODEL_DEFAULT_DELTA;
   // Data-driven delta by default (delta_quantile.hpp); --delta X stores a fixed one (the paper's 0.001).
@@ -107,7 +109,7 @@ int RunFit(int argc, char** argv) {
   bool delta_given = false;
   optind = 1;
   int c;
-  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:p:S:R:m:T:A:j:d:Q:o:qh", kLong, nullptr)) != -1) {
+  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:L:p:S:R:m:T:A:j:d:Q:o:qh", kLong, nullptr)) != -1) {
     const std::string arg = optarg ? optarg : "";
     long v = 0;
     switch (c) {
@@ -136,6 +138,11 @@ int RunFit(int argc, char** argv) {
         if (!ParseInt(arg, 0, GMMRRT_MAX_K, &v))
           return UsageError(cmd, "--bic-patience '" + arg + "' is not in 0.." + std::to_string(GMMRRT_MAX_K));
         bic_patience = static_cast<int>(v);
+        break;
+      case 'L':
+        if (!ParseInt(arg, 0, GMMRRT_MAX_K, &v))
+          return UsageError(cmd, "--split-starts '" + arg + "' is not in 0.." + std::to_string(GMMRRT_MAX_K));
+        split_starts = static_cast<int>(v);
         break;
       case 'p':
         if (!ParseInt(arg, 0, 1000000000, &v)) return UsageError(cmd, "--screen-points '" + arg + "' is not in 0..1e9");
@@ -241,7 +248,7 @@ int RunFit(int argc, char** argv) {
         std::fprintf(stderr, "K = %d: mean log-likelihood %.6f, BIC %.3f, %d iterations\n", r.k,
                      r.mean_log_likelihood, r.bic, r.iterations);
     };
-    if (!(s = SweepBic(points, mask, options, k_min, k_max, &sweep, on_row, bic_patience)).ok())
+    if (!(s = SweepBic(points, mask, options, k_min, k_max, &sweep, on_row, bic_patience, split_starts)).ok())
       return Fail(cmd, DescribeData(spec) + ": " + s.message);
     std::fputs(FormatBicTable(sweep).c_str(), stdout);
     std::printf("chosen K = %d (lowest BIC)\n", sweep.best_k);

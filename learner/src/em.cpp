@@ -40,6 +40,11 @@ bool FitOptions::IsValid(std::string* error) const {
   if (max_reseeds < -1) return fail("max_reseeds must be >= 0 (or -1 for 3 K)");
   if (screen_points < 0) return fail("screen_points must be >= 0");
   if (threads < 0) return fail("threads must be >= 0 (0: the available cores)");
+  for (size_t e = 0; e < extra_starts.size(); ++e) {
+    if (extra_starts[e].k() != k) return fail("extra start " + std::to_string(e) + " has K != k");
+    const Status st = ValidateMixture(extra_starts[e]);
+    if (!st.ok()) return fail("extra start " + std::to_string(e) + ": " + st.message);
+  }
   return true;
 }
 
@@ -532,7 +537,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   ko.k = options.k;
   ko.restarts = 1;
   ko.max_iterations = options.kmeans_max_iterations;
-  std::vector<EmRun> runs(options.restarts);
+  std::vector<EmRun> runs(options.restarts + options.extra_starts.size());
   int best = -1;
   for (int r = 0; r < options.restarts; ++r) {
     KMeansResult km;
@@ -561,6 +566,20 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     if (run.m.k() > 0 && (best < 0 || run.ll.back() > runs[best].ll.back())) best = r;
     if (options.restarts > 1 && options.progress && run.m.k() > 0)
       options.progress(r, static_cast<int>(run.ll.size()) - 1, run.ll.back());
+  }
+  for (size_t e = 0; e < options.extra_starts.size(); ++e) {
+    const Mixture& start = options.extra_starts[e];
+    if (start.dim != d || start.angle_mask != angle_mask)
+      return Status::Error(StatusCode::kInvalidArgument,
+                           "extra start " + std::to_string(e) + " has another dimension or angle mask");
+    const int r = options.restarts + static_cast<int>(e);
+    EmRun& run = runs[r];
+    run.restart = r;
+    run.m = start;
+    WrapAngleRows(angle_mask, &run.m.means);
+    Advance(screen, &run, options.screen_iterations);
+    if (run.m.k() > 0 && (best < 0 || run.ll.back() > runs[best].ll.back())) best = r;
+    if (options.progress && run.m.k() > 0) options.progress(r, static_cast<int>(run.ll.size()) - 1, run.ll.back());
   }
   if (best < 0) return Status::Error(StatusCode::kNumericalFailure, "every component degenerate in every restart");
   EmRun& run = runs[best];

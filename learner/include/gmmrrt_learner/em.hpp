@@ -19,7 +19,8 @@
 // extrapolated mixture is at least as likely as the EM iterate (otherwise the plain EM step).
 //
 // Restarts: `restarts` candidates, each k-means++ + Lloyd, one M-step from the hard labels and
-// screen_iterations EM steps; the one with the highest mean log-likelihood runs to convergence.
+// screen_iterations EM steps, plus any extra_starts given (screen_iterations EM steps each);
+// the one with the highest mean log-likelihood runs to convergence.
 // On large data (N > screen_points) the candidates are built and screened on a seeded random
 // subsample and only the kept one runs on all points: the screening ranks starts, for which a
 // sample of 20 000 points is enough, and screening on all points was most of the run time. (On
@@ -70,6 +71,9 @@ struct FitOptions {
   int threads = 0;              // E-step threads; 0: the cores this process may use. The
                                 // result is the same bits for any value (fixed split, sums
                                 // added in a fixed order)
+  // Further candidate starts (each with K = k, this D and angle mask, valid), screened like
+  // the k-means++ ones after them: the BIC sweep passes splits of the best K - 1 mixture.
+  std::vector<Mixture> extra_starts;
   // Progress, may be empty. With restarts > 1: once per candidate after its screening steps,
   // then after each E-step of the kept candidate; with restarts == 1 after each E-step.
   // iteration 0 is the seed mixture; the value is the mean log-likelihood per point.
