@@ -268,3 +268,26 @@ def test_output_that_is_not_a_regular_file_is_refused(tmp_path, blobs_csv):
     r = run("fit", "--features-csv", blobs_csv, "--k", 2, "-o", good_link, "-q")
     assert r.returncode == 0, r.stderr
     assert run("inspect", good_link).returncode == 0
+
+
+def test_inspect_json_holds_the_model(tmp_path, blobs_csv):
+    model = tmp_path / "m.gmm"
+    assert run("fit", "--features-csv", blobs_csv, "--k", 2, "-o", model, "-q").returncode == 0
+    r = run("inspect", "--json", model)
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["kind"] == "generic" and d["dim"] == 2 and d["k"] == 2 and d["angle_dims"] == []
+    assert abs(sum(c["weight"] for c in d["components"]) - 1) < 1e-12
+    text = run("inspect", model).stdout
+    for c in d["components"]:
+        cov = np.array(c["covariance"])
+        chol = np.array(c["chol"])
+        np.testing.assert_allclose(chol @ chol.T, cov, rtol=1e-12, atol=0)
+        assert f"weight {c['weight']:.6f}" in text
+    # A corrupt file: the loader's reason, exit 1, no JSON on stdout.
+    data = bytearray(model.read_bytes())
+    data[40] ^= 1
+    bad = tmp_path / "bad.gmm"
+    bad.write_bytes(bytes(data))
+    r = run("inspect", "--json", bad)
+    assert r.returncode == 1 and r.stdout == "" and "invalid model" in r.stderr
