@@ -525,8 +525,10 @@ ReadResult ReadEpisodeCsv(const std::string& path, std::vector<Episode>* out) {
         int task = 0, homotopy = 0;
         if (!ParseTask(f[1], &task))
             return Fail(where + ": unknown task '" + f[1] + "' (expected avoid or approach)");
-        if (!ParseHomotopy(f[2], &homotopy))
-            return Fail(where + ": unknown homotopy '" + f[2] + "' (expected left, right or frontal)");
+        // An empty homotopy is an unlabelled episode (homotopy 0, as DEMO_INFO's HOMOTOPY_UNKNOWN):
+        // `fit --homotopy all` learns from it; a fit of one side skips it.
+        if (!f[2].empty() && !ParseHomotopy(f[2], &homotopy))
+            return Fail(where + ": unknown homotopy '" + f[2] + "' (expected left, right, frontal or empty)");
         double v[6];
         for (size_t c = 3; c < kCsvColumns; ++c) {
             if (!ParseFiniteDouble(f[c], &v[c - 3]))

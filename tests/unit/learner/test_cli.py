@@ -291,3 +291,13 @@ def test_inspect_json_holds_the_model(tmp_path, blobs_csv):
     bad.write_bytes(bytes(data))
     r = run("inspect", "--json", bad)
     assert r.returncode == 1 and r.stdout == "" and "invalid model" in r.stderr
+
+
+def test_unlabelled_episodes_fit_with_homotopy_all(tmp_path):
+    rows = [(e, t, "", *rest) for (e, t, _h, *rest) in synthetic_episodes()]
+    eps = episodes_csv(tmp_path, rows)
+    model = tmp_path / "all.gmm"
+    r = run("fit", "--input", eps, "--task", "avoid", "--homotopy", "all", "--k", 2, "-o", model, "-q")
+    assert r.returncode == 0, r.stderr
+    r = run("fit", "--input", eps, "--task", "avoid", "--homotopy", "left", "--k", 2, "-o", tmp_path / "l.gmm", "-q")
+    assert r.returncode == 1 and "no episode" in r.stderr and not (tmp_path / "l.gmm").exists()
