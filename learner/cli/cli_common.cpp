@@ -109,6 +109,15 @@ Status LoadPoints(const char* cmd, const DataSpec& spec, Eigen::MatrixXd* points
   return Status::Ok();
 }
 
+std::string DescribeData(const DataSpec& spec) {
+  if (!spec.features_csv.empty()) return spec.features_csv;
+  std::string files;
+  for (const std::string& f : spec.inputs) files += (files.empty() ? "" : ", ") + f;
+  files += std::string(" (task ") + TaskName(spec.task) + ", homotopy " + HomotopyName(spec.homotopy);
+  if (!spec.split.empty()) files += ", split " + spec.split;
+  return files + ")";
+}
+
 Status LoadModel(const std::string& path, gmmrrt_model_t* model) {
   auto scratch = std::make_unique<gmmrrt_model_t>();
   char err[256] = "";

@@ -48,6 +48,10 @@ struct DataSpec {
 // readers go to stderr unless quiet; counts of episodes and points too.
 Status LoadPoints(const char* cmd, const DataSpec& spec, Eigen::MatrixXd* points, uint32_t* angle_mask);
 
+// The data of spec in a few words for error messages: the features CSV, or the episode files
+// with the task, homotopy and split chosen.
+std::string DescribeData(const DataSpec& spec);
+
 // Loads and validates a model file into *model (scratch copy first, as model.h asks).
 Status LoadModel(const std::string& path, gmmrrt_model_t* model);
 

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -41,6 +42,8 @@ const char kFitHelp[] =
     "  -r, --k-range A..B      range of the BIC sweep (default 1..30; implies --k auto)\n"
     "  -P, --bic-patience N    stop the sweep once N K in a row have a BIC above the lowest\n"
     "                          so far (default 3; 0 fits the whole range)\n"
+    "  -L, --split-starts N    BIC sweep: splits of the K - 1 fit screened as extra starts for K\n"
+    "                          (default 4; 0: fresh k-means++ starts only)\n"
     "  -S, --seed S            random seed (default 1); same seed, same model\n"
     "  -R, --restarts N        candidate starts (k-means++ + Lloyd + 20 EM steps each, on a\n"
     "                          seeded sample of 20 000 points when there are more); the best\n"
@@ -48,8 +51,12 @@ const char kFitHelp[] =
     "  -p, --screen-points N   sample size for the candidates when there are more points\n"
     "                          (default 20000; 0 screens on all points)\n"
     "  -m, --max-iter N        EM iteration cap (default 500)\n"
-    "  -T, --tol X             stop when the mean log-likelihood per point changes < X\n"
-    "                          (default 1e-6)\n"
+    "  -T, --tol X             stop when an EM step changes the mean log-likelihood per point\n"
+    "                          by less than X (default 1e-6)\n"
+    "  -A, --accel M           squarem (default): EM accelerated by SQUAREM, never lowering the\n"
+    "                          log-likelihood | none: plain EM\n"
+    "  -j, --threads N         E-step threads (default: the cores available, here %d); the model\n"
+    "                          is the same for any N\n"
     "  -Q, --delta-quantile Q  the delta of the task cost stored in the model is the Q-quantile\n"
     "                          (0..1) of the fitted density over the training points (default 0.25;\n"
     "                          evidence in docs/planner.md, \"What delta does\")\n"
@@ -88,11 +95,12 @@ int RunFit(int argc, char** argv) {
       {"output", required_argument, nullptr, 'o'},
       {"quiet", no_argument, nullptr, 'q'},          {"help", no_argument, nullptr, 'h'},
       {"bic-patience", required_argument, nullptr, 'P'}, {"screen-points", required_argument, nullptr, 'p'},
+      {"accel", required_argument, nullptr, 'A'},    {"split-starts", required_argument, nullptr, 'L'},    {"threads", required_argument, nullptr, 'j'},
       {nullptr, 0, nullptr, 0}};
   DataSpec spec;
   FitOptions options;
   std::string output, task_name, homotopy_name = "all", kind_name, angle_dims, k_text;
-  int k_min = 1, k_max = 30, bic_patience = kBicStopAfterRises;
+  int k_min = 1, k_max = 30, bic_patience = kBicStopAfterRises, split_starts = kBicSplitStarts;
   bool auto_k = false, k_range_given = false;
   double delta = GMMRRT_MODEL_DEFAULT_DELTA;
   // Data-driven delta by default (delta_quantile.hpp); --delta X stores a fixed one (the paper's 0.001).
@@ -101,7 +109,7 @@ int RunFit(int argc, char** argv) {
   bool delta_given = false;
   optind = 1;
   int c;
-  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:p:S:R:m:T:d:Q:o:qh", kLong, nullptr)) != -1) {
+  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:L:p:S:R:m:T:A:j:d:Q:o:qh", kLong, nullptr)) != -1) {
     const std::string arg = optarg ? optarg : "";
     long v = 0;
     switch (c) {
@@ -131,6 +139,11 @@ int RunFit(int argc, char** argv) {
           return UsageError(cmd, "--bic-patience '" + arg + "' is not in 0.." + std::to_string(GMMRRT_MAX_K));
         bic_patience = static_cast<int>(v);
         break;
+      case 'L':
+        if (!ParseInt(arg, 0, GMMRRT_MAX_K, &v))
+          return UsageError(cmd, "--split-starts '" + arg + "' is not in 0.." + std::to_string(GMMRRT_MAX_K));
+        split_starts = static_cast<int>(v);
+        break;
       case 'p':
         if (!ParseInt(arg, 0, 1000000000, &v)) return UsageError(cmd, "--screen-points '" + arg + "' is not in 0..1e9");
         options.screen_points = v;
@@ -150,6 +163,15 @@ int RunFit(int argc, char** argv) {
         if (!ParseDouble(arg, &options.tolerance) || options.tolerance <= 0.0)
           return UsageError(cmd, "--tol '" + arg + "' is not a positive number");
         break;
+      case 'A':
+        if (arg == "squarem") options.accelerate = true;
+        else if (arg == "none") options.accelerate = false;
+        else return UsageError(cmd, "--accel '" + arg + "' is not squarem or none");
+        break;
+      case 'j':
+        if (!ParseInt(arg, 1, 256, &v)) return UsageError(cmd, "--threads '" + arg + "' is not in 1..256");
+        options.threads = static_cast<int>(v);
+        break;
       case 'd':
         if (!ParseDouble(arg, &delta) || delta <= 0.0) return UsageError(cmd, "--delta '" + arg + "' is not a positive number");
         delta_given = true;
@@ -160,7 +182,7 @@ int RunFit(int argc, char** argv) {
         break;
       case 'o': output = arg; break;
       case 'q': spec.quiet = true; break;
-      case 'h': std::fputs(kFitHelp, stdout); return kExitOk;
+      case 'h': std::printf(kFitHelp, DefaultThreadCount()); return kExitOk;
       default: return UsageError(cmd, "unknown option or missing argument");
     }
   }
@@ -216,6 +238,7 @@ int RunFit(int argc, char** argv) {
 
   Mixture mixture;
   FitSummary summary;
+  std::vector<BicRow> sweep_rows;
   if (auto_k) {
     BicSweepResult sweep;
     options.progress = nullptr;  // one line per K is progress enough
@@ -225,13 +248,33 @@ int RunFit(int argc, char** argv) {
         std::fprintf(stderr, "K = %d: mean log-likelihood %.6f, BIC %.3f, %d iterations\n", r.k,
                      r.mean_log_likelihood, r.bic, r.iterations);
     };
-    if (!(s = SweepBic(points, mask, options, k_min, k_max, &sweep, on_row, bic_patience)).ok()) return Fail(cmd, s.message);
+    if (!(s = SweepBic(points, mask, options, k_min, k_max, &sweep, on_row, bic_patience, split_starts)).ok())
+      return Fail(cmd, DescribeData(spec) + ": " + s.message);
     std::fputs(FormatBicTable(sweep).c_str(), stdout);
     std::printf("chosen K = %d (lowest BIC)\n", sweep.best_k);
     mixture = sweep.best;
     summary = sweep.best_summary;
+    sweep_rows = sweep.rows;
   } else {
-    if (!(s = FitMixture(points, mask, options, &mixture, &summary)).ok()) return Fail(cmd, s.message);
+    if (!(s = FitMixture(points, mask, options, &mixture, &summary)).ok())
+      return Fail(cmd, DescribeData(spec) + ": " + s.message);
+  }
+  // Stopping at the cap is said even with --quiet: the model is usable but not converged.
+  if (auto_k) {
+    int capped = 0;
+    for (const BicRow& r : sweep_rows) capped += r.converged ? 0 : 1;
+    if (capped > 0)
+      std::fprintf(stderr,
+                   "gmmrrt-learn fit: warning: %d of the %zu fits of the sweep stopped at the iteration cap "
+                   "(--max-iter %d) before converging to --tol %g; raise --max-iter\n",
+                   capped, sweep_rows.size(), options.max_iterations, options.tolerance);
+  } else if (!summary.converged) {
+    const std::vector<double>& h = summary.log_likelihood;
+    const double last_change = h.size() >= 2 ? h.back() - h[h.size() - 2] : 0.0;
+    std::fprintf(stderr,
+                 "gmmrrt-learn fit: warning: stopped at the iteration cap (--max-iter %d) before converging "
+                 "to --tol %g (last step changed the mean log-likelihood by %.3g); raise --max-iter\n",
+                 options.max_iterations, options.tolerance, last_change);
   }
   if (kind == GMMRRT_MODEL_KIND_XY) SortComponentsByProgress(&mixture);
   if (!spec.quiet) std::fprintf(stderr, "gmmrrt-learn fit: %s\n", summary.BriefReport().c_str());

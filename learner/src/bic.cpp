@@ -5,24 +5,31 @@
 #include <limits>
 #include <sstream>
 
+#include "split_components.hpp"
+
 namespace gmmrrt {
 namespace learn {
 
 Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
                 int k_min, int k_max, BicSweepResult* result,
-                const std::function<void(const BicRow&)>& on_row, int stop_after_rises) {
+                const std::function<void(const BicRow&)>& on_row, int stop_after_rises, int split_starts) {
   if (k_min < 1 || k_max < k_min || k_max > GMMRRT_MAX_K)
     return Status::Error(StatusCode::kInvalidArgument,
                          "K range " + std::to_string(k_min) + ".." + std::to_string(k_max) +
                              " is not within 1.." + std::to_string(GMMRRT_MAX_K));
+  if (split_starts < 0)
+    return Status::Error(StatusCode::kInvalidArgument, "split_starts must be >= 0");
   if (stop_after_rises < 0)
     return Status::Error(StatusCode::kInvalidArgument, "stop_after_rises must be >= 0 (0: whole range)");
   *result = BicSweepResult();
   double best_bic = std::numeric_limits<double>::infinity();
   int rises = 0;  // consecutive K with a BIC above best_bic
+  Mixture previous;  // the fit of K - 1, whose splits are extra starts for K
   for (int k = k_min; k <= k_max; ++k) {
     FitOptions o = options;
     o.k = k;
+    if (split_starts > 0 && previous.k() == k - 1)
+      for (Mixture& start : detail::SplitCandidates(previous, split_starts)) o.extra_starts.push_back(std::move(start));
     Mixture m;
     FitSummary s;
     Status st = FitMixture(points, angle_mask, o, &m, &s);
@@ -39,6 +46,7 @@ Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOpt
     row.iterations = s.iterations;
     row.converged = s.converged;
     result->rows.push_back(row);
+    previous = m;
     if (on_row) on_row(row);
     if (s.bic < best_bic) {
       best_bic = s.bic;

@@ -141,6 +141,11 @@ class LogReader {
         return false;
     }
 
+    // An error about what the whole log lacks: when the log was cut short, says where too.
+    bool EndError(const std::string& msg) {
+        return Error(truncation_.empty() ? msg : msg + " (" + truncation_ + ")");
+    }
+
     std::string Where(int64_t event_no, long offset, const char* channel) const {
         std::ostringstream s;
         s << path_ << ": event " << event_no << " (byte " << offset;
@@ -150,47 +155,65 @@ class LogReader {
         return s.str();
     }
 
-    // Checks the header of the event at `offset` against the bytes left in the file.
-    bool CheckHeader(FILE* f, long offset, long file_size, int64_t event_no, long* next_offset) {
+    // What CheckHeader found at an event's offset.
+    enum class Header { kOk, kTruncatedTail, kError };
+
+    // Checks the header of the event at `offset` against the bytes left in the file. A log whose
+    // last event is cut short (a recorder killed mid-write, a copy cut by a byte) is
+    // kTruncatedTail: the events before it are whole and are read, with a warning. Anything
+    // else that does not add up is kError with result_->error set.
+    Header CheckHeader(FILE* f, long offset, long file_size, int64_t event_no, long* next_offset) {
         unsigned char h[kEventHeaderBytes];
         size_t got = std::fread(h, 1, sizeof h, f);
-        if (got >= 4 && BigEndian32(h) != kLcmSyncWord)
-            return Error(Where(event_no, offset, nullptr) +
-                         (event_no == 1 ? ": not an LCM log (no sync word at the start)"
-                                        : ": corrupted log (no LCM sync word where an event starts)"));
-        if (got < sizeof h)
-            return Error(Where(event_no, offset, nullptr) + ": log truncated inside an event header (" +
-                         std::to_string(file_size - offset) + " bytes left)");
+        if (got >= 4 && BigEndian32(h) != kLcmSyncWord) {
+            Error(Where(event_no, offset, nullptr) +
+                  (event_no == 1 ? ": not an LCM log (no sync word at the start)"
+                                 : ": corrupted log (no LCM sync word where an event starts)"));
+            return Header::kError;
+        }
+        if (got < sizeof h) {
+            truncation_ = Where(event_no, offset, nullptr) + ": log truncated inside an event header (" +
+                          std::to_string(file_size - offset) + " bytes left)";
+            return Header::kTruncatedTail;
+        }
         const int32_t channel_len = static_cast<int32_t>(BigEndian32(h + 20));
         const int32_t data_len = static_cast<int32_t>(BigEndian32(h + 24));
-        if (channel_len <= 0 || channel_len > kMaxChannelLen)
-            return Error(Where(event_no, offset, nullptr) + ": corrupted log (channel name length " +
-                         std::to_string(channel_len) + ")");
-        if (data_len < 0)
-            return Error(Where(event_no, offset, nullptr) + ": corrupted log (data length " +
-                         std::to_string(data_len) + ")");
-        const long need = kEventHeaderBytes + channel_len + static_cast<long>(data_len);
-        if (need > file_size - offset)
-            return Error(Where(event_no, offset, nullptr) + ": log truncated or corrupted (event needs " +
-                         std::to_string(need) + " bytes, " + std::to_string(file_size - offset) + " left)");
-        // LCM looks past the event for the next sync word and fails the event when it is
-        // not there; check it here so the error names the event that is broken.
-        const long next = offset + need;
-        if (next < file_size) {
-            unsigned char sync[4];
-            if (file_size - next < 4)
-                return Error(Where(event_no + 1, next, nullptr) + ": log truncated inside an event header (" +
-                             std::to_string(file_size - next) + " bytes left)");
-            if (std::fseek(f, next, SEEK_SET) != 0 || std::fread(sync, 1, 4, f) != 4)
-                return Error(Where(event_no + 1, next, nullptr) + ": read failed");
-            if (BigEndian32(sync) != kLcmSyncWord)
-                return Error(Where(event_no + 1, next, nullptr) +
-                             ": corrupted log (no LCM sync word where an event starts)");
+        if (channel_len <= 0 || channel_len > kMaxChannelLen) {
+            Error(Where(event_no, offset, nullptr) + ": corrupted log (channel name length " +
+                  std::to_string(channel_len) + ")");
+            return Header::kError;
         }
-        if (std::fseek(f, offset, SEEK_SET) != 0)
-            return Error(Where(event_no, offset, nullptr) + ": seek failed");
+        if (data_len < 0) {
+            Error(Where(event_no, offset, nullptr) + ": corrupted log (data length " + std::to_string(data_len) + ")");
+            return Header::kError;
+        }
+        const long need = kEventHeaderBytes + channel_len + static_cast<long>(data_len);
+        if (need > file_size - offset) {
+            truncation_ = Where(event_no, offset, nullptr) + ": log truncated inside the event (it needs " +
+                          std::to_string(need) + " bytes, " + std::to_string(file_size - offset) + " left)";
+            return Header::kTruncatedTail;
+        }
+        // LCM looks past the event for the next sync word and fails the event when it is
+        // not there; check it here so the error names the event that is broken. Fewer than 4
+        // bytes after the event are a cut next header: reported when the loop gets there.
+        const long next = offset + need;
+        if (next + 4 <= file_size) {
+            unsigned char sync[4];
+            if (std::fseek(f, next, SEEK_SET) != 0 || std::fread(sync, 1, 4, f) != 4) {
+                Error(Where(event_no + 1, next, nullptr) + ": read failed");
+                return Header::kError;
+            }
+            if (BigEndian32(sync) != kLcmSyncWord) {
+                Error(Where(event_no + 1, next, nullptr) + ": corrupted log (no LCM sync word where an event starts)");
+                return Header::kError;
+            }
+        }
+        if (std::fseek(f, offset, SEEK_SET) != 0) {
+            Error(Where(event_no, offset, nullptr) + ": seek failed");
+            return Header::kError;
+        }
         *next_offset = next;
-        return true;
+        return Header::kOk;
     }
 
     bool Loop(lcm_eventlog_t* log, long file_size, std::vector<Episode>* episodes) {
@@ -207,8 +230,15 @@ class LogReader {
             if (offset >= file_size)
                 break;
             ++event_no;
-            if (!CheckHeader(log->f, offset, file_size, event_no, &next_offset))
+            const Header header = CheckHeader(log->f, offset, file_size, event_no, &next_offset);
+            if (header == Header::kError)
                 return false;
+            if (header == Header::kTruncatedTail) {
+                warn_.Add(truncation_ + "; read up to the last complete event (" +
+                          std::to_string(event_no - 1) + " events)");
+                --event_no;
+                break;
+            }
             lcm_eventlog_event_t* ev = lcm_eventlog_read_next_event(log);
             if (ev == nullptr)
                 return Error(Where(event_no, offset, nullptr) + ": LCM could not read the event");
@@ -256,15 +286,15 @@ class LogReader {
             warn_.Add(path_ + ": " + std::to_string(orphans) +
                       " ROBOT_POSE/PEOPLE events before the first DEMO_INFO were ignored");
         if (event_no == 0)
-            return Error(path_ + ": empty log (no events)");
+            return EndError(path_ + ": empty log (no events)");
         if (!seen_info)
-            return Error(path_ + ": no DEMO_INFO event: the episodes have no task/homotopy labels");
+            return EndError(path_ + ": no DEMO_INFO event: the episodes have no task/homotopy labels");
         if (!seen_pose)
-            return Error(path_ + ": no ROBOT_POSE event");
+            return EndError(path_ + ": no ROBOT_POSE event");
         if (!seen_people)
-            return Error(path_ + ": no PEOPLE event");
+            return EndError(path_ + ": no PEOPLE event");
         if (episodes->empty())
-            return Error(path_ + ": no episode has a ROBOT_POSE paired with its person (see warnings)");
+            return EndError(path_ + ": no episode has a ROBOT_POSE paired with its person (see warnings)");
         return true;
     }
 
@@ -357,6 +387,7 @@ class LogReader {
     }
 
     std::string path_;
+    std::string truncation_;  // where a cut-short last event was found
     std::string stem_;
     ReadResult* result_;
     Warnings warn_;
@@ -417,6 +448,13 @@ void StripCr(std::string* line) {
         line->pop_back();
 }
 
+// Spreadsheet programs start UTF-8 CSV exports with a byte order mark; it is not part of the
+// first column's name.
+void StripUtf8Bom(std::string* line) {
+    if (line->compare(0, 3, "\xEF\xBB\xBF") == 0)
+        line->erase(0, 3);
+}
+
 }  // namespace
 
 void EstimateHeadingsFromMotion(std::vector<PoseSample>* samples, double min_step_m) {
@@ -459,6 +497,7 @@ ReadResult ReadEpisodeCsv(const std::string& path, std::vector<Episode>* out) {
     if (!std::getline(in, line))
         return Fail(path + ": line 1: empty file (expected the header)");
     StripCr(&line);
+    StripUtf8Bom(&line);
     {
         std::vector<std::string> header = SplitCsvLine(line);
         bool good = header.size() == kCsvColumns;
@@ -486,8 +525,10 @@ ReadResult ReadEpisodeCsv(const std::string& path, std::vector<Episode>* out) {
         int task = 0, homotopy = 0;
         if (!ParseTask(f[1], &task))
             return Fail(where + ": unknown task '" + f[1] + "' (expected avoid or approach)");
-        if (!ParseHomotopy(f[2], &homotopy))
-            return Fail(where + ": unknown homotopy '" + f[2] + "' (expected left, right or frontal)");
+        // An empty homotopy is an unlabelled episode (homotopy 0, as DEMO_INFO's HOMOTOPY_UNKNOWN):
+        // `fit --homotopy all` learns from it; a fit of one side skips it.
+        if (!f[2].empty() && !ParseHomotopy(f[2], &homotopy))
+            return Fail(where + ": unknown homotopy '" + f[2] + "' (expected left, right, frontal or empty)");
         double v[6];
         for (size_t c = 3; c < kCsvColumns; ++c) {
             if (!ParseFiniteDouble(f[c], &v[c - 3]))
@@ -560,6 +601,7 @@ ReadResult ReadSplitIndex(const std::string& path, std::map<std::string, std::st
     if (!std::getline(in, line))
         return Fail(path + ": line 1: empty file (expected a header with episode_id and split)");
     StripCr(&line);
+    StripUtf8Bom(&line);
     const std::vector<std::string> header = SplitCsvLine(line);
     size_t id_col = header.size(), split_col = header.size();
     for (size_t i = 0; i < header.size(); ++i) {

@@ -16,7 +16,9 @@
 #include "estep_2d.hpp"
 #include "gmmrrt/features.h"
 #include "gmmrrt_learner/kmeans.hpp"
+#include "parallel.hpp"
 #include "spatial_order.hpp"
+#include "squarem.hpp"
 
 namespace gmmrrt {
 namespace learn {
@@ -37,6 +39,12 @@ bool FitOptions::IsValid(std::string* error) const {
   if (!(reg_floor > 0.0) || !std::isfinite(reg_floor)) return fail("reg_floor must be finite and > 0");
   if (max_reseeds < -1) return fail("max_reseeds must be >= 0 (or -1 for 3 K)");
   if (screen_points < 0) return fail("screen_points must be >= 0");
+  if (threads < 0) return fail("threads must be >= 0 (0: the available cores)");
+  for (size_t e = 0; e < extra_starts.size(); ++e) {
+    if (extra_starts[e].k() != k) return fail("extra start " + std::to_string(e) + " has K != k");
+    const Status st = ValidateMixture(extra_starts[e]);
+    if (!st.ok()) return fail("extra start " + std::to_string(e) + ": " + st.message);
+  }
   return true;
 }
 
@@ -91,11 +99,19 @@ void ComputeDataInfo(const Eigen::MatrixXd& xt, uint32_t mask, const FitOptions&
 
 // One E-step over xt (points as rows, N x D): mean log-likelihood per point; statistics and
 // per-point log-likelihood out.
-double EStep(const Mixture& m, const Eigen::MatrixXd& xt, Stats* st, Eigen::VectorXd* point_ll) {
+// Points per task of the general E-step on several threads (two of its blocks). The split
+// depends on N only and the per-task statistics are added in task order, so the result is the
+// same bits for any thread count.
+constexpr Eigen::Index kTaskPoints = 2 * detail::kBlockPoints;
+
+// One E-step over xt (points as rows, N x D) on up to `threads` threads: mean log-likelihood per
+// point; statistics and per-point log-likelihood out.
+double EStep(const Mixture& m, const Eigen::MatrixXd& xt, int threads, Stats* st, Eigen::VectorXd* point_ll) {
   if (detail::EStep2dApplies(m)) {  // the fused kernel of estep_2d.cpp: same quantities
     point_ll->resize(xt.rows());
     detail::Moments2d mo;
-    const double ll = detail::EStep2d(m, xt.col(0).data(), xt.col(1).data(), xt.rows(), point_ll->data(), &mo);
+    const double ll = detail::EStep2d(m, xt.col(0).data(), xt.col(1).data(), xt.rows(), point_ll->data(), &mo,
+                                      detail::Simd::kAuto, threads);
     st->Reset(2, m.k());
     for (int i = 0; i < m.k(); ++i) {
       st->nk[i] = mo.n[i];
@@ -109,43 +125,55 @@ double EStep(const Mixture& m, const Eigen::MatrixXd& xt, Stats* st, Eigen::Vect
   detail::Prepare(m, &p);
   const Eigen::Index n = xt.rows();
   const int d = m.dim;
-  st->Reset(d, m.k());
   point_ll->resize(n);
-  Eigen::MatrixXd terms;
-  std::vector<Eigen::MatrixXd> deltas;
-  Eigen::VectorXd lse;
-  Eigen::ArrayXd rsum, r, weighted;
-  for (Eigen::Index start = 0; start < n; start += detail::kBlockPoints) {
-    const Eigen::Index b = std::min<Eigen::Index>(detail::kBlockPoints, n - start);
-    detail::LogTerms(m, p, xt.middleRows(start, b), &terms, &deltas);
-    detail::LogSumExpToResponsibilities(&terms, &lse);  // terms now hold responsibilities
-    point_ll->segment(start, b) = lse;
-    for (int i = 0; i < p.k; ++i) {
-      const Eigen::MatrixXd& delta = deltas[i];
-      const Eigen::Index first = static_cast<Eigen::Index>(i) * p.images;
-      rsum = terms.col(first).array();
-      for (int j = 1; j < p.images; ++j) {  // image 0 has a zero offset; the others add o_j terms
-        r = terms.col(first + j).array();
-        rsum += r;
-        const double sr = r.sum();
-        if (sr == 0.0) continue;
-        const Eigen::VectorXd o = p.offsets.col(j);
-        Eigen::VectorXd drj(d);
-        for (int c = 0; c < d; ++c) drj[c] = (delta.col(c).array() * r).sum();
-        st->s1.col(i) += o * sr;
-        st->s2[i] += o * drj.transpose() + drj * o.transpose() + (o * o.transpose()) * sr;
-      }
-      st->nk[i] += rsum.sum();
-      for (int c = 0; c < d; ++c) {
-        weighted = delta.col(c).array() * rsum;
-        st->s1(c, i) += weighted.sum();
-        for (int c2 = 0; c2 <= c; ++c2) {
-          const double v = (weighted * delta.col(c2).array()).sum();
-          st->s2[i](c, c2) += v;
-          if (c2 != c) st->s2[i](c2, c) += v;
+  const long tasks = static_cast<long>((n + kTaskPoints - 1) / kTaskPoints);
+  std::vector<Stats> part(static_cast<size_t>(tasks));
+  detail::ParallelFor(threads, tasks, [&](long task) {
+    Stats& ts = part[static_cast<size_t>(task)];
+    ts.Reset(d, m.k());
+    Eigen::MatrixXd terms;
+    std::vector<Eigen::MatrixXd> deltas;
+    Eigen::VectorXd lse;
+    Eigen::ArrayXd rsum, r, weighted;
+    const Eigen::Index task_end = std::min<Eigen::Index>(n, (task + 1) * kTaskPoints);
+    for (Eigen::Index start = task * kTaskPoints; start < task_end; start += detail::kBlockPoints) {
+      const Eigen::Index b = std::min<Eigen::Index>(detail::kBlockPoints, task_end - start);
+      detail::LogTerms(m, p, xt.middleRows(start, b), &terms, &deltas);
+      detail::LogSumExpToResponsibilities(&terms, &lse);  // terms now hold responsibilities
+      point_ll->segment(start, b) = lse;
+      for (int i = 0; i < p.k; ++i) {
+        const Eigen::MatrixXd& delta = deltas[i];
+        const Eigen::Index first = static_cast<Eigen::Index>(i) * p.images;
+        rsum = terms.col(first).array();
+        for (int j = 1; j < p.images; ++j) {  // image 0 has a zero offset; the others add o_j terms
+          r = terms.col(first + j).array();
+          rsum += r;
+          const double sr = r.sum();
+          if (sr == 0.0) continue;
+          const Eigen::VectorXd o = p.offsets.col(j);
+          Eigen::VectorXd drj(d);
+          for (int c = 0; c < d; ++c) drj[c] = (delta.col(c).array() * r).sum();
+          ts.s1.col(i) += o * sr;
+          ts.s2[i] += o * drj.transpose() + drj * o.transpose() + (o * o.transpose()) * sr;
+        }
+        ts.nk[i] += rsum.sum();
+        for (int c = 0; c < d; ++c) {
+          weighted = delta.col(c).array() * rsum;
+          ts.s1(c, i) += weighted.sum();
+          for (int c2 = 0; c2 <= c; ++c2) {
+            const double v = (weighted * delta.col(c2).array()).sum();
+            ts.s2[i](c, c2) += v;
+            if (c2 != c) ts.s2[i](c2, c) += v;
+          }
         }
       }
     }
+  });
+  st->Reset(d, m.k());
+  for (const Stats& ts : part) {
+    st->nk += ts.nk;
+    st->s1 += ts.s1;
+    for (int i = 0; i < m.k(); ++i) st->s2[i] += ts.s2[i];
   }
   return point_ll->mean();
 }
@@ -170,6 +198,7 @@ struct FitState {
   DataInfo info;
   Eigen::MatrixXd reseed_chol;  // Cholesky of the data covariance shrunk by K^(-2/D)
   int max_reseeds = 0;
+  int threads = 1;  // for the E-step sums
   FitSummary* summary = nullptr;
 
   void Warn(const std::string& w) const {
@@ -263,11 +292,12 @@ struct EmRun {
   bool converged = false;
   bool kept = false;  // the candidate chosen to run to convergence: progress after every step
   int iterations = 0;
+  int ll_refused = 0;  // SQUAREM extrapolations refused (their E-step was spent)
 };
 
 // Runs EM steps until converged, until the E-step index reaches `until`, or max_iterations.
 // Leaves the run E-stepped: run->m is the mixture whose mean log-likelihood is run->ll.back().
-void Advance(const FitState& s, EmRun* run, int until) {
+void AdvancePlain(const FitState& s, EmRun* run, int until) {
   const FitOptions& o = *s.options;
   while (!run->converged) {
     if (run->pending) {
@@ -279,7 +309,7 @@ void Advance(const FitState& s, EmRun* run, int until) {
       if (run->m.k() == 0) return;
     }
     const int t = static_cast<int>(run->ll.size());
-    const double ll = EStep(run->m, *s.xt, &run->stats, &run->score);
+    const double ll = EStep(run->m, *s.xt, s.threads, &run->stats, &run->score);
     run->ll.push_back(ll);
     run->pending = true;
     if (o.progress && (o.restarts == 1 || run->kept)) o.progress(run->restart, t, ll);
@@ -292,7 +322,124 @@ void Advance(const FitState& s, EmRun* run, int until) {
   }
 }
 
+// SQUAREM's growth factor of the step bound after a full-length step, and the bound's start
+// (step.max0 = 1, mstep = 4 in Varadhan and Roland 2008): the first extrapolation is a plain
+// double EM step, longer ones are earned.
+constexpr double kSquaremStepGrowth = 4.0;
+
+// The same contract as AdvancePlain, with SQUAREM (squarem.hpp). A cycle from an E-stepped
+// mixture theta0: an EM step to theta1 (E-stepped: the convergence test |LL1 - LL0| < tolerance
+// is that of plain EM), the M-step to theta2, the extrapolation theta', and its E-step. theta' is
+// kept when its log-likelihood is at least theta1's, so the recorded log-likelihood never
+// decreases; otherwise theta2 is E-stepped and kept (a plain EM step) and the step bound shrinks.
+// Its M-step is the next cycle's first step (SQUAREM's stabilising step). A re-seeded or dropped
+// component, or an extrapolation that fails (squarem.hpp), gives a plain EM step instead.
+// Every E-step counts as an iteration, so max_iterations bounds the work as in plain EM.
+void AdvanceSquarem(const FitState& s, EmRun* run, int until) {
+  const FitOptions& o = *s.options;
+  double step_max = 1.0;
+  auto e_step = [&]() {
+    const int t = static_cast<int>(run->ll.size());
+    const double ll = EStep(run->m, *s.xt, s.threads, &run->stats, &run->score);
+    run->ll.push_back(ll);
+    run->pending = true;
+    if (o.progress && (o.restarts == 1 || run->kept)) o.progress(run->restart, t, ll);
+    return t;
+  };
+  int spent = 0;  // E-steps of refused extrapolations in this call: not in run->ll, but work
+  auto at_cap = [&](int t) { return t + spent >= o.max_iterations || t + spent >= until; };
+  auto m_step = [&](Mixture* m) {  // from the pending statistics of run->m
+    const bool changed = MStep(s, run->stats, run->m.means, run->score, run->iterations + 1, m);
+    ++run->iterations;
+    run->pending = false;
+    return changed;
+  };
+  if (!run->pending) {
+    if (at_cap(e_step())) return;
+  }
+  for (;;) {
+    // theta0 = run->m, E-stepped. EM step to theta1.
+    const Mixture m0 = run->m;
+    const double ll0 = run->ll.back();
+    const bool changed1 = m_step(&run->m);
+    if (run->m.k() == 0) return;
+    int t = e_step();
+    if (!changed1 && std::fabs(run->ll.back() - ll0) < o.tolerance) {
+      run->converged = true;
+      run->pending = false;
+      return;
+    }
+    if (at_cap(t) || changed1) {
+      if (at_cap(t)) return;
+      continue;
+    }
+    // theta2 = F(theta1) without its E-step yet.
+    const Mixture m1 = run->m;
+    const double ll1 = run->ll.back();
+    Mixture m2 = m1;  // MStep takes D and the angle mask from its output
+    const bool changed2 = MStep(s, run->stats, m1.means, run->score, run->iterations + 1, &m2);
+    Mixture mx;
+    double step = 1.0, wanted = 1.0;
+    const bool extrapolated =
+        !changed2 && detail::SquaremExtrapolate(m0, m1, m2, step_max, s.info.reg, &mx, &step, &wanted) &&
+        step > 1.0;
+    if (!extrapolated && !changed2 && wanted > step_max) step_max *= kSquaremStepGrowth;  // bound was binding
+    if (extrapolated) {
+      // Keep the E-step of theta1 in case theta' is refused.
+      const Stats stats1 = run->stats;
+      const Eigen::VectorXd score1 = run->score;
+      run->m = std::move(mx);
+      ++run->iterations;
+      const double ll_before = ll1;
+      t = static_cast<int>(run->ll.size());
+      const double llx = EStep(run->m, *s.xt, s.threads, &run->stats, &run->score);
+      if (std::isfinite(llx) && llx >= ll_before) {
+        run->ll.push_back(llx);
+        run->pending = true;
+        if (o.progress && (o.restarts == 1 || run->kept)) o.progress(run->restart, t, llx);
+        if (step >= step_max) step_max *= kSquaremStepGrowth;
+        if (at_cap(t)) return;
+        continue;
+      }
+      // Refused: that E-step is spent (it counts), theta2 is next.
+      ++run->ll_refused;
+      ++spent;
+      step_max = std::max(1.0, step_max / kSquaremStepGrowth);
+      run->stats = stats1;
+      run->score = score1;
+      if (at_cap(t)) {  // stop at theta1, whose statistics are restored
+        run->m = m1;
+        run->pending = true;
+        return;
+      }
+      ++run->iterations;  // the E-step of theta2 below
+    } else {
+      ++run->iterations;
+    }
+    run->m = std::move(m2);
+    run->pending = false;
+    if (run->m.k() == 0) return;
+    t = e_step();
+    if (!changed2 && std::fabs(run->ll.back() - ll1) < o.tolerance) {
+      run->converged = true;
+      run->pending = false;
+      return;
+    }
+    if (at_cap(t)) return;
+  }
+}
+
+// Runs the fit's EM variant (FitOptions::accelerate).
+void Advance(const FitState& s, EmRun* run, int until) {
+  if (s.options->accelerate)
+    AdvanceSquarem(s, run, until);
+  else
+    AdvancePlain(s, run, until);
+}
+
 }  // namespace
+
+int DefaultThreadCount() { return detail::AvailableCores(); }
 
 Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
                   Mixture* mixture, FitSummary* summary) {
@@ -347,6 +494,8 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   s.options = &options;
   s.summary = summary;
   s.max_reseeds = options.max_reseeds < 0 ? 3 * options.k : options.max_reseeds;
+  s.threads = options.threads > 0 ? options.threads : detail::AvailableCores();
+  summary->threads = s.threads;
   ComputeDataInfo(xt, angle_mask, options, &s.info);
   for (int j = 0; j < d; ++j)
     if (!(s.info.cov(j, j) > options.reg_floor))
@@ -388,7 +537,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   ko.k = options.k;
   ko.restarts = 1;
   ko.max_iterations = options.kmeans_max_iterations;
-  std::vector<EmRun> runs(options.restarts);
+  std::vector<EmRun> runs(options.restarts + options.extra_starts.size());
   int best = -1;
   for (int r = 0; r < options.restarts; ++r) {
     KMeansResult km;
@@ -418,6 +567,20 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     if (options.restarts > 1 && options.progress && run.m.k() > 0)
       options.progress(r, static_cast<int>(run.ll.size()) - 1, run.ll.back());
   }
+  for (size_t e = 0; e < options.extra_starts.size(); ++e) {
+    const Mixture& start = options.extra_starts[e];
+    if (start.dim != d || start.angle_mask != angle_mask)
+      return Status::Error(StatusCode::kInvalidArgument,
+                           "extra start " + std::to_string(e) + " has another dimension or angle mask");
+    const int r = options.restarts + static_cast<int>(e);
+    EmRun& run = runs[r];
+    run.restart = r;
+    run.m = start;
+    WrapAngleRows(angle_mask, &run.m.means);
+    Advance(screen, &run, options.screen_iterations);
+    if (run.m.k() > 0 && (best < 0 || run.ll.back() > runs[best].ll.back())) best = r;
+    if (options.progress && run.m.k() > 0) options.progress(r, static_cast<int>(run.ll.size()) - 1, run.ll.back());
+  }
   if (best < 0) return Status::Error(StatusCode::kNumericalFailure, "every component degenerate in every restart");
   EmRun& run = runs[best];
   run.kept = true;
@@ -439,6 +602,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   Mixture m = std::move(run.m);
   summary->log_likelihood = run.ll;
   summary->iterations = run.iterations;
+  summary->extrapolations_refused = run.ll_refused;
   summary->converged = run.converged;
   summary->kmeans_inertia = run.kmeans_inertia;
   summary->restart_kept = best;

@@ -7,8 +7,12 @@
 // value, and Eigen's packet exp is slow on the baseline target. Contract in estep_2d.hpp.
 #include "estep_2d.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <vector>
+
+#include "parallel.hpp"
 
 #include "gmmrrt/limits.h"
 
@@ -21,6 +25,11 @@ namespace {
 // Points per accumulation block: partial sums of a block are added to the totals, which keeps
 // the rounding of sums over N = 1e5..1e6 points small (each lane adds at most 256 values).
 constexpr long kBlock = 512;
+
+// Points per task of the threaded E-step (a multiple of kBlock): large enough that a task's
+// K x 6 partial sums are negligible next to its work, small enough that 20 000 screening
+// points still make tasks for two threads.
+constexpr long kChunkPoints = 8192;
 
 // A term below exp(-50) = 2e-22 times the largest one is taken as 0: the sum it joins is >= 1,
 // so it is below a double's resolution there, and its responsibility would add at most
@@ -95,7 +104,7 @@ void VectorExp4(const double* x, double* out, Simd simd) {
 }
 
 double EStep2d(const Mixture& m, const double* x0, const double* x1, Eigen::Index n_points,
-               double* point_ll, Moments2d* moments, Simd simd) {
+               double* point_ll, Moments2d* moments, Simd simd, int threads) {
   Params2d p;
   p.k = m.k();
   p.images = m.angle_mask == 0u ? 1 : 3;
@@ -109,23 +118,35 @@ double EStep2d(const Mixture& m, const double* x0, const double* x1, Eigen::Inde
     p.c[i] = h / l(1, 1);
     p.coef[i] = std::log(m.weights[i]) - log_2pi - std::log(l(0, 0)) - std::log(l(1, 1));
   }
-  moments->n.assign(p.k, 0.0);
-  moments->m0.assign(p.k, 0.0);
-  moments->m1.assign(p.k, 0.0);
-  moments->s00.assign(p.k, 0.0);
-  moments->s01.assign(p.k, 0.0);
-  moments->s11.assign(p.k, 0.0);
-  MomentPtrs out{moments->n.data(),   moments->m0.data(),  moments->m1.data(),
-                 moments->s00.data(), moments->s01.data(), moments->s11.data()};
+  // The points are cut into chunks of a fixed size (independent of the thread count); each
+  // chunk sums into its own slot and the slots are added in chunk order: the same bits for
+  // any number of threads.
+  const long n = static_cast<long>(n_points);
+  const long chunks = (n + kChunkPoints - 1) / kChunkPoints;
+  std::vector<double> slots(static_cast<size_t>(chunks) * (6 * p.k + 1), 0.0);
   const bool avx2 = simd == Simd::kAvx2 || (simd == Simd::kAuto && EStep2dAvx2Available());
-  double total;
+  ParallelFor(threads, chunks, [&](long c) {
+    double* slot = slots.data() + static_cast<size_t>(c) * (6 * p.k + 1);
+    MomentPtrs out{slot, slot + p.k, slot + 2 * p.k, slot + 3 * p.k, slot + 4 * p.k, slot + 5 * p.k};
+    const long first = c * kChunkPoints, count = std::min(kChunkPoints, n - first);
 #ifdef GMMRRT_ESTEP_HAVE_AVX2
-  if (avx2 && EStep2dAvx2Available())
-    total = kernel_avx2::Kernel(p, x0, x1, static_cast<long>(n_points), point_ll, &out);
-  else
+    if (avx2 && EStep2dAvx2Available()) {
+      slot[6 * p.k] = kernel_avx2::Kernel(p, x0 + first, x1 + first, count, point_ll + first, &out);
+      return;
+    }
 #endif
-    total = kernel_baseline::Kernel(p, x0, x1, static_cast<long>(n_points), point_ll, &out);
+    slot[6 * p.k] = kernel_baseline::Kernel(p, x0 + first, x1 + first, count, point_ll + first, &out);
+  });
   (void)avx2;
+  std::vector<double>* dst[6] = {&moments->n, &moments->m0, &moments->m1, &moments->s00, &moments->s01, &moments->s11};
+  for (std::vector<double>* v : dst) v->assign(p.k, 0.0);
+  double total = 0.0;
+  for (long c = 0; c < chunks; ++c) {
+    const double* slot = slots.data() + static_cast<size_t>(c) * (6 * p.k + 1);
+    for (int q = 0; q < 6; ++q)
+      for (int i = 0; i < p.k; ++i) (*dst[q])[i] += slot[q * p.k + i];
+    total += slot[6 * p.k];
+  }
   return total / static_cast<double>(n_points);
 }
 

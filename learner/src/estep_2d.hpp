@@ -39,10 +39,11 @@ bool EStep2dAvx2Available();
 // Sigma_i) (wrapped normal over 3 images with the angle; n_points entries, caller-owned) and
 // *moments (resized to K; y = x - mu_i with the angle coordinate unwrapped per image, as the
 // general E-step); returns the mean of point_ll. Deterministic: a fixed summation order (2
-// lanes on the baseline kernel, 4 on the AVX2 one; blocks of 512 points): the two kernels agree
-// up to rounding (same machine, same kernel -> same bits).
+// lanes on the baseline kernel, 4 on the AVX2 one; blocks of 512 points; chunks of 8192 points,
+// which run on up to `threads` threads and are added in chunk order): the two kernels agree up
+// to rounding (same machine, same kernel -> same bits, for any thread count).
 double EStep2d(const Mixture& m, const double* x0, const double* x1, Eigen::Index n_points,
-               double* point_ll, Moments2d* moments, Simd simd = Simd::kAuto);
+               double* point_ll, Moments2d* moments, Simd simd = Simd::kAuto, int threads = 1);
 
 // exp(x) for 4 doubles at a time, as the kernel computes it (relative error < 1e-15 against
 // std::exp for x in [-700, 0]; x below -700 gives 0): exposed for the unit test.

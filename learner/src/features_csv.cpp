@@ -78,6 +78,8 @@ Status ReadFeaturesCsv(const std::string& path, Eigen::MatrixXd* points) {
   bool first_content = true;
   while (std::getline(in, line)) {
     ++line_no;
+    // A UTF-8 byte order mark (spreadsheet exports write one) is not part of the first field.
+    if (line_no == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
     const std::string t = Trim(line);
     if (t.empty() || t[0] == '#') continue;
     if (!ParseRow(t, &row, &why)) {

@@ -128,6 +128,15 @@ gmmrrt_status_t gmmrrt_model_save_file(const char *path, const gmmrrt_model_t *m
     if (path[0] == '\0')
         return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model path is empty");
 
+    /* The rename below would replace whatever is at path: a device node, FIFO or directory
+     * there (or behind a symbolic link) is someone else's, never a model to overwrite. */
+    struct stat existing;
+    if (stat(path, &existing) == 0 && !S_ISREG(existing.st_mode))
+        return gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap,
+                                "%s: not written: it exists and is not a regular file (a device, FIFO, "
+                                "directory or a link to one); give a file name",
+                                path);
+
     const size_t cap = gmmrrt_model_max_encoded_size();
     uint8_t *buf = malloc(cap);
     const size_t tmp_cap = strlen(path) + sizeof ".tmp.XXXXXX";

@@ -58,8 +58,10 @@ def _where(path: str, event_no: int, offset: int, channel: Optional[str] = None)
     return s + (f", channel {channel})" if channel else ")")
 
 
-def scan_structure(path: str, data: bytes) -> List[Tuple[int, str, bytes]]:
-    """Checks every event header against the file size; returns (offset, channel, payload) per event."""
+def scan_structure(path: str, data: bytes, cut: Optional[List[str]] = None) -> List[Tuple[int, str, bytes]]:
+    """Checks every event header against the file size; returns (offset, channel, payload) per event.
+    A last event cut short (a recorder killed mid-write) raises, or with `cut` given ends the scan
+    at the last complete event and appends where the cut is to `cut` (the C++ reader's rule)."""
     events = []
     off, n, event_no = 0, len(data), 0
     while off < n:
@@ -69,8 +71,11 @@ def scan_structure(path: str, data: bytes) -> List[Tuple[int, str, bytes]]:
                     else "corrupted log (no LCM sync word where an event starts)")
             raise DemoLogError(f"{_where(path, event_no, off)}: {what}")
         if n - off < HEADER.size:
-            raise DemoLogError(f"{_where(path, event_no, off)}: log truncated inside an event header "
-                               f"({n - off} bytes left)")
+            msg = f"{_where(path, event_no, off)}: log truncated inside an event header ({n - off} bytes left)"
+            if cut is None:
+                raise DemoLogError(msg)
+            cut.append(msg)
+            break
         _sync, _num, _ts, ch_len, data_len = HEADER.unpack_from(data, off)
         ch_len = struct.unpack(">i", struct.pack(">I", ch_len))[0]
         data_len = struct.unpack(">i", struct.pack(">I", data_len))[0]
@@ -80,8 +85,12 @@ def scan_structure(path: str, data: bytes) -> List[Tuple[int, str, bytes]]:
             raise DemoLogError(f"{_where(path, event_no, off)}: corrupted log (data length {data_len})")
         need = HEADER.size + ch_len + data_len
         if need > n - off:
-            raise DemoLogError(f"{_where(path, event_no, off)}: log truncated or corrupted (event needs "
-                               f"{need} bytes, {n - off} left)")
+            if cut is None:
+                raise DemoLogError(f"{_where(path, event_no, off)}: log truncated or corrupted (event needs "
+                                   f"{need} bytes, {n - off} left)")
+            cut.append(f"{_where(path, event_no, off)}: log truncated inside the event (it needs {need} bytes, "
+                       f"{n - off} left)")
+            break
         start = off + HEADER.size
         channel = data[start:start + ch_len].decode("utf-8", errors="replace")
         events.append((off, channel, data[start + ch_len:off + need]))
@@ -147,7 +156,14 @@ def read_demo_log(path: str) -> Tuple[List[Episode], List[str]]:
         raise DemoLogError(f"{path}: cannot open: {e.strerror}") from None
     if not data:
         raise DemoLogError(f"{path}: empty log (no events)")
-    events = scan_structure(path, data)
+    cut: List[str] = []
+    events = scan_structure(path, data, cut)
+
+    def end_error(msg: str) -> DemoLogError:  # what the whole log lacks; names the cut, if any
+        return DemoLogError(f"{msg} ({cut[0]})" if cut else msg)
+
+    if not events:
+        raise end_error(f"{path}: empty log (no events)")
     # The structure is sound: read the same events through LCM's own log reader.
     log = lcm.EventLog(path, "r")
     try:
@@ -228,17 +244,19 @@ def read_demo_log(path: str) -> Tuple[List[Episode], List[str]]:
         except _Reject as r:
             tail = "; its episode is skipped" if channel == CH_INFO else "; skipped"
             warn(f"{_where(path, event_no, off, channel)}: {r}{tail}")
+    if cut:
+        warn(f"{cut[0]}; read up to the last complete event ({len(events)} events)")
     close()
     if orphans:
         warn(f"{path}: {orphans} ROBOT_POSE/PEOPLE events before the first DEMO_INFO were ignored")
     if not seen[CH_INFO]:
-        raise DemoLogError(f"{path}: no DEMO_INFO event: the episodes have no task/homotopy labels")
+        raise end_error(f"{path}: no DEMO_INFO event: the episodes have no task/homotopy labels")
     if not seen[CH_POSE]:
-        raise DemoLogError(f"{path}: no ROBOT_POSE event")
+        raise end_error(f"{path}: no ROBOT_POSE event")
     if not seen[CH_PEOPLE]:
-        raise DemoLogError(f"{path}: no PEOPLE event")
+        raise end_error(f"{path}: no PEOPLE event")
     if not episodes:
-        raise DemoLogError(f"{path}: no episode has a ROBOT_POSE paired with its person (see warnings)")
+        raise end_error(f"{path}: no episode has a ROBOT_POSE paired with its person (see warnings)")
     if len(warnings) > MAX_WARNINGS:
         warnings = warnings[:MAX_WARNINGS] + [f"... and {len(warnings) - MAX_WARNINGS} more warnings"]
     return episodes, warnings

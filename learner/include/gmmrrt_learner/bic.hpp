@@ -41,15 +41,22 @@ struct BicSweepResult {
 // 1..30 of data with K = 6 fit K = 1..9 instead of thirty mixtures.
 constexpr int kBicStopAfterRises = 3;
 
+// Default of SweepBic's split_starts: how many split moves of the K - 1 fit join the k-means++
+// candidates of K (split_components.hpp). Each costs screen_iterations EM steps on the
+// screening sample. Evidence for the value: docs/learner.md, "BIC sweep".
+constexpr int kBicSplitStarts = 4;
+
 // Fits K = k_min..k_max (1 <= k_min <= k_max <= GMMRRT_MAX_K; options.k is ignored), in order,
 // and stops early once stop_after_rises consecutive K have a BIC above the lowest so far
 // (0: fit the whole range); note says where and why. A K with too few points for it ends the
 // sweep early (note says so) unless it is k_min, which is an error. Other fit errors are
-// returned as they are. on_row (may be empty) is called after each K.
+// returned as they are. on_row (may be empty) is called after each K. Each K > k_min screens,
+// beside options.restarts k-means++ starts, up to split_starts splits of the K - 1 fit (0:
+// fresh starts only): the sweep is then only as good as the best of both, not of EM's luck.
 Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
                 int k_min, int k_max, BicSweepResult* result,
                 const std::function<void(const BicRow&)>& on_row = nullptr,
-                int stop_after_rises = kBicStopAfterRises);
+                int stop_after_rises = kBicStopAfterRises, int split_starts = kBicSplitStarts);
 
 // The rows as a fixed-width text table (header, one line per K, the chosen K marked with *).
 std::string FormatBicTable(const BicSweepResult& result);

@@ -11,8 +11,9 @@
 // Errors are returned, never thrown: ReadResult.ok = false with a message naming the
 // file and the event number (logs) or line number (CSV). Events that are bad on their
 // own (undecodable payload, NaN/Inf, time going backwards) are skipped and each skip is
-// recorded in ReadResult.warnings; a log whose structure is broken (truncated, bytes
-// that are not an event, missing channel) is an error.
+// recorded in ReadResult.warnings; a log whose structure is broken (bytes that are not an
+// event, missing channel) is an error. A log whose last event is cut short (a recorder killed
+// mid-write) is read up to its last complete event, with a warning naming the file and event.
 #ifndef GMMRRT_LEARNER_DEMO_IO_HPP
 #define GMMRRT_LEARNER_DEMO_IO_HPP
 
@@ -65,8 +66,9 @@ ReadResult ReadEpisodeCsv(const std::string& path, std::vector<Episode>* out);
 
 // Reads a demonstration log. On success appends its episodes (those with at least one
 // sample, in log order) to *out; on failure leaves *out unchanged. Errors: cannot open,
-// not an LCM log, truncated or corrupted event structure, no DEMO_INFO / ROBOT_POSE /
-// PEOPLE event at all, no episode with samples.
+// not an LCM log, corrupted event structure, no DEMO_INFO / ROBOT_POSE / PEOPLE event at
+// all, no episode with samples (these name the cut too when the log was cut short). A cut
+// last event is a warning, not an error.
 ReadResult ReadDemoLog(const std::string& path, std::vector<Episode>* out);
 
 // Either of the above, chosen by content: the LCM log sync word 0xEDA1DA01 at the start

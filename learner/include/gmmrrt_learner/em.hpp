@@ -13,11 +13,14 @@
 // 8-component data stayed on a likelihood ridge and the fit ended 0.07 nats/point lower.
 // D = 2 without angle dimensions takes a fused, vectorised E-step (learner/src/estep_2d.cpp)
 // that computes the same quantities.
-// Convergence: |mean log-likelihood per point - previous| < tolerance (default 1e-6 nats),
-// capped by max_iterations M-steps.
+// Convergence: a plain EM step changes the mean log-likelihood per point by less than
+// tolerance, capped by max_iterations steps. EM is accelerated by SQUAREM (squarem.hpp): each
+// cycle is one EM step, an extrapolation along the last two EM steps, and a check that the
+// extrapolated mixture is at least as likely as the EM iterate (otherwise the plain EM step).
 //
 // Restarts: `restarts` candidates, each k-means++ + Lloyd, one M-step from the hard labels and
-// screen_iterations EM steps; the one with the highest mean log-likelihood runs to convergence.
+// screen_iterations EM steps, plus any extra_starts given (screen_iterations EM steps each);
+// the one with the highest mean log-likelihood runs to convergence.
 // On large data (N > screen_points) the candidates are built and screened on a seeded random
 // subsample and only the kept one runs on all points: the screening ranks starts, for which a
 // sample of 20 000 points is enough, and screening on all points was most of the run time. (On
@@ -63,6 +66,14 @@ struct FitOptions {
   double reg_relative = 1e-8;   // regularisation relative to each dimension's data variance
   double reg_floor = 1e-10;     // absolute regularisation floor [unit^2 of each dimension]
   int max_reseeds = -1;         // re-seeds allowed over the fit; -1 means 3 K
+  bool accelerate = true;       // SQUAREM (Varadhan and Roland 2008; learner/src/squarem.hpp)
+                                // with a monotonicity safeguard; false: plain EM
+  int threads = 0;              // E-step threads; 0: the cores this process may use. The
+                                // result is the same bits for any value (fixed split, sums
+                                // added in a fixed order)
+  // Further candidate starts (each with K = k, this D and angle mask, valid), screened like
+  // the k-means++ ones after them: the BIC sweep passes splits of the best K - 1 mixture.
+  std::vector<Mixture> extra_starts;
   // Progress, may be empty. With restarts > 1: once per candidate after its screening steps,
   // then after each E-step of the kept candidate; with restarts == 1 after each E-step.
   // iteration 0 is the seed mixture; the value is the mean log-likelihood per point.
@@ -79,7 +90,8 @@ struct FitSummary {
   int dim = 0;
   int k_requested = 0;
   int k_final = 0;                      // k_requested minus dropped components
-  int iterations = 0;                   // M-steps of the kept candidate (screening included)
+  int iterations = 0;                   // kept candidate, screening included: M-steps (plain EM)
+                                        // or E-steps after the first (accelerated)
   bool converged = false;               // tolerance reached before max_iterations
   std::vector<double> log_likelihood;   // kept candidate: mean log-likelihood per point after each
                                         // step (0 = seed); with a screening subsample, entry 0 is
@@ -92,11 +104,17 @@ struct FitSummary {
   int restart_kept = 0;                  // which candidate was kept
   int reseeds = 0;                       // over all candidates
   int dropped = 0;
+  int threads = 1;                       // E-step threads used
+  int extrapolations_refused = 0;        // SQUAREM steps of the kept candidate that lowered the
+                                         // log-likelihood (replaced by a plain EM step)
   std::vector<std::string> warnings;
 
   // One line: N, D, K, iterations, convergence, final mean LL, BIC.
   std::string BriefReport() const;
 };
+
+// The E-step threads FitOptions::threads = 0 stands for: the CPUs this process may run on.
+int DefaultThreadCount();
 
 // Fits a mixture to the columns of points (D x N, finite; angle rows flagged in angle_mask may
 // hold any angle and are wrapped first). On kOk, *mixture is valid (ValidateMixture) and

@@ -312,39 +312,56 @@ bool WorthTrying(size_t i, const std::vector<long>& ends) {
     return true;
 }
 
-void test_log_truncated_anywhere_is_an_error_or_a_clean_prefix(void** state) {
+// A log cut at any byte is read up to its last complete event: the cut is a warning naming
+// the file, the event and "truncated"; what remains is a prefix of the whole log's samples. When
+// too little remains to form an episode, the error names the cut.
+void test_log_truncated_anywhere_reads_the_complete_events_with_a_warning(void** state) {
     (void)state;
     const std::string good = TempPath("trunc_src.lcmlog");
     const std::vector<long> ends = WriteGoodLog(good, 2);
     const std::vector<char> bytes = ReadBytes(good);
     const std::string cut = TempPath("trunc.lcmlog");
-    size_t errors = 0;
-    size_t tried = 0;
-    for (size_t n = 0; n < bytes.size(); ++n) {
+    size_t read_with_warning = 0;
+    for (size_t n = 4; n < bytes.size(); ++n) {  // below 4 bytes it is not recognised as a log
         if (!WorthTrying(n, ends))
             continue;
-        ++tried;
         WriteBytes(cut, bytes, n);
         std::vector<Episode> eps;
         ReadResult r = gmmrrt::learn::ReadDemoLog(cut, &eps);
-        bool at_boundary = n == 0;
+        bool at_boundary = false;
         for (long e : ends)
             at_boundary = at_boundary || static_cast<long>(n) == e;
-        if (!at_boundary) {
-            if (r.ok || !Contains(r.error, cut) || !Contains(r.error, "truncated"))
-                fail_msg("cut at %zu: ok=%d '%s'", n, static_cast<int>(r.ok), r.error.c_str());
-            ++errors;
+        bool warned = false;
+        for (const std::string& w : r.warnings)
+            warned = warned || (Contains(w, cut) && Contains(w, ": event ") && Contains(w, "truncated"));
+        if (at_boundary) {
+            if (warned)
+                fail_msg("cut at %zu, an event boundary: warned of a truncation", n);
         } else if (r.ok) {
-            // A cut between events is a shorter, valid log: never more samples than the whole.
+            if (!warned)
+                fail_msg("cut at %zu: read without a truncation warning", n);
+            ++read_with_warning;
+        } else if (!Contains(r.error, cut) || !Contains(r.error, "truncated")) {
+            fail_msg("cut at %zu: error does not name the cut: '%s'", n, r.error.c_str());
+        }
+        if (r.ok) {
             size_t total = 0;
             for (const Episode& e : eps)
                 total += e.samples.size();
             assert_true(total <= 2 * 2);
-        }
-        if (!r.ok)
+        } else {
             assert_int_equal(eps.size(), 0);
+        }
     }
-    assert_true(errors > tried / 2);
+    // The last episode's events come after the first one's: cuts there keep episode 1.
+    assert_true(read_with_warning > 0);
+    // A cut by one byte loses only the last event: the first episode is whole.
+    WriteBytes(cut, bytes, bytes.size() - 1);
+    std::vector<Episode> eps;
+    ReadResult r = gmmrrt::learn::ReadDemoLog(cut, &eps);
+    assert_true(r.ok);
+    assert_true(eps.size() >= 1);
+    assert_int_equal(eps[0].samples.size(), 2);
 }
 
 void test_log_flipped_bytes_never_crash_and_broken_headers_are_named(void** state) {
@@ -613,7 +630,7 @@ int main(int argc, char** argv) {
             cmocka_unit_test(test_log_nan_pose_and_backwards_time_are_skipped_with_warnings),
             cmocka_unit_test(test_log_missing_channels_are_errors),
             cmocka_unit_test(test_log_bad_demo_info_drops_its_episode),
-            cmocka_unit_test(test_log_truncated_anywhere_is_an_error_or_a_clean_prefix),
+            cmocka_unit_test(test_log_truncated_anywhere_reads_the_complete_events_with_a_warning),
             cmocka_unit_test(test_log_flipped_bytes_never_crash_and_broken_headers_are_named),
             cmocka_unit_test(test_log_garbage_file_is_not_a_log),
             cmocka_unit_test(test_csv_good_file_reads_episodes_and_estimates_heading),

@@ -109,6 +109,17 @@ BAD_FIT_CASES = {
     "inf": (lambda t: ["--features-csv", write(t / "i.csv", "1,2\n3,inf\n")], "i.csv:2"),
     "too few points": (lambda t: ["--features-csv", write(t / "f.csv", "1,2\n3,4\n5,7\n"), "--k", 2],
                        "need at least"),
+    "too few points names the file": (lambda t: ["--features-csv", write(t / "few.csv", "1,2\n3,4\n5,7\n"),
+                                                 "--k", 2], "few.csv"),
+    "too few points in episodes": (lambda t: ["--input", episodes_csv(t, synthetic_episodes(1, 5)), "--task", "avoid",
+                                              "--k", 3], "episodes.csv"),
+    "seed in exponent form": (lambda t: ["--features-csv", write(t / "s.csv", "1\n2\n"), "--seed", "1e3"],
+                              "--seed '1e3'"),
+    "seed with a fraction": (lambda t: ["--features-csv", write(t / "s.csv", "1\n2\n"), "--seed", "2.5e1"],
+                             "--seed '2.5e1'"),
+    "unknown homotopy label in the file": (
+        lambda t: ["--input", write(t / "lab.csv", "episode_id,task,homotopy,t,robot_x,robot_y,person_x,person_y,"
+                                    "person_yaw\ne1,avoid,sideways,0,1,1,0,0,0\n"), "--task", "avoid"], "lab.csv: line 2: unknown homotopy"),
     "unknown task": (lambda t: ["--input", write(t / "ep.csv", "x\n"), "--task", "dance"], "unknown task 'dance'"),
     "unknown homotopy": (lambda t: ["--input", write(t / "ep.csv", "x\n"), "--task", "avoid", "--homotopy", "up"],
                          "unknown homotopy 'up'"),
@@ -221,3 +232,72 @@ def test_fit_from_demonstration_logs(tmp_path):
     own = float(run("score", model, "--input", logs[0], "-q").stdout.split()[1])
     other = float(run("score", model, "--input", logs[1], "--homotopy", "right", "-q").stdout.split()[1])
     assert own > other  # a left-passing model explains left passes better than right ones
+
+
+def test_csv_with_a_utf8_byte_order_mark_is_accepted(tmp_path, blobs_csv):
+    bom = b"\xef\xbb\xbf"
+    feats = tmp_path / "bom.csv"
+    feats.write_bytes(bom + blobs_csv.read_bytes())
+    r = run("fit", "--features-csv", feats, "--k", 2, "-o", tmp_path / "f.gmm", "-q")
+    assert r.returncode == 0, r.stderr
+    eps = episodes_csv(tmp_path, synthetic_episodes())
+    eps.write_bytes(bom + eps.read_bytes())
+    r = run("fit", "--input", eps, "--task", "avoid", "--k", 2, "-o", tmp_path / "e.gmm", "-q")
+    assert r.returncode == 0, r.stderr
+
+
+def test_output_that_is_not_a_regular_file_is_refused(tmp_path, blobs_csv):
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    link = tmp_path / "link.gmm"
+    link.symlink_to(fifo)
+    folder = tmp_path / "folder.gmm"
+    folder.mkdir()
+    for target in (fifo, link, folder, Path("/dev/null")):
+        r = run("fit", "--features-csv", blobs_csv, "--k", 2, "-o", target, "-q")
+        assert r.returncode == 1, (target, r.stderr)
+        assert str(target) in r.stderr and "not a regular file" in r.stderr, r.stderr
+    assert fifo.is_fifo() and link.is_symlink() and folder.is_dir()
+    assert Path("/dev/null").is_char_device()
+    assert not [p for p in tmp_path.iterdir() if ".tmp." in p.name]
+    # A link to a regular file is replaced atomically by the new model.
+    old = tmp_path / "old.gmm"
+    old.write_bytes(b"old")
+    good_link = tmp_path / "good_link.gmm"
+    good_link.symlink_to(old)
+    r = run("fit", "--features-csv", blobs_csv, "--k", 2, "-o", good_link, "-q")
+    assert r.returncode == 0, r.stderr
+    assert run("inspect", good_link).returncode == 0
+
+
+def test_inspect_json_holds_the_model(tmp_path, blobs_csv):
+    model = tmp_path / "m.gmm"
+    assert run("fit", "--features-csv", blobs_csv, "--k", 2, "-o", model, "-q").returncode == 0
+    r = run("inspect", "--json", model)
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["kind"] == "generic" and d["dim"] == 2 and d["k"] == 2 and d["angle_dims"] == []
+    assert abs(sum(c["weight"] for c in d["components"]) - 1) < 1e-12
+    text = run("inspect", model).stdout
+    for c in d["components"]:
+        cov = np.array(c["covariance"])
+        chol = np.array(c["chol"])
+        np.testing.assert_allclose(chol @ chol.T, cov, rtol=1e-12, atol=0)
+        assert f"weight {c['weight']:.6f}" in text
+    # A corrupt file: the loader's reason, exit 1, no JSON on stdout.
+    data = bytearray(model.read_bytes())
+    data[40] ^= 1
+    bad = tmp_path / "bad.gmm"
+    bad.write_bytes(bytes(data))
+    r = run("inspect", "--json", bad)
+    assert r.returncode == 1 and r.stdout == "" and "invalid model" in r.stderr
+
+
+def test_unlabelled_episodes_fit_with_homotopy_all(tmp_path):
+    rows = [(e, t, "", *rest) for (e, t, _h, *rest) in synthetic_episodes()]
+    eps = episodes_csv(tmp_path, rows)
+    model = tmp_path / "all.gmm"
+    r = run("fit", "--input", eps, "--task", "avoid", "--homotopy", "all", "--k", 2, "-o", model, "-q")
+    assert r.returncode == 0, r.stderr
+    r = run("fit", "--input", eps, "--task", "avoid", "--homotopy", "left", "--k", 2, "-o", tmp_path / "l.gmm", "-q")
+    assert r.returncode == 1 and "no episode" in r.stderr and not (tmp_path / "l.gmm").exists()

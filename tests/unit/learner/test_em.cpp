@@ -1,5 +1,6 @@
 // test_em.cpp - learner.em: k-means++ and EM on synthetic mixtures (recovered means and
-// weights), monotone log-likelihood, determinism, degenerate components, the +-pi seam, BIC
+// weights), monotone log-likelihood, determinism (also across thread counts), SQUAREM against
+// plain EM, degenerate components, the +-pi seam, BIC
 // choosing the generating K, bad input, and the Eigen density against the C gmm.h density.
 #include <cmath>
 #include <random>
@@ -106,6 +107,76 @@ void test_em_log_likelihood_never_decreases(void** state) {
   assert_true(s.log_likelihood.size() > 5);
   for (size_t t = 1; t < s.log_likelihood.size(); ++t)
     assert_true(s.log_likelihood[t] >= s.log_likelihood[t - 1] - 1e-12);
+}
+
+// Overlapping components, each large enough that the E-step is cut into several tasks (8192
+// points for D = 2, 8192 for the general path): the thread count must not change a bit.
+void test_any_thread_count_gives_the_same_bits(void** state) {
+  (void)state;
+  for (int d : {2, 3}) {
+    std::vector<Blob> blobs;
+    for (int b = 0; b < 4; ++b) {
+      Eigen::VectorXd mu = Eigen::VectorXd::Zero(d);
+      mu[0] = 1.2 * b;
+      mu[d - 1] = 0.5 * (b % 2);
+      blobs.push_back({mu, Eigen::MatrixXd::Identity(d, d) * (0.6 + 0.1 * b), 6000});
+    }
+    const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 21);
+    Mixture ref;
+    FitSummary sref;
+    for (int threads : {1, 2, 3, 5}) {
+      FitOptions o = Quiet(4, 8);
+      o.threads = threads;
+      o.max_iterations = 40;
+      o.screen_points = 0;  // the candidates on all points too
+      Mixture m;
+      FitSummary s;
+      assert_true(FitMixture(x, 0, o, &m, &s).ok());
+      assert_int_equal(s.threads, threads);
+      if (threads == 1) {
+        ref = m;
+        sref = s;
+        continue;
+      }
+      assert_int_equal(m.k(), ref.k());
+      assert_true(m.weights == ref.weights);
+      assert_true(m.means == ref.means);
+      for (int i = 0; i < m.k(); ++i) assert_true(m.chol[i] == ref.chol[i]);
+      assert_true(s.log_likelihood == sref.log_likelihood);
+    }
+  }
+}
+
+// SQUAREM on overlapping components (where plain EM crawls): at least plain EM's likelihood
+// (less 1e-4 nats/point: both stop at a tolerance, not at the optimum itself), in fewer than
+// half the E-steps, and the recorded log-likelihood never decreases.
+void test_squarem_reaches_plain_em_likelihood_in_fewer_steps(void** state) {
+  (void)state;
+  std::vector<Blob> blobs;
+  for (int b = 0; b < 6; ++b) {
+    Eigen::MatrixXd l(2, 2);
+    l << 0.8, 0.0, 0.3 * (b % 3 - 1), 0.5 + 0.1 * b;
+    blobs.push_back({Vec({1.0 * b, 0.6 * (b % 2)}), l, 1500});
+  }
+  const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 17);
+  FitSummary plain, fast;
+  Mixture mp, mf;
+  FitOptions o = Quiet(6, 4);
+  o.restarts = 1;
+  o.tolerance = 1e-7;
+  o.max_iterations = 20000;
+  o.accelerate = false;
+  assert_true(FitMixture(x, 0, o, &mp, &plain).ok());
+  o.accelerate = true;
+  assert_true(FitMixture(x, 0, o, &mf, &fast).ok());
+  print_message("plain: %d iterations, %.9f; squarem: %d iterations, %.9f (%d refused)\n", plain.iterations,
+                plain.final_mean_log_likelihood, fast.iterations, fast.final_mean_log_likelihood,
+                fast.extrapolations_refused);
+  assert_true(plain.converged && fast.converged);
+  assert_true(fast.final_mean_log_likelihood > plain.final_mean_log_likelihood - 1e-4);
+  assert_true(fast.iterations * 2 < plain.iterations);
+  for (size_t t = 1; t < fast.log_likelihood.size(); ++t)
+    assert_true(fast.log_likelihood[t] >= fast.log_likelihood[t - 1] - 1e-12);
 }
 
 void test_same_seed_gives_the_same_mixture(void** state) {
@@ -267,6 +338,8 @@ int main(void) {
       cmocka_unit_test(test_em_recovers_means_and_weights),
       cmocka_unit_test(test_em_log_likelihood_never_decreases),
       cmocka_unit_test(test_same_seed_gives_the_same_mixture),
+      cmocka_unit_test(test_any_thread_count_gives_the_same_bits),
+      cmocka_unit_test(test_squarem_reaches_plain_em_likelihood_in_fewer_steps),
       cmocka_unit_test(test_degenerate_components_are_reseeded_or_dropped),
       cmocka_unit_test(test_cluster_across_the_seam_is_one_component),
       cmocka_unit_test(test_bic_picks_the_generating_k),

@@ -206,7 +206,7 @@ static void test_failed_save_leaves_no_file_and_keeps_the_old_one(void **state)
     assert_int_equal(gmmrrt_model_save_file(missing, &good, err, sizeof err), GMMRRT_ERR_IO);
     assert_non_null(strstr(err, missing));
     assert_int_equal(count_entries(s->dir), 1);
-    /* Renaming over a directory fails after the temporary file was written: it is removed. */
+    /* A directory (or device, FIFO) at the path is refused before anything is written. */
     char subdir[400];
     snprintf(subdir, sizeof subdir, "%s/taken", s->dir);
     assert_int_equal(mkdir(subdir, 0755), 0);
@@ -214,7 +214,8 @@ static void test_failed_save_leaves_no_file_and_keeps_the_old_one(void **state)
     snprintf(inner, sizeof inner, "%s/keep", subdir);
     write_bytes(inner, old, 1); /* non-empty directory: rename(2) cannot replace it */
     assert_int_equal(gmmrrt_model_save_file(subdir, &good, err, sizeof err), GMMRRT_ERR_IO);
-    assert_non_null(strstr(err, "rename"));
+    assert_non_null(strstr(err, "not a regular file"));
+    assert_non_null(strstr(err, subdir));
     assert_int_equal(count_entries(s->dir), 2); /* avoid.gmm and taken/, no temporary file */
     unlink(inner);
     rmdir(subdir);

@@ -29,7 +29,9 @@ gmmrrt_status_t gmmrrt_model_load_file(const char *path, gmmrrt_model_t *model, 
 /* Writes *model to `path` atomically: the encoding goes to a temporary file in the same
  * directory, which is written, fsync'ed and renamed over `path` (the directory is then
  * fsync'ed). On any failure the temporary file is removed and `path` is left as it was:
- * never a partial model. The new file gets mode 0644.
+ * never a partial model. The new file gets mode 0644. An existing `path` that is not a
+ * regular file (device node, FIFO, directory, or a symbolic link to one) is refused with
+ * GMMRRT_ERR_IO and left alone.
  * Returns GMMRRT_OK; GMMRRT_ERR_INVALID_ARGUMENT (NULL path or model); the
  * GMMRRT_ERR_MODEL_* status when the model does not validate (nothing is written); or
  * GMMRRT_ERR_IO with the path and the system's reason. */

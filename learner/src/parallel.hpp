@@ -1,0 +1,26 @@
+// parallel.hpp (private to learner/src) - running independent tasks on a few threads for the
+// E-step sums. Determinism is the caller's part of the contract: each task writes only its own
+// slot, and the caller adds the slots up in task order afterwards, so the result is the same
+// bits for any thread count (the split into tasks depends on the data size only).
+#ifndef GMMRRT_LEARNER_PARALLEL_HPP
+#define GMMRRT_LEARNER_PARALLEL_HPP
+
+#include <functional>
+
+namespace gmmrrt {
+namespace learn {
+namespace detail {
+
+// Runs task(0) .. task(n_tasks - 1), each exactly once, on up to `threads` threads (the
+// calling thread is one of them; threads <= 1 or n_tasks <= 1 runs them in order on the caller).
+// Tasks are handed out in order from a shared counter. Returns when all have finished.
+void ParallelFor(int threads, long n_tasks, const std::function<void(long task)>& task);
+
+// CPUs this process may run on (sched_getaffinity), at least 1: the default thread count.
+int AvailableCores();
+
+}  // namespace detail
+}  // namespace learn
+}  // namespace gmmrrt
+
+#endif  // GMMRRT_LEARNER_PARALLEL_HPP
