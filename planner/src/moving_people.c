@@ -14,7 +14,18 @@
  *     t in [ |q - root| / speed,  GMMRRT_WALKER_SLACK |q - root| / speed + GMMRRT_WALKER_SLACK_S ]
  * (the straight distance bounds s from below; paths are rarely more than half again longer than
  * it), i.e. against the capsule the walker sweeps over that window, kept GMMRRT_WALKER_COMFORT_M
- * beyond contact. A segment uses the window of
+ * beyond contact.
+ *
+ * Social cost of a walker (gmmrrt_walkers_cost; added to the task cost term of the edge cost,
+ * objective.c): the learned models are about standing people, so a walker's cost is geometry,
+ * not learned. At a point x the walker is taken where they will be when the robot gets there,
+ * P(t), t = |x - root| / speed (the search's earliest time), and x is placed in their motion
+ * frame (along = ahead of P(t), lat = sideways); L = walker speed x GMMRRT_WALKER_LOOKAHEAD_S:
+ *     ahead  (0 <= along <= L):  exp(-lat^2 / (2 GMMRRT_WALKER_LANE_M^2))
+ *     beyond (along > L):        the same times exp(-(along - L)^2 / (2 GMMRRT_WALKER_LANE_M^2))
+ *     behind (along < 0):        exp(-(along^2 + lat^2) / (2 GMMRRT_WALKER_WAKE_M^2))
+ * so crossing the stretch they are about to walk costs up to 1 per metre (times w_task), and
+ * passing behind them only close to their back. A segment uses the window of
  * its points together. The drivable path (drivable.h) then checks every waypoint against where
  * the walker is at the waypoint's exact time and reports any conflict.
  */
@@ -156,4 +167,49 @@ double gmmrrt_walkers_clearance_at(const gmmrrt_walkers_t *w, double x, double y
             best = d;
     }
     return best - (w->reach_m - GMMRRT_WALKER_EDGE_MARGIN_M - GMMRRT_WALKER_COMFORT_M); /* to contact */
+}
+
+/* Width (sigma, m) of the lane ahead of a walker and of the small wake behind them. */
+#define GMMRRT_WALKER_LANE_M 0.6
+#define GMMRRT_WALKER_WAKE_M 0.3
+/* How far ahead (s of walking) a walker's lane reaches. */
+#define GMMRRT_WALKER_LOOKAHEAD_S 2.0
+
+static double walker_cost_at(const gmmrrt_walkers_t *w, int32_t k, double x, double y)
+{
+    const double speed = hypot(w->vx[k], w->vy[k]);
+    const double ux = w->vx[k] / speed, uy = w->vy[k] / speed;
+    const double t = fmin(hypot(x - w->root_x, y - w->root_y) / w->speed_m_s, w->horizon_s);
+    const double dx = x - (w->x[k] + w->vx[k] * t), dy = y - (w->y[k] + w->vy[k] * t);
+    const double along = dx * ux + dy * uy, lat = -dx * uy + dy * ux;
+    const double reach = speed * GMMRRT_WALKER_LOOKAHEAD_S;
+    const double l2 = 2.0 * GMMRRT_WALKER_LANE_M * GMMRRT_WALKER_LANE_M;
+    if (along < 0.0)
+        return exp(-(along * along + lat * lat) / (2.0 * GMMRRT_WALKER_WAKE_M * GMMRRT_WALKER_WAKE_M));
+    const double beyond = along > reach ? along - reach : 0.0;
+    return exp(-(lat * lat + beyond * beyond) / l2);
+}
+
+double gmmrrt_walkers_cost(const gmmrrt_walkers_t *w, double x0, double y0, double x1, double y1, double resolution_m)
+{
+    const double len = hypot(x1 - x0, y1 - y0);
+    if (w->count == 0 || len == 0.0)
+        return 0.0;
+    /* Composite midpoint rule, as the task cost's quadrature (objective.c). */
+    double n = ceil(len / resolution_m);
+    if (n < 1.0)
+        n = 1.0;
+    double sum = 0.0;
+    for (int32_t i = 0; i < (int32_t)n; ++i) {
+        const double t = ((double)i + 0.5) / n;
+        const double x = x0 + t * (x1 - x0), y = y0 + t * (y1 - y0);
+        double c = 0.0;
+        for (int32_t k = 0; k < w->count; ++k) {
+            const double ck = walker_cost_at(w, k, x, y);
+            if (ck > c)
+                c = ck;
+        }
+        sum += c;
+    }
+    return sum * len / n;
 }

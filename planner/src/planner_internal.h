@@ -127,6 +127,9 @@ gmmrrt_status_t gmmrrt_walkers_prepare(struct gmmrrt_planner *p, const gmmrrt_pr
  * positions over the time it can be there (moving_people.c). */
 int gmmrrt_walkers_point_free(const gmmrrt_walkers_t *w, double x, double y);
 int gmmrrt_walkers_segment_free(const gmmrrt_walkers_t *w, double x0, double y0, double x1, double y1);
+/* Integral over the segment of the walkers' social cost (largest over the walkers; in [0, 1],
+ * higher in the lane ahead of a walker than behind them), midpoint rule at resolution_m. */
+double gmmrrt_walkers_cost(const gmmrrt_walkers_t *w, double x0, double y0, double x1, double y1, double resolution_m);
 /* Clearance (m) of the robot disc at (x, y) at time t_s to the nearest walker there; +inf without walkers. */
 double gmmrrt_walkers_clearance_at(const gmmrrt_walkers_t *w, double x, double y, double t_s);
 

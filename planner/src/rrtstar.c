@@ -490,8 +490,8 @@ static void iterate(struct gmmrrt_planner *p)
      * the quadrature runs only for candidates that can still win). */
     /* Without a task term the edge cost is a fixed multiple of length: the lower bound is
      * exact, so no candidate needs the quadrature. */
-    const int cost_is_length = p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR || !p->task_active ||
-                               p->num_active == 0;
+    const int cost_is_length = p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR ||
+                               ((!p->task_active || p->num_active == 0) && p->walkers.count == 0);
     /* The lower bound is linear in length (objective.c): its slope once per iteration. */
     const double unit = gmmrrt_edge_cost_lower_bound(p, 1.0);
     /* Simple loops (the square roots vectorise). */

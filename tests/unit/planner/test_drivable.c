@@ -16,6 +16,7 @@
 #include "gmmrrt/drivable.h"
 #include "gmmrrt/features.h"
 #include "planner_fixtures.h"
+#include "planner_internal.h" /* gmmrrt_walkers_cost */
 
 static gmmrrt_budget_t iters(int64_t n) { return (gmmrrt_budget_t){0.0, n, 0.0, 0}; }
 
@@ -333,6 +334,34 @@ static void test_slow_person_is_standing_bit_for_bit(void **state)
     assert_memory_equal(paths[0].y, paths[1].y, sizeof(double) * (size_t)paths[0].num_points);
 }
 
+/* Crossing a walker's lane where they are about to walk costs more than crossing behind them, at
+ * the same distance; the cost is where they will be when the robot gets there. */
+static void test_walker_cost_is_higher_in_front_than_behind(void **state)
+{
+    (void)state;
+    gmmrrt_walkers_t w;
+    memset(&w, 0, sizeof w);
+    w.count = 1;
+    w.x[0] = 0.0;
+    w.y[0] = 0.0;
+    w.vy[0] = 1.0; /* walking +y */
+    w.speed_m_s = 1.0;
+    w.horizon_s = 5.0;
+    w.root_x = 0.0;
+    w.root_y = -100.0; /* far: the robot gets there at the horizon, the walker at (0, 5) */
+    const double front = gmmrrt_walkers_cost(&w, -1.0, 6.0, 1.0, 6.0, 0.05);
+    const double behind = gmmrrt_walkers_cost(&w, -1.0, 4.0, 1.0, 4.0, 0.05);
+    const double far = gmmrrt_walkers_cost(&w, -1.0, 20.0, 1.0, 20.0, 0.05);
+    printf("walker cost of a 2 m crossing 1 m ahead %.3f, 1 m behind %.3f, 15 m ahead %.3g\n", front, behind, far);
+    assert_true(front > 1.0);         /* close to the full 2 m x 1 of the lane */
+    assert_true(behind < 0.1 * front);
+    assert_true(far < 1e-6);
+    /* A robot near the walker's start meets them there: the same crossing is now behind them. */
+    w.root_y = 0.0;
+    w.root_x = 0.0;
+    assert_true(gmmrrt_walkers_cost(&w, -1.0, -1.0, 1.0, -1.0, 0.05) < 0.1);
+}
+
 static void test_bad_velocities_are_refused(void **state)
 {
     (void)state;
@@ -363,6 +392,7 @@ int main(void)
         cmocka_unit_test(test_person_stepping_into_the_disc_is_escaped),
         cmocka_unit_test(test_walker_crossing_is_passed_at_a_safe_distance),
         cmocka_unit_test(test_slow_person_is_standing_bit_for_bit),
+        cmocka_unit_test(test_walker_cost_is_higher_in_front_than_behind),
         cmocka_unit_test(test_bad_velocities_are_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
