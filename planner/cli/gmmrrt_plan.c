@@ -16,6 +16,7 @@
 
 #include "gmmrrt/drivable.h"
 #include "gmmrrt/model_file.h"
+#include "gmmrrt/model_set.h"
 #include "gmmrrt/rrtstar.h"
 
 #define EXIT_BAD_INPUT 1
@@ -38,6 +39,7 @@ static void usage(FILE *out)
             "       [--task avoid|approach] [--target-person I] [--goal-tolerance M]\n"
             "       [--delta D] [--w-task W] [--rewire-k F] [--informed 0|1] [--json]\n"
             "       [--goal-yaw-tolerance DEG] [--min-turn-radius M] [--nominal-speed M_S] [--raw-path]\n"
+            "       [--approach-models DIR]\n"
             "\n"
             "Plans a path with GMM-RRT* (the paper's planner), plain RRT* or the GMM-RRT baseline\n"
             "and prints it as x,y CSV (header line first), or with --json one object:\n"
@@ -59,6 +61,9 @@ static void usage(FILE *out)
             "                      0: turning in place allowed)\n"
             "  --nominal-speed M_S robot speed that times the path against walking people (default 0.5)\n"
             "  --raw-path          print the tree's path (no shortcuts, arcs or arrival leg)\n"
+            "  --approach-models DIR  approach with the set DIR/1-front.gmm ... DIR/8-45_left.gmm (the 8\n"
+            "                      directions of the UPO lab's models): the one of the start's bearing\n"
+            "                      in the target's frame plans (\"approach_model\" in --json)\n"
             "  --obstacle SPEC     circle:x,y,r or box:cx,cy,w,h,yaw [m, rad]; repeat\n"
             "  --planner NAME      default gmm-rrt-star with --model, rrt-star without\n"
             "  --bias B            probability of a mixture sample, [0, 1] (default 0.95)\n"
@@ -171,7 +176,7 @@ int main(int argc, char **argv)
 {
     enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_PLANNER, OPT_BIAS, OPT_BUDGET,
            OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_DELTA,
-           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_YAW_TOL, OPT_TURN_RADIUS, OPT_SPEED, OPT_RAW };
+           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_YAW_TOL, OPT_TURN_RADIUS, OPT_SPEED, OPT_RAW, OPT_SET };
     static const struct option opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
         {"goal", required_argument, NULL, OPT_GOAL},         {"person", required_argument, NULL, OPT_PERSON},
@@ -186,12 +191,13 @@ int main(int argc, char **argv)
         {"goal-yaw-tolerance", required_argument, NULL, OPT_YAW_TOL},
         {"min-turn-radius", required_argument, NULL, OPT_TURN_RADIUS},
         {"nominal-speed", required_argument, NULL, OPT_SPEED},  {"raw-path", no_argument, NULL, OPT_RAW},
+        {"approach-models", required_argument, NULL, OPT_SET},
         {"help", no_argument, NULL, 'h'},                    {NULL, 0, NULL, 0}};
 
     static gmmrrt_problem_t pr; /* large (obstacle arrays): static, zeroed */
     gmmrrt_planner_config_t cfg;
     gmmrrt_planner_config_default(&cfg);
-    const char *model_path = NULL;
+    const char *model_path = NULL, *set_dir = NULL;
     int have_start = 0, have_goal = 0, have_bounds = 0, json = 0, planner = 0, task = 0, raw = 0, have_yaw = 0;
     gmmrrt_drive_options_t drive;
     gmmrrt_drive_options_default(&drive);
@@ -261,6 +267,9 @@ int main(int argc, char **argv)
             break;
         case OPT_RAW:
             raw = 1;
+            break;
+        case OPT_SET:
+            set_dir = optarg;
             break;
         case OPT_OBSTACLE:
             if (strncmp(optarg, "circle:", 7) == 0) {
@@ -380,6 +389,29 @@ int main(int argc, char **argv)
         if (ms != GMMRRT_OK)
             return fail("cannot use --model: %s%s", err, "");
     }
+    /* An approach model set: every direction must load; the start's direction plans. */
+    static gmmrrt_model_t set_models[GMMRRT_APPROACH_DIRECTIONS];
+    int32_t set_direction = -1;
+    if (set_dir) {
+        if (model_path)
+            return fail("--approach-models and --model exclude each other%s%s", "", "");
+        if (target >= pr.obstacles.num_people)
+            return fail("--approach-models needs a --person to approach (--target-person is out of range)%s%s", "",
+                        "");
+        gmmrrt_model_set_t set;
+        for (int32_t k = 0; k < GMMRRT_APPROACH_DIRECTIONS; ++k) {
+            static char file[4096];
+            snprintf(file, sizeof file, "%s/%s.gmm", set_dir, gmmrrt_approach_direction_name(k));
+            if (gmmrrt_model_load_file(file, &set_models[k], err, sizeof err) != GMMRRT_OK)
+                return fail("cannot use --approach-models: %s%s", err, "");
+            set.model[k] = &set_models[k];
+        }
+        if (gmmrrt_model_set_validate(&set, err, sizeof err) != GMMRRT_OK)
+            return fail("cannot use --approach-models %s: %s", set_dir, err);
+        model = *gmmrrt_model_set_select(&set, &pr.obstacles.people[target], pr.start_x, pr.start_y, &set_direction);
+        model_path = set_dir;
+        task = GMMRRT_TASK_APPROACH;
+    }
     if (planner == 0)
         planner = model_path ? GMMRRT_PLANNER_GMM_RRT_STAR : GMMRRT_PLANNER_RRT_STAR;
     if (planner != GMMRRT_PLANNER_RRT_STAR && !model_path)
@@ -482,8 +514,12 @@ int main(int argc, char **argv)
         printf(", \"tight_turns\": %d, \"turns_in_place\": %d, \"min_walker_clearance_m\": ", rep.tight_turns,
                rep.turns_in_place);
         json_number(rep.min_walker_clearance_m);
-        printf(", \"walker_conflict\": %s, \"escape\": \"%s\"}, \"stats\": {",
+        printf(", \"walker_conflict\": %s, \"escape\": \"%s\"}, \"approach_model\": ",
                rep.walker_conflict ? "true" : "false", escape_reason);
+        if (set_direction >= 0)
+            printf("\"%s\", \"stats\": {", gmmrrt_approach_direction_name(set_direction));
+        else
+            printf("null, \"stats\": {");
         printf("\"iterations\": %lld, \"nodes\": %d, \"first_solution_ms\": ", (long long)stats.iterations,
                stats.nodes);
         json_number(stats.first_solution_ms >= 0.0 ? stats.first_solution_ms : NAN);

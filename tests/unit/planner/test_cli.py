@@ -45,7 +45,7 @@ def test_help_lists_every_option():
     for opt in ["--model", "--start", "--goal", "--person", "--obstacle", "--planner", "--bias",
                 "--budget-ms", "--iterations", "--seed", "--robot-radius", "--bounds", "--json", "--delta",
                 "--w-task", "--rewire-k", "--informed", "cost_history", "--goal-yaw-tolerance",
-                "--min-turn-radius", "--nominal-speed", "--raw-path"]:
+                "--min-turn-radius", "--nominal-speed", "--raw-path", "--approach-models"]:
         assert opt in r.stdout
 
 
@@ -234,6 +234,29 @@ def test_goal_yaw_turn_radius_and_walkers_take_effect():
     assert out["drive"]["min_walker_clearance_m"] > 0.15
     standing = json.loads(run(*walker[:5], "1,3,-1.5708", *walker[6:]).stdout)
     assert standing["drive"]["min_walker_clearance_m"] is None  # nobody walks: nothing predicted
+
+
+APPROACH_NAMES = ["1-front", "2-45_right", "3-90_right", "4-135_right", "5-back", "6-135_left", "7-90_left",
+                  "8-45_left"]
+
+
+def test_approach_model_set_picks_the_start_direction_and_refuses_a_missing_one(tmp_path):
+    for k, name in enumerate(APPROACH_NAMES):  # direction k's components at its own bearing
+        write_features_model(tmp_path / f"{name}.gmm", [math.remainder(-k * math.pi / 4, 2 * math.pi)], task=2)
+    base = ["--approach-models", str(tmp_path), "--person", "0,0,0", "--goal", "1.2,0", "--iterations", "1500",
+            "--json"]
+    for start, name in (("-3,0.2", "5-back"), ("0.3,-3", "3-90_right"), ("3,2.5", "8-45_left")):
+        r = run(*base, "--start", start)
+        assert r.returncode == 0, r.stderr
+        out = json.loads(r.stdout)
+        assert out["approach_model"] == name
+        assert out["drive"]["arrival_met"]  # approach arrives facing the person by default
+        assert abs(math.atan2(math.sin(out["yaw"][-1] - math.pi), math.cos(out["yaw"][-1] - math.pi))) <= \
+            math.radians(15)
+    (tmp_path / "6-135_left.gmm").unlink()
+    r = run(*base, "--start", "-3,0.2")
+    assert r.returncode == 1 and r.stdout == ""
+    assert "6-135_left.gmm" in r.stderr and "--approach-models" in r.stderr
 
 
 def test_search_flags_take_effect():

@@ -15,6 +15,7 @@
 
 #include "gmmrrt/drivable.h"
 #include "gmmrrt/features.h"
+#include "gmmrrt/model_set.h"
 #include "planner_fixtures.h"
 #include "planner_internal.h" /* gmmrrt_walkers_cost */
 
@@ -362,6 +363,38 @@ static void test_walker_cost_is_higher_in_front_than_behind(void **state)
     assert_true(gmmrrt_walkers_cost(&w, -1.0, -1.0, 1.0, -1.0, 0.05) < 0.1);
 }
 
+/* The robot's bearing in the person's frame picks the direction (+left, right = negative). */
+static void test_approach_direction_sectors(void **state)
+{
+    (void)state;
+    const gmmrrt_pose_t person = {1.0, 2.0, M_PI / 2.0}; /* facing world +y */
+    const char *expect[8] = {"1-front", "8-45_left", "7-90_left", "6-135_left", "5-back", "4-135_right",
+                             "3-90_right", "2-45_right"};
+    for (int i = 0; i < 8; ++i) {
+        for (int j = -2; j <= 2; ++j) { /* +-20 degrees inside the sector */
+            const double theta = i * M_PI / 4.0 + j * (10.0 * M_PI / 180.0);
+            double x, y;
+            gmmrrt_features_to_xy(&person, 2.0, theta, &x, &y);
+            const int32_t k = gmmrrt_approach_direction(&person, x, y);
+            assert_string_equal(gmmrrt_approach_direction_name(k), expect[i]);
+        }
+    }
+    assert_int_equal(gmmrrt_approach_direction(&person, NAN, 0.0), -1);
+    assert_null(gmmrrt_approach_direction_name(8));
+    gmmrrt_model_t m;
+    const double theta[] = {0.0};
+    assert_int_equal(make_features_model(&m, theta, 1, 1.2, 0.2, 0.3), GMMRRT_OK);
+    m.task = GMMRRT_TASK_APPROACH;
+    gmmrrt_model_set_t set;
+    for (int i = 0; i < 8; ++i)
+        set.model[i] = &m;
+    char err[128];
+    assert_int_equal(gmmrrt_model_set_validate(&set, err, sizeof err), GMMRRT_OK);
+    set.model[5] = NULL;
+    assert_int_equal(gmmrrt_model_set_validate(&set, err, sizeof err), GMMRRT_ERR_MODEL_MISMATCH);
+    assert_non_null(strstr(err, "6-135_left"));
+}
+
 static void test_bad_velocities_are_refused(void **state)
 {
     (void)state;
@@ -393,6 +426,7 @@ int main(void)
         cmocka_unit_test(test_walker_crossing_is_passed_at_a_safe_distance),
         cmocka_unit_test(test_slow_person_is_standing_bit_for_bit),
         cmocka_unit_test(test_walker_cost_is_higher_in_front_than_behind),
+        cmocka_unit_test(test_approach_direction_sectors),
         cmocka_unit_test(test_bad_velocities_are_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
