@@ -5,16 +5,21 @@
  * collision world (collision.c) exactly as before, and the learned models apply to them as to
  * the demonstrations (people standing while the robot passes or approaches). Faster people are
  * walkers: taken out of the world and predicted with constant velocity,
- *     P(t) = P(0) + v min(t, horizon),
- * (held at the horizon beyond it: nothing better is known there).
+ *     P(t) = P(0) + v t,  0 <= t <= horizon
+ * (no prediction beyond it: a walker is not an obstacle to points the robot cannot reach before
+ * the horizon; the daemon replans long before then, and holding them at the horizon would wall
+ * off the map with phantom people in a crowd).
  *
  * When is the robot at a point q? Along a path it arrives at t(q) = s(q) / speed, s the arc
  * length, which only the finished path knows. In the search a tree point is tested against the
  * walker over the window
  *     t in [ |q - root| / speed,  GMMRRT_WALKER_SLACK |q - root| / speed + GMMRRT_WALKER_SLACK_S ]
  * (the straight distance bounds s from below; paths are rarely more than half again longer than
- * it), i.e. against the capsule the walker sweeps over that window, kept GMMRRT_WALKER_COMFORT_M
- * beyond contact.
+ * it), i.e. against the capsule the walker sweeps over that window (a segment in pieces of
+ * GMMRRT_WALKER_PIECE_M, each with the window of its points), kept beyond contact by
+ * GMMRRT_WALKER_COMFORT_M x min(1, t_lo / GMMRRT_WALKER_COMFORT_RAMP_S): the prediction is a guess
+ * that grows less certain with time, while at t = 0 only contact is a collision (so passing close
+ * to a walker right now is not taken for a start in collision).
  *
  * Social cost of a walker (gmmrrt_walkers_cost; added to the task cost term of the edge cost,
  * objective.c): the learned models are about standing people, so a walker's cost is geometry,
@@ -37,6 +42,8 @@
 #define GMMRRT_WALKER_SLACK 1.5
 #define GMMRRT_WALKER_SLACK_S 0.5
 #define GMMRRT_WALKER_EDGE_MARGIN_M 1e-3 /* as collision.c's edge margin */
+#define GMMRRT_WALKER_COMFORT_RAMP_S 1.0
+#define GMMRRT_WALKER_PIECE_M 0.5 /* segments are tested in pieces this long */
 
 gmmrrt_status_t gmmrrt_walkers_prepare(struct gmmrrt_planner *p, const gmmrrt_problem_t *pr,
                                        const gmmrrt_obstacle_set_t **world_set)
@@ -65,7 +72,7 @@ gmmrrt_status_t gmmrrt_walkers_prepare(struct gmmrrt_planner *p, const gmmrrt_pr
     }
     w->speed_m_s = pr->nominal_speed_m_s > 0.0 ? pr->nominal_speed_m_s : GMMRRT_DEFAULT_NOMINAL_SPEED_M_S;
     w->horizon_s = pr->prediction_horizon_s > 0.0 ? pr->prediction_horizon_s : GMMRRT_DEFAULT_PREDICTION_HORIZON_S;
-    w->reach_m = p->cfg.robot_radius_m + p->cfg.person_radius_m + GMMRRT_WALKER_COMFORT_M + GMMRRT_WALKER_EDGE_MARGIN_M;
+    w->reach_m = p->cfg.robot_radius_m + p->cfg.person_radius_m + GMMRRT_WALKER_EDGE_MARGIN_M; /* + comfort(t) */
     w->root_x = pr->start_x;
     w->root_y = pr->start_y;
     if (w->count == 0)
@@ -128,8 +135,11 @@ static double segment_segment_d2(double ax, double ay, double bx, double by, dou
 static int clear_over(const gmmrrt_walkers_t *w, double x0, double y0, double x1, double y1, double t_lo,
                       double t_hi)
 {
-    const double a = fmin(t_lo, w->horizon_s), b = fmin(t_hi, w->horizon_s);
-    const double r2 = w->reach_m * w->reach_m;
+    if (t_lo > w->horizon_s)
+        return 1; /* beyond the horizon nothing is known; the next cycle's plan will see them */
+    const double a = t_lo, b = fmin(t_hi, w->horizon_s);
+    const double r = w->reach_m + GMMRRT_WALKER_COMFORT_M * fmin(1.0, t_lo / GMMRRT_WALKER_COMFORT_RAMP_S);
+    const double r2 = r * r;
     for (int32_t k = 0; k < w->count; ++k) {
         const double px0 = w->x[k] + w->vx[k] * a, py0 = w->y[k] + w->vy[k] * a;
         const double px1 = w->x[k] + w->vx[k] * b, py1 = w->y[k] + w->vy[k] * b;
@@ -145,9 +155,9 @@ int gmmrrt_walkers_point_free(const gmmrrt_walkers_t *w, double x, double y)
     return clear_over(w, x, y, x, y, d / w->speed_m_s, GMMRRT_WALKER_SLACK * d / w->speed_m_s + GMMRRT_WALKER_SLACK_S);
 }
 
-int gmmrrt_walkers_segment_free(const gmmrrt_walkers_t *w, double x0, double y0, double x1, double y1)
+/* One piece: the nearest point to the root bounds the earliest time, the farther end the latest. */
+static int piece_free(const gmmrrt_walkers_t *w, double x0, double y0, double x1, double y1)
 {
-    /* Nearest point of the segment to the root bounds the earliest time, the farther end the latest. */
     const double vx = x1 - x0, vy = y1 - y0, l2 = vx * vx + vy * vy;
     double t = l2 > 0.0 ? ((w->root_x - x0) * vx + (w->root_y - y0) * vy) / l2 : 0.0;
     t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
@@ -157,16 +167,31 @@ int gmmrrt_walkers_segment_free(const gmmrrt_walkers_t *w, double x0, double y0,
                       GMMRRT_WALKER_SLACK * dmax / w->speed_m_s + GMMRRT_WALKER_SLACK_S);
 }
 
+int gmmrrt_walkers_segment_free(const gmmrrt_walkers_t *w, double x0, double y0, double x1, double y1)
+{
+    /* In pieces of at most GMMRRT_WALKER_PIECE_M, each with its own (narrower) time window. */
+    const double len = hypot(x1 - x0, y1 - y0);
+    const int32_t n = len > GMMRRT_WALKER_PIECE_M ? (int32_t)ceil(len / GMMRRT_WALKER_PIECE_M) : 1;
+    for (int32_t i = 0; i < n; ++i) {
+        const double a = (double)i / n, b = (double)(i + 1) / n;
+        if (!piece_free(w, x0 + a * (x1 - x0), y0 + a * (y1 - y0), x0 + b * (x1 - x0), y0 + b * (y1 - y0)))
+            return 0;
+    }
+    return 1;
+}
+
 double gmmrrt_walkers_clearance_at(const gmmrrt_walkers_t *w, double x, double y, double t_s)
 {
-    const double t = fmin(fmax(t_s, 0.0), w->horizon_s);
+    if (t_s > w->horizon_s)
+        return INFINITY; /* as the search: no prediction beyond the horizon */
+    const double t = fmax(t_s, 0.0);
     double best = INFINITY;
     for (int32_t k = 0; k < w->count; ++k) {
         const double d = hypot(x - (w->x[k] + w->vx[k] * t), y - (w->y[k] + w->vy[k] * t));
         if (d < best)
             best = d;
     }
-    return best - (w->reach_m - GMMRRT_WALKER_EDGE_MARGIN_M - GMMRRT_WALKER_COMFORT_M); /* to contact */
+    return best - (w->reach_m - GMMRRT_WALKER_EDGE_MARGIN_M); /* to contact */
 }
 
 /* Width (sigma, m) of the lane ahead of a walker and of the small wake behind them. */

@@ -30,7 +30,7 @@ typedef struct {
     double vx[GMMRRT_MAX_PEOPLE], vy[GMMRRT_MAX_PEOPLE]; /* m/s */
     double speed_m_s;                   /* robot's nominal speed */
     double horizon_s;                   /* prediction horizon */
-    double reach_m;                     /* robot + person radius + the edge margin */
+    double reach_m;                     /* robot + person radius + the edge margin (contact) */
     double root_x, root_y;              /* where the robot is at t = 0 (the tree's root) */
 } gmmrrt_walkers_t;
 
