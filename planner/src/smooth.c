@@ -12,6 +12,8 @@
  *  3. Arrival: when the path must end on a heading and does not, a straight leg W -> goal on
  *     that heading replaces the path's tail from the latest vertex that sees W (legs tried from
  *     arrival_leg_m up, preferring one whose corner arc fits).
+ *  3b. A corner whose arc cannot fit its segments is dropped when the chord over it is free and costs
+ *     at most 5 % more than the two segments (relax_tight_corners).
  *  4. Corners: each corner turning by phi gets the circular arc of radius R = min_turn_radius_m
  *     tangent to both segments (tangent length R tan(phi / 2)); when the segments are too short
  *     for it, or a chord of the arc is not free, the arc is made smaller and the corner counted
@@ -138,9 +140,9 @@ static double corner_need(double R, double ax, double ay, double bx, double by, 
  * tail points, then the goal. Tails: the leg's start W alone, or W preceded by a point beside it
  * (a U-turn in two corners of about 90 degrees, for a path that arrives from the wrong side, as
  * when approaching a person from behind). Strict pass: every new corner's arc of radius R fits
- * (half of each segment it shares with another corner); lax pass: any free tail. Returns 1 when
- * the tail was replaced. */
-static int arrival_leg(const struct gmmrrt_planner *p, const gmmrrt_drive_options_t *opt, polyline_t *v,
+ * (half of each segment it shares with another corner); lax pass: any free tail. Returns the
+ * number of tail points put before the goal (0: the tail was not replaced). */
+static int32_t arrival_leg(const struct gmmrrt_planner *p, const gmmrrt_drive_options_t *opt, polyline_t *v,
                        int32_t first_free, double h)
 {
     const double gx = v->x[v->n - 1], gy = v->y[v->n - 1];
@@ -200,12 +202,60 @@ static int arrival_leg(const struct gmmrrt_planner *p, const gmmrrt_drive_option
                     v->y[k + 1 + nt] = gy;
                     v->c[k + 1 + nt] = NAN;
                     v->n = k + 2 + nt;
-                    return 1;
+                    return nt;
                 }
             }
         }
     }
     return 0;
+}
+
+/* Corner i's arc of radius R fits its two segments (each shared in proportion to the needs). */
+static int corner_fits(const polyline_t *v, int32_t i, double R, int32_t first_free)
+{
+    double need[3];
+    for (int32_t d = -1; d <= 1; ++d) {
+        const int32_t j = i + d;
+        need[d + 1] = (j <= first_free || j >= v->n - 1)
+                          ? 0.0
+                          : corner_need(R, v->x[j - 1], v->y[j - 1], v->x[j], v->y[j], v->x[j + 1], v->y[j + 1]);
+    }
+    const double lin = hypot(v->x[i] - v->x[i - 1], v->y[i] - v->y[i - 1]);
+    const double lout = hypot(v->x[i + 1] - v->x[i], v->y[i + 1] - v->y[i]);
+    return need[0] + need[1] <= lin && need[1] + need[2] <= lout;
+}
+
+/* Corners whose arc cannot fit are removed when the chord over them is free and costs at most
+ * GMMRRT_RELAX_COST_RATIO times the two segments it replaces (a small price in the objective for a
+ * drivable turn); vertices from `keep_from` on (the arrival leg) and up to first_free stay. */
+#define GMMRRT_RELAX_COST_RATIO 1.05
+static void relax_tight_corners(const struct gmmrrt_planner *p, polyline_t *v, double R, int32_t first_free,
+                                int32_t keep_from)
+{
+    if (!(R > 0.0))
+        return;
+    for (int32_t i = first_free + 1; i < v->n - 1 && i < keep_from;) {
+        if (corner_fits(v, i, R, first_free)) {
+            ++i;
+            continue;
+        }
+        const double old = gmmrrt_edge_cost(p, v->x[i - 1], v->y[i - 1], v->x[i], v->y[i]) +
+                           gmmrrt_edge_cost(p, v->x[i], v->y[i], v->x[i + 1], v->y[i + 1]);
+        if (!seg_free(p, v->x[i - 1], v->y[i - 1], v->x[i + 1], v->y[i + 1]) ||
+            !(gmmrrt_edge_cost(p, v->x[i - 1], v->y[i - 1], v->x[i + 1], v->y[i + 1]) <= GMMRRT_RELAX_COST_RATIO * old)) {
+            ++i;
+            continue;
+        }
+        for (int32_t j = i; j + 1 < v->n; ++j) {
+            v->x[j] = v->x[j + 1];
+            v->y[j] = v->y[j + 1];
+            v->c[j] = v->c[j + 1];
+        }
+        --v->n;
+        --keep_from;
+        if (i > first_free + 1)
+            --i; /* the previous corner changed */
+    }
 }
 
 /* 1 when every chord (at most GMMRRT_ARC_CHORD_M) of the arc is free. */
@@ -284,11 +334,13 @@ gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gm
         const gmmrrt_pose_t *t = &pr->obstacles.people[pr->target_person];
         h = atan2(t->y - pr->goal_y, t->x - pr->goal_x);
     }
+    int32_t keep_from = v.n - 1; /* the goal; or the arrival leg's first point */
     if (want && v.n >= 2) {
         const double last = atan2(v.y[v.n - 1] - v.y[v.n - 2], v.x[v.n - 1] - v.x[v.n - 2]);
         if (fabs(gmmrrt_wrap_angle(last - h)) > opt->goal_yaw_tolerance_rad)
-            (void)arrival_leg(p, opt, &v, first_free, h);
+            keep_from = v.n - 1 - arrival_leg(p, opt, &v, first_free, h);
     }
+    relax_tight_corners(p, &v, opt->min_turn_radius_m, first_free, keep_from);
     rep.vertices_out = v.n;
     rep.cost = 0.0;
     for (int32_t i = first_free; i + 1 < v.n; ++i)
