@@ -247,8 +247,9 @@ def arrival_heading_error(path, goal_yaw: float, final_yaw: Optional[float] = No
 def min_distance_to_predicted_people(path, people, velocities, speed_m_s: float, horizon_s: float = 5.0,
                                      step_m: float = 0.02) -> float:
     """Smallest centre distance [m] between the robot following `path` at `speed_m_s` from its start
-    and each person predicted with constant velocity, held at `horizon_s` beyond it (the planner's
-    prediction, rrtstar.h). people: (x, y[, yaw]) rows; velocities: (vx, vy) rows, same order.
+    and each person predicted with constant velocity, held where `horizon_s` leaves them (a
+    conservative reading for evaluation; the planner itself does not predict beyond its horizon,
+    moving_people.c). people: (x, y[, yaw]) rows; velocities: (vx, vy) rows, same order.
     inf without people."""
     if not (speed_m_s > 0.0) or not (horizon_s >= 0.0):
         raise ValueError("speed_m_s must be > 0 and horizon_s >= 0")
