@@ -488,8 +488,8 @@ static void iterate(struct gmmrrt_planner *p)
     /* Choose parent: cheapest candidate by cost-to-come + edge cost whose edge is free.
      * Candidates are ranked by a lower bound until their exact cost is needed (lazy, so
      * the quadrature runs only for candidates that can still win). */
-    /* Without a task term the edge cost is a fixed multiple of length: the lower bound is
-     * exact, so no candidate needs the quadrature. */
+    /* Without a task term (and without walkers' lane cost) the edge cost is a fixed multiple of
+     * length: the lower bound is exact, so no candidate needs the quadrature. */
     const int cost_is_length = p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR ||
                                ((!p->task_active || p->num_active == 0) && p->walkers.count == 0);
     /* The lower bound is linear in length (objective.c): its slope once per iteration. */

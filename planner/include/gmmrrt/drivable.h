@@ -5,7 +5,7 @@
  * arrival on the requested heading, and the escape from a start in collision in front. Every
  * new chord is checked with the planner's own free tests (the same clearance rule as the tree's
  * edges, walking people included). Fixed memory (the caller's gmmrrt_path_t and a bounded stack
- * frame), no allocation. docs/planner.md, "Drivable paths".
+ * frame of about 95 KB), no allocation. docs/planner.md, "Drivable paths".
  */
 #ifndef GMMRRT_DRIVABLE_H
 #define GMMRRT_DRIVABLE_H
