@@ -486,10 +486,11 @@ int main(int argc, char **argv)
     static gmmrrt_path_t path;
     gmmrrt_drive_report_t rep = {0};
     rep.status = GMMRRT_OK;
-    gmmrrt_status_t ps = raw ? gmmrrt_planner_best_path(p, &path) : gmmrrt_planner_drivable_path(p, &drive, &path, &rep);
+    gmmrrt_status_t ps =
+        raw ? gmmrrt_planner_best_path(p, &path) : gmmrrt_planner_drivable_path(p, &drive, &path, &rep);
     if (ps == GMMRRT_ESCAPE)
         ps = GMMRRT_OK; /* a path; the escape shows in the status */
-    else if (raw && ps == GMMRRT_OK && st == GMMRRT_OK && gmmrrt_planner_escape_reason(p)[0])
+    else if (raw && ps == GMMRRT_OK && gmmrrt_planner_escape_reason(p)[0]) /* the tree path starts at the exit */
         rep.status = GMMRRT_ESCAPE;
     /* The history lives in the planner block: copy it out before the block is freed. */
     static int64_t hist_iter[GMMRRT_CLI_MAX_HISTORY];

@@ -241,8 +241,9 @@ static void relax_tight_corners(const struct gmmrrt_planner *p, polyline_t *v, d
         }
         const double old = gmmrrt_edge_cost(p, v->x[i - 1], v->y[i - 1], v->x[i], v->y[i]) +
                            gmmrrt_edge_cost(p, v->x[i], v->y[i], v->x[i + 1], v->y[i + 1]);
-        if (!seg_free(p, v->x[i - 1], v->y[i - 1], v->x[i + 1], v->y[i + 1]) ||
-            !(gmmrrt_edge_cost(p, v->x[i - 1], v->y[i - 1], v->x[i + 1], v->y[i + 1]) <= GMMRRT_RELAX_COST_RATIO * old)) {
+        const double chord = gmmrrt_edge_cost(p, v->x[i - 1], v->y[i - 1], v->x[i + 1], v->y[i + 1]);
+        if (!(chord <= GMMRRT_RELAX_COST_RATIO * old) ||
+            !seg_free(p, v->x[i - 1], v->y[i - 1], v->x[i + 1], v->y[i + 1])) {
             ++i;
             continue;
         }
