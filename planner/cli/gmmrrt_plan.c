@@ -14,7 +14,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gmmrrt/drivable.h"
 #include "gmmrrt/model_file.h"
+#include "gmmrrt/model_set.h"
 #include "gmmrrt/rrtstar.h"
 
 #define EXIT_BAD_INPUT 1
@@ -30,12 +32,14 @@ static const char *prog = "gmmrrt-plan";
 static void usage(FILE *out)
 {
     fprintf(out,
-            "usage: %s [--model FILE] --start x,y --goal x,y [--person x,y,yaw ...]\n"
+            "usage: %s [--model FILE] --start x,y --goal x,y[,yaw] [--person x,y,yaw[,vx,vy] ...]\n"
             "       [--obstacle circle:x,y,r | box:cx,cy,w,h,yaw ...]\n"
             "       [--planner gmm-rrt-star|rrt-star|gmm-rrt] [--bias B] [--budget-ms N]\n"
             "       [--iterations N] [--seed S] [--robot-radius R] [--bounds xmin,ymin,xmax,ymax]\n"
             "       [--task avoid|approach] [--target-person I] [--goal-tolerance M]\n"
             "       [--delta D] [--w-task W] [--rewire-k F] [--informed 0|1] [--max-nodes N] [--json]\n"
+            "       [--goal-yaw-tolerance DEG] [--min-turn-radius M] [--nominal-speed M_S] [--raw-path]\n"
+            "       [--approach-models DIR]\n"
             "\n"
             "Plans a path with GMM-RRT* (the paper's planner), plain RRT* or the GMM-RRT baseline\n"
             "and prints it as x,y CSV (header line first), or with --json one object:\n"
@@ -47,12 +51,24 @@ static void usage(FILE *out)
             "early (a note on stderr says so too); --max-nodes raises the pool.\n"
             "cost_history lists every improvement of the best cost (iteration = samples drawn so far,\n"
             "1-based); the best cost after N iterations is the last entry with iteration <= N.\n"
-            "\n"
+            "\n",
+            prog);
+    fprintf(out,
             "  --model FILE        mixture model (gmmrrt-learn); features kind for gmm-rrt-star,\n"
             "                      xy kind for gmm-rrt; optional for rrt-star\n"
             "  --start x,y         start position [m]\n"
-            "  --goal x,y          goal position [m]\n"
-            "  --person x,y,yaw    a standing person [m, m, rad facing]; repeat for several\n"
+            "  --goal x,y[,yaw]    goal position [m] and the heading to arrive with [rad]; approach\n"
+            "                      arrives facing the target person unless a yaw is given\n"
+            "  --person x,y,yaw[,vx,vy]  a person [m, m, rad facing, m/s]; repeat for several;\n"
+            "                      below 0.2 m/s standing, above 3 m/s (or NaN) refused\n"
+            "  --goal-yaw-tolerance DEG  arrival heading tolerance, > 0 (default 15)\n"
+            "  --min-turn-radius M smallest turning radius of the output path [m] (default 0.3;\n"
+            "                      0: turning in place allowed)\n"
+            "  --nominal-speed M_S robot speed that times the path against walking people (default 0.5)\n"
+            "  --raw-path          print the tree's path (no shortcuts, arcs or arrival leg)\n"
+            "  --approach-models DIR  approach with the set DIR/1-front.gmm ... DIR/8-45_left.gmm (the 8\n"
+            "                      directions of the UPO lab's models): the one of the start's bearing\n"
+            "                      in the target's frame plans (\"approach_model\" in --json)\n"
             "  --obstacle SPEC     circle:x,y,r or box:cx,cy,w,h,yaw [m, rad]; repeat\n"
             "  --planner NAME      default gmm-rrt-star with --model, rrt-star without\n"
             "  --bias B            probability of a mixture sample, [0, 1] (default 0.95)\n"
@@ -75,8 +91,12 @@ static void usage(FILE *out)
             "  --json              print one JSON object instead of CSV\n"
             "  -h, --help          this text\n"
             "\n"
-            "Exit: 0 path found, 1 bad input or refused problem, 3 no path within the budget.\n",
-            prog, GMMRRT_MAX_NODES_CEILING, GMMRRT_DEFAULT_MAX_NODES);
+            "The path printed is drivable (docs/planner.md): shortcut, corners rounded to the turning\n"
+            "radius, yaw = tangent (--json adds \"yaw\" and \"drive\"). A start inside a person's disc\n"
+            "or an obstacle escapes first (status \"escaping...\", status_code 43, exit 0).\n"
+            "Exit: 0 path found, 1 bad input or refused problem (or frozen: no way out), 3 no path\n"
+            "within the budget.\n",
+            GMMRRT_MAX_NODES_CEILING, GMMRRT_DEFAULT_MAX_NODES);
 }
 
 static const char *task_name(int32_t task)
@@ -111,6 +131,26 @@ static int parse_numbers(const char *s, double *out, int n)
         }
     }
     return 1;
+}
+
+/* Parses between lo and hi comma-separated numbers (NaN parses, the caller decides); returns the
+ * count or 0. */
+static int parse_some(const char *s, double *out, int lo, int hi)
+{
+    for (int n = hi; n >= lo; --n) {
+        const char *p = s;
+        int ok = 1;
+        for (int i = 0; i < n && ok; ++i) {
+            char *end;
+            errno = 0;
+            out[i] = strtod(p, &end);
+            ok = end != p && errno != ERANGE && !isinf(out[i]) && (*end == (i < n - 1 ? ',' : '\0'));
+            p = end + 1;
+        }
+        if (ok)
+            return n;
+    }
+    return 0;
 }
 
 static int parse_int64(const char *s, long long *out)
@@ -148,7 +188,7 @@ int main(int argc, char **argv)
 {
     enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_PLANNER, OPT_BIAS, OPT_BUDGET,
            OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_DELTA,
-           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_MAX_NODES };
+           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_YAW_TOL, OPT_TURN_RADIUS, OPT_SPEED, OPT_RAW, OPT_SET, OPT_MAX_NODES };
     static const struct option opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
         {"goal", required_argument, NULL, OPT_GOAL},         {"person", required_argument, NULL, OPT_PERSON},
@@ -161,13 +201,19 @@ int main(int argc, char **argv)
         {"delta", required_argument, NULL, OPT_DELTA},       {"w-task", required_argument, NULL, OPT_WTASK},
         {"rewire-k", required_argument, NULL, OPT_REWIRE_K}, {"informed", required_argument, NULL, OPT_INFORMED},
         {"max-nodes", required_argument, NULL, OPT_MAX_NODES},
+        {"goal-yaw-tolerance", required_argument, NULL, OPT_YAW_TOL},
+        {"min-turn-radius", required_argument, NULL, OPT_TURN_RADIUS},
+        {"nominal-speed", required_argument, NULL, OPT_SPEED},  {"raw-path", no_argument, NULL, OPT_RAW},
+        {"approach-models", required_argument, NULL, OPT_SET},
         {"help", no_argument, NULL, 'h'},                    {NULL, 0, NULL, 0}};
 
     static gmmrrt_problem_t pr; /* large (obstacle arrays): static, zeroed */
     gmmrrt_planner_config_t cfg;
     gmmrrt_planner_config_default(&cfg);
-    const char *model_path = NULL;
-    int have_start = 0, have_goal = 0, have_bounds = 0, json = 0, planner = 0, task = 0;
+    const char *model_path = NULL, *set_dir = NULL;
+    int have_start = 0, have_goal = 0, have_bounds = 0, json = 0, planner = 0, task = 0, raw = 0, have_yaw = 0;
+    gmmrrt_drive_options_t drive;
+    gmmrrt_drive_options_default(&drive);
     double budget_ms = -1.0;
     long long iterations = 0, target = 0;
     pr.goal_tolerance_m = 0.1;
@@ -193,18 +239,50 @@ int main(int argc, char **argv)
             have_start = 1;
             break;
         case OPT_GOAL:
-            if (!parse_numbers(optarg, v, 2))
-                return fail("--goal '%s': expected x,y (finite numbers, metres)%s", optarg, "");
+            have_yaw = parse_some(optarg, v, 2, 3) == 3;
+            if (!parse_some(optarg, v, 2, 3) || isnan(v[0]) || isnan(v[1]) || (have_yaw && isnan(v[2])))
+                return fail("--goal '%s': expected x,y or x,y,yaw (finite numbers, metres and radians)%s", optarg, "");
             pr.goal_x = v[0];
             pr.goal_y = v[1];
+            drive.goal_yaw = have_yaw ? v[2] : 0.0;
             have_goal = 1;
             break;
-        case OPT_PERSON:
-            if (!parse_numbers(optarg, v, 3))
-                return fail("--person '%s': expected x,y,yaw (finite numbers, metres and radians)%s", optarg, "");
+        case OPT_PERSON: {
+            const int np = parse_some(optarg, v, 3, 5);
+            if (np != 3 && np != 5)
+                return fail("--person '%s': expected x,y,yaw or x,y,yaw,vx,vy (metres, radians, m/s)%s", optarg, "");
+            if (isnan(v[0]) || isnan(v[1]) || isnan(v[2]))
+                return fail("--person '%s': position and yaw must be finite numbers%s", optarg, "");
+            if (np == 5 && !(hypot(v[3], v[4]) <= GMMRRT_MAX_PERSON_SPEED_M_S))
+                return fail("--person '%s': velocity must be finite and at most 3 m/s (a running person)%s", optarg,
+                            "");
             if (pr.obstacles.num_people >= GMMRRT_MAX_PEOPLE)
                 return fail("--person '%s': more people than this build allows%s", optarg, "");
+            pr.person_vx[pr.obstacles.num_people] = np == 5 ? v[3] : 0.0;
+            pr.person_vy[pr.obstacles.num_people] = np == 5 ? v[4] : 0.0;
             pr.obstacles.people[pr.obstacles.num_people++] = (gmmrrt_pose_t){v[0], v[1], v[2]};
+            break;
+        }
+        case OPT_YAW_TOL:
+            if (!parse_numbers(optarg, v, 1) || !(v[0] > 0.0 && v[0] <= 180.0))
+                return fail("--goal-yaw-tolerance '%s': expected degrees in (0, 180]%s", optarg, "");
+            drive.goal_yaw_tolerance_rad = v[0] * M_PI / 180.0;
+            break;
+        case OPT_TURN_RADIUS:
+            if (!parse_numbers(optarg, v, 1) || !(v[0] >= 0.0 && v[0] <= 100.0))
+                return fail("--min-turn-radius '%s': expected metres in [0, 100] (0: turn in place)%s", optarg, "");
+            drive.min_turn_radius_m = v[0];
+            break;
+        case OPT_SPEED:
+            if (!parse_numbers(optarg, v, 1) || !(v[0] > 0.0 && v[0] <= 10.0))
+                return fail("--nominal-speed '%s': expected m/s in (0, 10]%s", optarg, "");
+            pr.nominal_speed_m_s = v[0];
+            break;
+        case OPT_RAW:
+            raw = 1;
+            break;
+        case OPT_SET:
+            set_dir = optarg;
             break;
         case OPT_OBSTACLE:
             if (strncmp(optarg, "circle:", 7) == 0) {
@@ -332,6 +410,29 @@ int main(int argc, char **argv)
         if (ms != GMMRRT_OK)
             return fail("cannot use --model: %s%s", err, "");
     }
+    /* An approach model set: every direction must load; the start's direction plans. */
+    static gmmrrt_model_t set_models[GMMRRT_APPROACH_DIRECTIONS];
+    int32_t set_direction = -1;
+    if (set_dir) {
+        if (model_path)
+            return fail("--approach-models and --model exclude each other%s%s", "", "");
+        if (target >= pr.obstacles.num_people)
+            return fail("--approach-models needs a --person to approach (--target-person is out of range)%s%s", "",
+                        "");
+        gmmrrt_model_set_t set;
+        for (int32_t k = 0; k < GMMRRT_APPROACH_DIRECTIONS; ++k) {
+            static char file[4096];
+            snprintf(file, sizeof file, "%s/%s.gmm", set_dir, gmmrrt_approach_direction_name(k));
+            if (gmmrrt_model_load_file(file, &set_models[k], err, sizeof err) != GMMRRT_OK)
+                return fail("cannot use --approach-models: %s%s", err, "");
+            set.model[k] = &set_models[k];
+        }
+        if (gmmrrt_model_set_validate(&set, err, sizeof err) != GMMRRT_OK)
+            return fail("cannot use --approach-models %s: %s", set_dir, err);
+        model = *gmmrrt_model_set_select(&set, &pr.obstacles.people[target], pr.start_x, pr.start_y, &set_direction);
+        model_path = set_dir;
+        task = GMMRRT_TASK_APPROACH;
+    }
     if (planner == 0)
         planner = model_path ? GMMRRT_PLANNER_GMM_RRT_STAR : GMMRRT_PLANNER_RRT_STAR;
     if (planner != GMMRRT_PLANNER_RRT_STAR && !model_path)
@@ -393,22 +494,39 @@ int main(int argc, char **argv)
     gmmrrt_status_t st = gmmrrt_planner_init(&p, mem, size, &cfg);
     if (st == GMMRRT_OK)
         st = gmmrrt_planner_set_problem(p, &pr);
-    if (st != GMMRRT_OK) {
+    if (st == GMMRRT_ERR_FROZEN) {
+        static char why[256];
+        snprintf(why, sizeof why, "%s", gmmrrt_planner_escape_reason(p));
+        free(mem);
+        return fail("planning problem refused: frozen: %s%s", why, "");
+    }
+    if (st != GMMRRT_OK && st != GMMRRT_ESCAPE) {
         free(mem);
         return fail("planning problem refused: %s%s", gmmrrt_status_str(st),
                     st == GMMRRT_ERR_MODEL_MISMATCH ? " (gmm-rrt-star needs a features model, gmm-rrt an xy model)"
                                                     : "");
     }
+    drive.arrival = have_yaw ? GMMRRT_ARRIVAL_YAW
+                             : (pr.task == GMMRRT_TASK_APPROACH ? GMMRRT_ARRIVAL_FACE_TARGET : GMMRRT_ARRIVAL_ANY);
     gmmrrt_budget_t budget = {0.0, iterations, 0.0, 0};
     budget.time_ms = budget_ms > 0.0 ? budget_ms : (iterations > 0 ? 0.0 : 1000.0);
     gmmrrt_plan_stats_t stats;
     st = gmmrrt_planner_run(p, &budget, &stats);
     static gmmrrt_path_t path;
-    const gmmrrt_status_t ps = gmmrrt_planner_best_path(p, &path);
+    gmmrrt_drive_report_t rep = {0};
+    rep.status = GMMRRT_OK;
+    gmmrrt_status_t ps =
+        raw ? gmmrrt_planner_best_path(p, &path) : gmmrrt_planner_drivable_path(p, &drive, &path, &rep);
+    if (ps == GMMRRT_ESCAPE)
+        ps = GMMRRT_OK; /* a path; the escape shows in the status */
+    else if (raw && ps == GMMRRT_OK && gmmrrt_planner_escape_reason(p)[0]) /* the tree path starts at the exit */
+        rep.status = GMMRRT_ESCAPE;
     /* The history lives in the planner block: copy it out before the block is freed. */
     static int64_t hist_iter[GMMRRT_CLI_MAX_HISTORY];
     static double hist_cost[GMMRRT_CLI_MAX_HISTORY];
     const int32_t num_hist = gmmrrt_planner_cost_history(p, hist_iter, hist_cost, GMMRRT_CLI_MAX_HISTORY);
+    static char escape_reason[256];
+    snprintf(escape_reason, sizeof escape_reason, "%s", gmmrrt_planner_escape_reason(p));
     free(mem);
     const int found = ps == GMMRRT_OK;
     /* The pool filling ends the run before its budget: say so, with the way out. */
@@ -419,12 +537,28 @@ int main(int argc, char **argv)
                 "ran out; --max-nodes raises it\n",
                 prog, (int)cfg.max_nodes, (long long)stats.iterations, stats.time_ms);
     if (json) {
-        printf("{\"status\": \"%s\", \"status_code\": %d, \"path\": [", found ? "ok" : gmmrrt_status_str(st),
-               found ? 0 : (int)st);
+        printf("{\"status\": \"%s\", \"status_code\": %d, \"path\": [",
+               found ? gmmrrt_status_str(rep.status) : gmmrrt_status_str(st), found ? (int)rep.status : (int)st);
         for (int32_t i = 0; found && i < path.num_points; ++i)
             printf("%s[%.6f, %.6f]", i ? ", " : "", path.x[i], path.y[i]);
-        printf("], \"stats\": {\"iterations\": %lld, \"nodes\": %d, \"first_solution_ms\": ",
-               (long long)stats.iterations, stats.nodes);
+        printf("], \"yaw\": [");
+        for (int32_t i = 0; found && i < path.num_points; ++i)
+            printf("%s%.6f", i ? ", " : "", path.yaw[i]);
+        printf("], \"drive\": {\"raw\": %s, \"arrival_error_deg\": ", raw ? "true" : "false");
+        json_number(found && !raw ? rep.arrival_error_rad * 180.0 / M_PI : NAN);
+        printf(", \"arrival_met\": %s, \"max_curvature\": ", rep.arrival_met || raw ? "true" : "false");
+        json_number(found && !raw ? rep.max_curvature : NAN);
+        printf(", \"tight_turns\": %d, \"turns_in_place\": %d, \"min_walker_clearance_m\": ", rep.tight_turns,
+               rep.turns_in_place);
+        json_number(rep.min_walker_clearance_m);
+        printf(", \"walker_conflict\": %s, \"escape\": \"%s\"}, \"approach_model\": ",
+               rep.walker_conflict ? "true" : "false", escape_reason);
+        if (set_direction >= 0)
+            printf("\"%s\", \"stats\": {", gmmrrt_approach_direction_name(set_direction));
+        else
+            printf("null, \"stats\": {");
+        printf("\"iterations\": %lld, \"nodes\": %d, \"first_solution_ms\": ", (long long)stats.iterations,
+               stats.nodes);
         json_number(stats.first_solution_ms >= 0.0 ? stats.first_solution_ms : NAN);
         printf(", \"best_cost\": ");
         json_number(stats.best_cost);

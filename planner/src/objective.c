@@ -37,7 +37,19 @@ static void task_costs(const struct gmmrrt_planner *p, const double *x, const do
     }
 }
 
+static double standing_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1);
+
+/* The edge cost; walking people (moving_people.c) add w_task times their social cost for
+ * GMM-RRT*. The term is >= 0, so gmmrrt_edge_cost_lower_bound stays a lower bound. */
 double gmmrrt_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1)
+{
+    const double c = standing_edge_cost(p, x0, y0, x1, y1);
+    if (p->walkers.count == 0 || p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR)
+        return c;
+    return c + p->cfg.w_task * gmmrrt_walkers_cost(&p->walkers, x0, y0, x1, y1, p->cfg.edge_resolution_m);
+}
+
+static double standing_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1)
 {
     const double dx = x1 - x0, dy = y1 - y0;
     const double len = sqrt(dx * dx + dy * dy); /* plain sqrt: hypot is far slower; inputs are map coordinates */

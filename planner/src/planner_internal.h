@@ -21,6 +21,29 @@
  * new candidate replaces the worst one if it is better. */
 #define GMMRRT_GOAL_CAP 1024
 
+/* Walking people (moving_people.c): the planner's copy of each person faster than
+ * GMMRRT_STANDING_SPEED_M_S; standing people stay in the collision world as before. */
+typedef struct {
+    int32_t count;
+    int32_t person[GMMRRT_MAX_PEOPLE];  /* index into problem.obstacles.people */
+    double x[GMMRRT_MAX_PEOPLE], y[GMMRRT_MAX_PEOPLE];   /* m, at t = 0 */
+    double vx[GMMRRT_MAX_PEOPLE], vy[GMMRRT_MAX_PEOPLE]; /* m/s */
+    double speed_m_s;                   /* robot's nominal speed */
+    double horizon_s;                   /* prediction horizon */
+    double reach_m;                     /* robot + person radius + the edge margin (contact) */
+    double root_x, root_y;              /* where the robot is at t = 0 (the tree's root) */
+} gmmrrt_walkers_t;
+
+/* Escape from a start in collision (escape.c). */
+typedef struct {
+    int32_t active;                     /* 1: the tree is rooted at (exit_x, exit_y) */
+    double start_x, start_y;            /* the robot's real start */
+    double exit_x, exit_y;
+    double length_m;
+    double start_clearance_m;           /* exact signed clearance at the start (< 0: penetration) */
+    char freeze_reason[192];            /* why it escapes, or why no escape exists */
+} gmmrrt_escape_t;
+
 /* Set by collision.c's internal hook: segment walk step. */
 void gmmrrt_world_set_edge_resolution(gmmrrt_world_t *world, double edge_resolution_m);
 
@@ -47,6 +70,9 @@ struct gmmrrt_planner {
 
     /* Problem */
     int has_problem;
+    gmmrrt_walkers_t walkers;
+    gmmrrt_escape_t escape;
+    gmmrrt_obstacle_set_t world_obstacles; /* the statics and standing people, when some walk */
     gmmrrt_problem_t problem;
     double delta;                  /* task-cost delta in use */
     int task_active;               /* task cost and mixture sampling apply */
@@ -90,6 +116,44 @@ double gmmrrt_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, do
  * the loop can skip the quadrature for candidates that cannot win. Linear in len_m (the
  * loop and informed sampling rely on it: bound(len) = len * bound(1)). */
 double gmmrrt_edge_cost_lower_bound(const struct gmmrrt_planner *p, double len_m);
+
+/* moving_people.c: prepares p->walkers from the problem (GMMRRT_ERR_INVALID_ARGUMENT for a
+ * velocity that is not finite or faster than GMMRRT_MAX_PERSON_SPEED_M_S) and returns the
+ * obstacle set the collision world is built from: pr->obstacles itself when nobody walks, else
+ * p->world_obstacles without the walkers. */
+gmmrrt_status_t gmmrrt_walkers_prepare(struct gmmrrt_planner *p, const gmmrrt_problem_t *pr,
+                                       const gmmrrt_obstacle_set_t **world_set);
+/* 1 when the robot disc on the point / segment keeps clear of every walker's predicted
+ * positions over the time it can be there (moving_people.c). */
+int gmmrrt_walkers_point_free(const gmmrrt_walkers_t *w, double x, double y);
+int gmmrrt_walkers_segment_free(const gmmrrt_walkers_t *w, double x0, double y0, double x1, double y1);
+/* Integral over the segment of the walkers' social cost (largest over the walkers; in [0, 1],
+ * higher in the lane ahead of a walker than behind them), midpoint rule at resolution_m. */
+double gmmrrt_walkers_cost(const gmmrrt_walkers_t *w, double x0, double y0, double x1, double y1, double resolution_m);
+/* Clearance (m) of the robot disc at (x, y) at time t_s to the nearest walker there; +inf without walkers. */
+double gmmrrt_walkers_clearance_at(const gmmrrt_walkers_t *w, double x, double y, double t_s);
+
+/* The planner's free tests: the world's, and the walkers' when there are any. Every check of
+ * the search goes through these two. */
+static inline int gmmrrt_planner_point_free(const struct gmmrrt_planner *p, double x, double y)
+{
+    return gmmrrt_world_point_free(p->world, x, y) &&
+           (p->walkers.count == 0 || gmmrrt_walkers_point_free(&p->walkers, x, y));
+}
+static inline int gmmrrt_planner_segment_free(const struct gmmrrt_planner *p, double x0, double y0, double x1,
+                                              double y1)
+{
+    return gmmrrt_world_segment_free(p->world, x0, y0, x1, y1) &&
+           (p->walkers.count == 0 || gmmrrt_walkers_segment_free(&p->walkers, x0, y0, x1, y1));
+}
+
+/* escape.c: exact signed clearance of the robot disc at (x, y) to the set's shapes (what: the
+ * nearest, circles 0.., boxes 1000.., people 2000..); and the way out of a start in collision:
+ * GMMRRT_ESCAPE with the exit point, or GMMRRT_ERR_FROZEN with p->escape.freeze_reason. */
+double gmmrrt_escape_signed_clearance(const struct gmmrrt_planner *p, const gmmrrt_obstacle_set_t *o, double x,
+                                      double y, int32_t *what);
+gmmrrt_status_t gmmrrt_escape_find(struct gmmrrt_planner *p, const gmmrrt_problem_t *pr, double *exit_x,
+                                   double *exit_y);
 
 /* sampler.c: draws one sample; returns 0 when the draw fell outside the bounds (the
  * iteration is spent, as OMPL counts). Prepares the GMM-RRT stage tables. */

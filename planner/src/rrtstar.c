@@ -189,12 +189,18 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
             return fit;
     }
 
+    /* Walking people are predicted (moving_people.c), not in the world. */
+    p->escape.active = 0;
+    p->escape.freeze_reason[0] = '\0';
+    const gmmrrt_obstacle_set_t *world_set;
+    gmmrrt_status_t st = gmmrrt_walkers_prepare(p, pr, &world_set);
+    if (st != GMMRRT_OK)
+        return st;
     /* Builds the world (validates every obstacle number and the bounds); keeps the last
      * problem's clearance grid where the static obstacles are the same (collision.h). */
     gmmrrt_world_t *w = p->world;
-    gmmrrt_status_t st = gmmrrt_world_update(&w, p->world_mem, p->world_size, p->cfg.grid_max_cells,
-                                             p->cfg.grid_resolution_m, p->cfg.robot_radius_m,
-                                             p->cfg.person_radius_m, o);
+    st = gmmrrt_world_update(&w, p->world_mem, p->world_size, p->cfg.grid_max_cells, p->cfg.grid_resolution_m,
+                             p->cfg.robot_radius_m, p->cfg.person_radius_m, world_set);
     if (st != GMMRRT_OK) {
         p->world = NULL;
         return st;
@@ -205,12 +211,23 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
         return GMMRRT_ERR_START_OUT_OF_BOUNDS;
     if (!inside(&o->bounds, pr->goal_x, pr->goal_y))
         return GMMRRT_ERR_GOAL_OUT_OF_BOUNDS;
-    if (!gmmrrt_world_point_free(w, pr->start_x, pr->start_y))
-        return GMMRRT_ERR_START_IN_COLLISION;
     if (!gmmrrt_world_point_free(w, pr->goal_x, pr->goal_y))
         return GMMRRT_ERR_GOAL_IN_COLLISION;
+    /* A start in collision is a state to leave, not a refusal (escape.c). */
+    double root_x = pr->start_x, root_y = pr->start_y;
+    gmmrrt_status_t start_status = GMMRRT_OK;
+    if (!gmmrrt_planner_point_free(p, pr->start_x, pr->start_y)) {
+        start_status = gmmrrt_escape_find(p, pr, &root_x, &root_y);
+        if (start_status != GMMRRT_ESCAPE)
+            return start_status;
+        p->walkers.root_x = root_x;
+        p->walkers.root_y = root_y;
+    }
 
     p->problem = *pr;
+    p->problem.start_x = root_x;
+    p->problem.start_y = root_y;
+    pr = &p->problem;
     p->delta = (p->cfg.delta > 0.0) ? p->cfg.delta : (m ? m->delta : GMMRRT_MODEL_DEFAULT_DELTA);
     p->task_active = wants_model;
     p->num_active = 0;
@@ -247,7 +264,7 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
     p->has_problem = 1;
     consider_goal(p, 0); /* a start already within the goal tolerance is a solution */
     update_best(p);
-    return GMMRRT_OK;
+    return start_status == GMMRRT_ESCAPE ? GMMRRT_ESCAPE : GMMRRT_OK;
 }
 
 /* ---------------------------------------------------------------- tree edits */
@@ -321,7 +338,7 @@ static void consider_goal(struct gmmrrt_planner *p, int32_t i)
     const double d = sqrt(gx * gx + gy * gy); /* plain sqrt: map coordinates */
     if (d > pr->goal_tolerance_m)
         return;
-    if (d > GMMRRT_SAME_POINT_M && !gmmrrt_world_segment_free(p->world, n->x, n->y, pr->goal_x, pr->goal_y))
+    if (d > GMMRRT_SAME_POINT_M && !gmmrrt_planner_segment_free(p, n->x, n->y, pr->goal_x, pr->goal_y))
         return;
     const double edge = d > GMMRRT_SAME_POINT_M ? gmmrrt_edge_cost(p, n->x, n->y, pr->goal_x, pr->goal_y) : 0.0;
     int32_t slot = p->num_goal;
@@ -373,7 +390,7 @@ static int edge_free_cached(struct gmmrrt_planner *p, int32_t k, double x, doubl
 {
     if (p->near_free[k] < 0) {
         const gmmrrt_xy_t *n = &p->pool.xy[p->near_idx[k]];
-        p->near_free[k] = (int8_t)gmmrrt_world_segment_free(p->world, n->x, n->y, x, y);
+        p->near_free[k] = (int8_t)gmmrrt_planner_segment_free(p, n->x, n->y, x, y);
     }
     return p->near_free[k];
 }
@@ -427,7 +444,7 @@ static void iterate(struct gmmrrt_planner *p)
     ++p->iterations;
     /* SampleFree (Karaman & Frazzoli 2011, Alg. 6): a sample in collision is dropped before
      * any tree query (the iteration is spent, as OMPL counts). */
-    if (!gmmrrt_sample(p, &sx, &sy) || !gmmrrt_world_point_free(p->world, sx, sy))
+    if (!gmmrrt_sample(p, &sx, &sy) || !gmmrrt_planner_point_free(p, sx, sy))
         return;
     /* k-nearest RRT*: one query at the sample gives the nearest node and, unless steering
      * moves the new point, the near set too: the k nearest within step_m (as the radius of
@@ -454,11 +471,11 @@ static void iterate(struct gmmrrt_planner *p)
         x = nn->x + dx * (p->cfg.step_m / dist);
         y = nn->y + dy * (p->cfg.step_m / dist);
     }
-    if (steered && !gmmrrt_world_point_free(p->world, x, y))
+    if (steered && !gmmrrt_planner_point_free(p, x, y))
         return;
 
     if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT) {
-        if (!gmmrrt_world_segment_free(p->world, nn->x, nn->y, x, y))
+        if (!gmmrrt_planner_segment_free(p, nn->x, nn->y, x, y))
             return;
         const double c = p->pool.cost[nearest] + gmmrrt_edge_cost(p, nn->x, nn->y, x, y);
         const int32_t i = add_node(p, x, y, nearest, c);
@@ -483,10 +500,10 @@ static void iterate(struct gmmrrt_planner *p)
     /* Choose parent: cheapest candidate by cost-to-come + edge cost whose edge is free.
      * Candidates are ranked by a lower bound until their exact cost is needed (lazy, so
      * the quadrature runs only for candidates that can still win). */
-    /* Without a task term the edge cost is a fixed multiple of length: the lower bound is
-     * exact, so no candidate needs the quadrature. */
-    const int cost_is_length = p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR || !p->task_active ||
-                               p->num_active == 0;
+    /* Without a task term (and without walkers' lane cost) the edge cost is a fixed multiple of
+     * length: the lower bound is exact, so no candidate needs the quadrature. */
+    const int cost_is_length = p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR ||
+                               ((!p->task_active || p->num_active == 0) && p->walkers.count == 0);
     /* The lower bound is linear in length (objective.c): its slope once per iteration. */
     const double unit = gmmrrt_edge_cost_lower_bound(p, 1.0);
     /* Simple loops (the square roots vectorise). */
@@ -626,7 +643,7 @@ gmmrrt_status_t gmmrrt_planner_seed_path(gmmrrt_planner_t *p, const double *x, c
             continue;
         if (p->num_nodes >= p->cfg.max_nodes)
             return GMMRRT_POOL_FULL;
-        if (!gmmrrt_world_segment_free(p->world, pn->x, pn->y, x[i], y[i]))
+        if (!gmmrrt_planner_segment_free(p, pn->x, pn->y, x[i], y[i]))
             break; /* the rest of the old path starts from a blocked edge */
         const double c = pn_cost + gmmrrt_edge_cost(p, pn->x, pn->y, x[i], y[i]);
         prev = add_node(p, x[i], y[i], prev, c);
@@ -667,3 +684,5 @@ gmmrrt_status_t gmmrrt_planner_node(const gmmrrt_planner_t *p, int32_t i, double
 }
 
 const gmmrrt_world_t *gmmrrt_planner_world(const gmmrrt_planner_t *p) { return p ? p->world : NULL; }
+
+const char *gmmrrt_planner_escape_reason(const gmmrrt_planner_t *p) { return p ? p->escape.freeze_reason : ""; }

@@ -24,6 +24,8 @@ const char *gmmrrt_status_str(gmmrrt_status_t status)
     case GMMRRT_ERR_START_OUT_OF_BOUNDS: return "start outside the planning bounds";
     case GMMRRT_ERR_GOAL_OUT_OF_BOUNDS: return "goal outside the planning bounds";
     case GMMRRT_ERR_MODEL_MISMATCH: return "model kind or dimension does not fit the planner";
+    case GMMRRT_ERR_FROZEN: return "frozen: start in collision and no motion increases clearance";
+    case GMMRRT_ESCAPE: return "escaping: start in collision, the path leaves it first";
     case GMMRRT_NO_PATH_YET: return "no path yet";
     case GMMRRT_POOL_FULL: return "node pool full";
     case GMMRRT_TIMEOUT: return "timeout";

@@ -192,6 +192,80 @@ def smoothness(path) -> float:
     return float(np.sum(np.abs(dh)))
 
 
+def resample_by_arc_length(path, step_m: float) -> np.ndarray:
+    """The polyline's points every `step_m` metres of arc length from its start, plus its end."""
+    p = as_path(path)
+    if not (step_m > 0.0):
+        raise ValueError("step_m must be > 0")
+    seg = np.linalg.norm(np.diff(p, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    if s[-1] <= 0.0:
+        return p[:1].copy()
+    targets = np.arange(0.0, s[-1], step_m)
+    if s[-1] - targets[-1] > 1e-9:
+        targets = np.append(targets, s[-1])
+    return np.stack([np.interp(targets, s, p[:, 0]), np.interp(targets, s, p[:, 1])], axis=1)
+
+
+def max_turn_per_step(path, step_m: float = 0.1) -> float:
+    """Largest heading change [rad] between consecutive `step_m` pieces of the path (resampled by
+    arc length, so waypoint spacing does not matter): what a follower must turn within step_m. A
+    kink of the polyline shows as its full angle; an arc of radius R as about step_m / R."""
+    return smoothness_max(resample_by_arc_length(path, step_m))
+
+
+def smoothness_max(path) -> float:
+    """Largest |wrap(heading_k+1 - heading_k)| between consecutive non-zero segments [rad]."""
+    p = as_path(path)
+    d = np.diff(p, axis=0)
+    d = d[np.linalg.norm(d, axis=1) > 1e-12]
+    if len(d) < 2:
+        return 0.0
+    h = np.arctan2(d[:, 1], d[:, 0])
+    dh = (np.diff(h) + np.pi) % (2.0 * np.pi) - np.pi
+    return float(np.max(np.abs(dh)))
+
+
+def summed_heading_change(path) -> float:
+    """Total turning along the path [rad] (the cumulative heading change of `smoothness`)."""
+    return smoothness(path)
+
+
+def arrival_heading_error(path, goal_yaw: float, final_yaw: Optional[float] = None) -> float:
+    """|wrap(heading at the goal - goal_yaw)| [rad]; the heading is `final_yaw` when given (the plan's
+    published yaw), else the direction of the last non-zero segment (nan when there is none)."""
+    if final_yaw is None:
+        p = as_path(path)
+        d = np.diff(p, axis=0)
+        nz = d[np.linalg.norm(d, axis=1) > 1e-12]
+        if not len(nz):
+            return math.nan
+        final_yaw = math.atan2(nz[-1, 1], nz[-1, 0])
+    return abs(wrap(final_yaw - goal_yaw))
+
+
+def min_distance_to_predicted_people(path, people, velocities, speed_m_s: float, horizon_s: float = 5.0,
+                                     step_m: float = 0.02) -> float:
+    """Smallest centre distance [m] between the robot following `path` at `speed_m_s` from its start
+    and each person predicted with constant velocity, held where `horizon_s` leaves them (a
+    conservative reading for evaluation; the planner itself does not predict beyond its horizon,
+    moving_people.c). people: (x, y[, yaw]) rows; velocities: (vx, vy) rows, same order.
+    inf without people."""
+    if not (speed_m_s > 0.0) or not (horizon_s >= 0.0):
+        raise ValueError("speed_m_s must be > 0 and horizon_s >= 0")
+    if len(people) == 0:
+        return math.inf
+    ppl = _people_xy(people)
+    vel = np.asarray(velocities, dtype=float).reshape(-1, 2)
+    if vel.shape[0] != len(ppl) or not np.all(np.isfinite(vel)):
+        raise ValueError("velocities must be finite (vx, vy) rows, one per person")
+    q = resample_by_arc_length(path, step_m)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(q, axis=0), axis=1))])
+    t = np.minimum(s / speed_m_s, horizon_s)
+    pos = ppl[None, :, :] + t[:, None, None] * vel[None, :, :]
+    return float(np.min(np.linalg.norm(q[:, None, :] - pos, axis=2)))
+
+
 def wrap(a: float) -> float:
     """Angle wrapped to [-pi, pi) (for differences only; features come from gmmrrt_tools.core)."""
     return (a + math.pi) % (2.0 * math.pi) - math.pi

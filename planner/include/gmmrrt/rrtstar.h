@@ -30,6 +30,18 @@ extern "C" {
 
 typedef struct gmmrrt_planner gmmrrt_planner_t;
 
+/* Walking people (moving_people.c). Below GMMRRT_STANDING_SPEED_M_S a person is standing and
+ * planned exactly as with no velocity (trackers report ~0.1 m/s of jitter on a standing person;
+ * people walk at 0.5-1.5 m/s). A velocity that is not finite or faster than
+ * GMMRRT_MAX_PERSON_SPEED_M_S (a running person; faster is a tracking error) is refused. */
+#define GMMRRT_STANDING_SPEED_M_S 0.2
+#define GMMRRT_MAX_PERSON_SPEED_M_S 3.0
+#define GMMRRT_DEFAULT_NOMINAL_SPEED_M_S 0.5
+#define GMMRRT_DEFAULT_PREDICTION_HORIZON_S 5.0
+/* Room the search keeps between the robot's and a walker's discs (m): a walker cannot stop
+ * for the robot the way a standing person can step aside, and the prediction is only a guess. */
+#define GMMRRT_WALKER_COMFORT_M 0.2
+
 /* One planning problem. Models are borrowed (not copied) and must outlive the run. */
 typedef struct {
     double start_x, start_y;      /* m, world */
@@ -40,6 +52,11 @@ typedef struct {
     const gmmrrt_model_t *model;  /* FEATURES model for the task (GMM-RRT*), or the XY model
                                      (GMM-RRT); NULL for plain RRT* */
     gmmrrt_obstacle_set_t obstacles; /* bounds, obstacles, people (people are obstacles too) */
+    /* Velocity of obstacles.people[i] (m/s, world). Zero (a zeroed problem) = standing. */
+    double person_vx[GMMRRT_MAX_PEOPLE], person_vy[GMMRRT_MAX_PEOPLE];
+    double nominal_speed_m_s;     /* robot speed that times the path against walkers, (0, 10];
+                                     0: GMMRRT_DEFAULT_NOMINAL_SPEED_M_S */
+    double prediction_horizon_s;  /* constant-velocity prediction horizon, (0, 60]; 0: default */
 } gmmrrt_problem_t;
 
 /* Budget of one run: stops at whichever comes first. */
@@ -76,8 +93,15 @@ gmmrrt_status_t gmmrrt_planner_init(gmmrrt_planner_t **out, void *mem, size_t si
                                     const gmmrrt_planner_config_t *cfg);
 
 /* Validates the problem (finite numbers, start and goal inside bounds and free, model kind
- * fits the planner kind), builds the collision world and resets the tree to the start.
- * Statuses: GMMRRT_ERR_INVALID_ARGUMENT, GMMRRT_ERR_START_IN_COLLISION,
+ * fits the planner kind, people's velocities), builds the collision world and resets the tree
+ * to the start.
+ * A start inside a person's disc or an inflated obstacle is not refused: GMMRRT_ESCAPE, the
+ * tree is rooted at the end of the shortest straight motion out along which the exact clearance
+ * never falls (escape.c; gmmrrt_planner_best_path then starts there, gmmrrt_planner_drivable_path
+ * at the real start), and the planner is ready to run as after GMMRRT_OK. GMMRRT_ERR_FROZEN when
+ * no such motion exists (gmmrrt_planner_escape_reason says why).
+ * Other statuses: GMMRRT_ERR_INVALID_ARGUMENT, GMMRRT_ERR_START_IN_COLLISION (kept for callers;
+ * no longer returned),
  * GMMRRT_ERR_GOAL_IN_COLLISION, GMMRRT_ERR_START/GOAL_OUT_OF_BOUNDS, GMMRRT_ERR_MODEL_MISMATCH,
  * GMMRRT_ERR_BUFFER_TOO_SMALL (world larger than grid_max_cells). */
 gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_problem_t *problem);
@@ -112,7 +136,12 @@ int32_t gmmrrt_planner_node_count(const gmmrrt_planner_t *p);
 gmmrrt_status_t gmmrrt_planner_node(const gmmrrt_planner_t *p, int32_t i, double *x, double *y,
                                     int32_t *parent, double *cost);
 
-/* The collision world of the current problem (for checks outside the loop). */
+/* Why the current problem escapes (GMMRRT_ESCAPE) or is frozen (GMMRRT_ERR_FROZEN); "" otherwise.
+ * Static text inside the planner, valid until the next set_problem. */
+const char *gmmrrt_planner_escape_reason(const gmmrrt_planner_t *p);
+
+/* The collision world of the current problem (for checks outside the loop; walking people are
+ * not in it, the planner tests them against their prediction). */
 const gmmrrt_world_t *gmmrrt_planner_world(const gmmrrt_planner_t *p);
 
 #ifdef __cplusplus

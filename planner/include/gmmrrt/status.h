@@ -39,11 +39,15 @@ typedef enum {
     GMMRRT_ERR_START_OUT_OF_BOUNDS = 32,
     GMMRRT_ERR_GOAL_OUT_OF_BOUNDS = 33,
     GMMRRT_ERR_MODEL_MISMATCH = 34,      /* model kind or dimension does not fit the planner */
+    GMMRRT_ERR_FROZEN = 35,              /* start in collision and no motion increases the clearance
+                                            (gmmrrt_planner_escape_reason says why) */
 
     /* Planning outcomes that are not failures of the call */
     GMMRRT_NO_PATH_YET = 40,             /* budget spent, goal not reached (yet) */
     GMMRRT_POOL_FULL = 41,               /* node pool exhausted; best path so far kept */
-    GMMRRT_TIMEOUT = 42                  /* deadline reached before any work could be done */
+    GMMRRT_TIMEOUT = 42,                 /* deadline reached before any work could be done */
+    GMMRRT_ESCAPE = 43,                  /* start in collision: the plan first leaves along the shortest
+                                            way out that increases clearance, then goes to the goal */
 
     /* 50 and above are not the library's: gmmrrtd's stop codes (planner/daemon/stop.h). */
 } gmmrrt_status_t;

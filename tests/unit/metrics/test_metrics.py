@@ -180,3 +180,43 @@ def test_collision_tolerance_for_grazing_paths():
     assert m.path_collides(line, boxes=[box], robot_radius_m=0.3) is True
     assert m.path_collides(line, boxes=[box], robot_radius_m=0.3, tolerance_m=0.01) is False
     assert m.path_collides([[-5.0, 0.7], [5.0, 0.7]], boxes=[box], robot_radius_m=0.3, tolerance_m=0.01) is True
+
+
+def test_max_turn_per_step_sees_kinks_and_arcs():
+    kink = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]  # a 90 degree corner
+    assert m.max_turn_per_step(kink, 0.1) == pytest.approx(math.pi / 2)
+    # The same corner on waypoints 1 cm apart: still the whole angle within one 0.1 m step.
+    dense = np.concatenate([np.stack([np.linspace(0, 1, 101), np.zeros(101)], 1),
+                            np.stack([np.ones(100), np.linspace(0.01, 1, 100)], 1)])
+    assert m.max_turn_per_step(dense, 0.1) == pytest.approx(math.pi / 2, abs=1e-9)
+    # A quarter circle of radius 0.5 m: about 0.1 / 0.5 rad per 0.1 m (chords of an arc).
+    a = np.linspace(0.0, math.pi / 2, 400)
+    arc = np.stack([0.5 * np.cos(a), 0.5 * np.sin(a)], 1)
+    assert m.max_turn_per_step(arc, 0.1) == pytest.approx(0.2, rel=0.02)
+    assert m.max_turn_per_step([[0.0, 0.0], [3.0, 0.0]], 0.1) == 0.0
+    with pytest.raises(ValueError):
+        m.max_turn_per_step(kink, 0.0)
+
+
+def test_summed_heading_change_and_arrival_error():
+    zigzag = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [2.0, 1.0]]
+    assert m.summed_heading_change(zigzag) == pytest.approx(math.pi)
+    assert m.arrival_heading_error(zigzag, 0.0) == pytest.approx(0.0)
+    assert m.arrival_heading_error(zigzag, math.pi) == pytest.approx(math.pi)
+    assert m.arrival_heading_error(zigzag, -0.1, final_yaw=3.1) == pytest.approx(2 * math.pi - 3.2)
+    assert math.isnan(m.arrival_heading_error([[1.0, 1.0], [1.0, 1.0]], 0.0))
+
+
+def test_min_distance_to_predicted_people_uses_the_time_along_the_path():
+    path = [[-4.0, 0.0], [4.0, 0.0]]
+    # A walker crossing x = 1 at t = 5 s, when a robot at 1 m/s from x = -4 is there too.
+    walker = [(1.0, 3.0, 0.0)]
+    assert m.min_distance_to_predicted_people(path, walker, [(0.0, -0.6)], 1.0) == pytest.approx(0.0, abs=0.02)
+    # Standing: the centre distance of the static metric.
+    assert m.min_distance_to_predicted_people(path, walker, [(0.0, 0.0)], 1.0) == pytest.approx(3.0)
+    # Past the horizon the walker is held where the horizon leaves them (y = 3 - 0.6 * 2).
+    assert m.min_distance_to_predicted_people(path, walker, [(0.0, -0.6)], 1.0, horizon_s=2.0) == \
+        pytest.approx(1.8, abs=1e-9)
+    assert m.min_distance_to_predicted_people(path, [], [], 1.0) == math.inf
+    with pytest.raises(ValueError):
+        m.min_distance_to_predicted_people(path, walker, [(math.nan, 0.0)], 1.0)

@@ -15,6 +15,7 @@
 
 #include <cmocka.h>
 
+#include "gmmrrt/drivable.h"
 #include "planner_fixtures.h"
 
 #ifndef GMMRRT_ALLOC_TEST_SKIP
@@ -100,6 +101,57 @@ static void test_planning_allocates_nothing(void **state)
     }
 }
 
+/* The drivable path, an escape from a start in a person's disc and a walking person: set_problem,
+ * run and gmmrrt_planner_drivable_path allocate nothing either. */
+static void test_escape_walkers_and_drivable_path_allocate_nothing(void **state)
+{
+    (void)state;
+    gmmrrt_model_t features;
+    const double theta[] = {0.0, 0.5};
+    assert_int_equal(make_features_model(&features, theta, 2, 1.2, 0.2, 0.3), GMMRRT_OK);
+    features.task = GMMRRT_TASK_APPROACH;
+    /* rrt-star, and gmm-rrt-star with the walker's lane cost in the objective */
+    for (int kind = GMMRRT_PLANNER_GMM_RRT_STAR; kind <= GMMRRT_PLANNER_RRT_STAR; ++kind) {
+        gmmrrt_planner_config_t cfg = point_robot_config(kind);
+        cfg.robot_radius_m = 0.3;
+        cfg.max_nodes = 3000;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.5);
+        pr.model = kind == GMMRRT_PLANNER_GMM_RRT_STAR ? &features : NULL;
+        pr.task = GMMRRT_TASK_APPROACH;
+        pr.target_person = 1;
+        pr.obstacles.num_people = 2;
+        pr.obstacles.people[0] = (gmmrrt_pose_t){-3.7, 0.1, 0.0}; /* inside the robot's disc */
+        pr.obstacles.people[1] = (gmmrrt_pose_t){5.0, 0.5, M_PI};
+        pr.obstacles.num_circles = 1;
+        pr.obstacles.circles[0] = (gmmrrt_circle_t){0.0, 1.5, 0.8};
+        pr.obstacles.num_people = 3;
+        pr.obstacles.people[2] = (gmmrrt_pose_t){1.0, 3.0, -M_PI / 2.0};
+        pr.person_vy[2] = -0.6; /* walking */
+        gmmrrt_drive_options_t opt;
+        gmmrrt_drive_options_default(&opt);
+        opt.arrival = GMMRRT_ARRIVAL_FACE_TARGET;
+        gmmrrt_budget_t b = {0.0, 3000, 0.0, 0};
+        gmmrrt_path_t path;
+        gmmrrt_drive_report_t rep;
+        alloc_calls = 0;
+        counting = 1;
+        const gmmrrt_status_t set = gmmrrt_planner_set_problem(t.p, &pr);
+        const gmmrrt_status_t run = gmmrrt_planner_run(t.p, &b, NULL);
+        const gmmrrt_status_t got = gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep);
+        counting = 0;
+        printf("planner %d, escape + walker + drivable path: %ld allocations, status %d/%d/%d, %d waypoints\n", kind,
+               alloc_calls, set, run, got, path.num_points);
+        assert_int_equal(set, GMMRRT_ESCAPE);
+        assert_int_equal(run, GMMRRT_OK);
+        assert_int_equal(got, GMMRRT_ESCAPE);
+        assert_true(path.num_points > 10);
+        assert_int_equal(alloc_calls, 0);
+        test_planner_free(&t);
+    }
+}
+
 static void test_counter_sees_allocations(void **state)
 {
     (void)state;
@@ -122,6 +174,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_counter_sees_allocations),
         cmocka_unit_test(test_planning_allocates_nothing),
+        cmocka_unit_test(test_escape_walkers_and_drivable_path_allocate_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

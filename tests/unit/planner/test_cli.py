@@ -44,7 +44,8 @@ def test_help_lists_every_option():
     assert r.returncode == 0
     for opt in ["--model", "--start", "--goal", "--person", "--obstacle", "--planner", "--bias",
                 "--budget-ms", "--iterations", "--seed", "--robot-radius", "--bounds", "--json", "--delta",
-                "--w-task", "--rewire-k", "--informed", "cost_history"]:
+                "--w-task", "--rewire-k", "--informed", "cost_history", "--goal-yaw-tolerance",
+                "--min-turn-radius", "--nominal-speed", "--raw-path", "--approach-models"]:
         assert opt in r.stdout
 
 
@@ -95,7 +96,15 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "nan,0", "--goal", "1,1"], "--start"),
     (["--start", "0,0", "--goal", "1,inf"], "--goal"),
     (["--start", "0,0", "--goal", "1,1", "--planner", "rrt"], "unknown planner"),
-    (["--start", "0,0", "--goal", "3,3", "--obstacle", "circle:0,0,1"], "start in collision"),
+    (["--start", "0,0", "--goal", "9,0", "--obstacle", "circle:0,0,6"], "frozen"),
+    (["--start", "0,0", "--goal", "4,0", "--person", "2,2,0,0,nan"], "--person"),
+    (["--start", "0,0", "--goal", "4,0", "--person", "2,2,0,3.5,0"], "at most 3 m/s"),
+    (["--start", "0,0", "--goal", "4,0", "--person", "2,2,0,1"], "--person"),
+    (["--start", "0,0", "--goal", "4,0,1", "--goal-yaw-tolerance", "0"], "--goal-yaw-tolerance"),
+    (["--start", "0,0", "--goal", "4,0,1", "--goal-yaw-tolerance", "-5"], "--goal-yaw-tolerance"),
+    (["--start", "0,0", "--goal", "4,0", "--min-turn-radius", "-1"], "--min-turn-radius"),
+    (["--start", "0,0", "--goal", "4,0", "--nominal-speed", "0"], "--nominal-speed"),
+    (["--start", "0,0", "--goal", "4,0,nan"], "--goal"),
     (["--start", "-3,0", "--goal", "0,0", "--obstacle", "circle:0,0,1"], "goal in collision"),
     (["--start", "0,0", "--goal", "1,1", "--obstacle", "triangle:0,0,1"], "--obstacle"),
     (["--start", "0,0", "--goal", "1,1", "--bias", "1.5"], "--bias"),
@@ -208,13 +217,77 @@ def test_delta_and_w_task_change_the_objective(tmp_path):
     model = write_features_model(tmp_path / "left.gmm", [math.pi * i / 6 for i in range(1, 6)])
     base = ["--model", str(model), "--start", "-4,0", "--goal", "4,0", "--person", "0,0,3.141592653589793",
             "--iterations", "6000", "--json"]
-    st = json.loads(run(*base, "--w-task", "0").stdout)["stats"]
+    st = json.loads(run(*base, "--w-task", "0", "--raw-path").stdout)["stats"]
     assert st["best_cost"] == pytest.approx(st["length_m"], rel=1e-6)
 
     def closest(*extra):
         out = json.loads(run(*base, *extra).stdout)
         return min(math.hypot(x, y) for x, y in out["path"])
     assert closest("--delta", "0.1") > closest() + 0.15
+
+
+def _turn_per_m(path):
+    worst = 0.0
+    for a, b, c in zip(path, path[1:], path[2:]):
+        la, lb = math.dist(a, b), math.dist(b, c)
+        if la < 1e-3 or lb < 1e-3:
+            continue
+        t = math.atan2(c[1] - b[1], c[0] - b[0]) - math.atan2(b[1] - a[1], b[0] - a[0])
+        t = abs(math.atan2(math.sin(t), math.cos(t)))
+        worst = max(worst, t / (0.5 * (la + lb)))
+    return worst
+
+
+def test_start_in_collision_escapes_with_exit_0():
+    r = run("--start", "0,0", "--goal", "4,0", "--person", "0.35,0.1,3.14", "--iterations", "2000", "--json")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert out["status_code"] == 43 and out["status"].startswith("escaping")
+    assert "person 0" in out["drive"]["escape"]
+    assert out["path"][0] == [0.0, 0.0] and out["path"][-1] == [4.0, 0.0]
+
+
+def test_goal_yaw_turn_radius_and_walkers_take_effect():
+    """--goal x,y,yaw arrives within --goal-yaw-tolerance; --min-turn-radius bounds the turn per
+    metre of the printed path; a walker (--person with vx,vy) is kept clear of where they will be."""
+    base = ["--start", "-4,0", "--goal", "2,0,1.5707963", "--iterations", "3000", "--json",
+            "--goal-yaw-tolerance", "5"]
+    for radius in ("0.3", "0.8"):
+        out = json.loads(run(*base, "--min-turn-radius", radius).stdout)
+        assert out["drive"]["arrival_met"] and out["drive"]["arrival_error_deg"] <= 5.0
+        assert abs(out["yaw"][-1] - math.pi / 2) <= math.radians(5.0)
+        assert out["drive"]["tight_turns"] == 0
+        assert _turn_per_m(out["path"]) <= 1.02 / float(radius)
+    walker = ["--start", "-4,0", "--goal", "4,0", "--person", "1,3,-1.5708,0,-0.6", "--nominal-speed", "1",
+              "--iterations", "4000", "--json"]
+    out = json.loads(run(*walker).stdout)
+    assert out["drive"]["walker_conflict"] is False
+    assert out["drive"]["min_walker_clearance_m"] > 0.15
+    standing = json.loads(run(*walker[:5], "1,3,-1.5708", *walker[6:]).stdout)
+    assert standing["drive"]["min_walker_clearance_m"] is None  # nobody walks: nothing predicted
+
+
+APPROACH_NAMES = ["1-front", "2-45_right", "3-90_right", "4-135_right", "5-back", "6-135_left", "7-90_left",
+                  "8-45_left"]
+
+
+def test_approach_model_set_picks_the_start_direction_and_refuses_a_missing_one(tmp_path):
+    for k, name in enumerate(APPROACH_NAMES):  # direction k's components at its own bearing
+        write_features_model(tmp_path / f"{name}.gmm", [math.remainder(-k * math.pi / 4, 2 * math.pi)], task=2)
+    base = ["--approach-models", str(tmp_path), "--person", "0,0,0", "--goal", "1.2,0", "--iterations", "1500",
+            "--json"]
+    for start, name in (("-3,0.2", "5-back"), ("0.3,-3", "3-90_right"), ("3,2.5", "8-45_left")):
+        r = run(*base, "--start", start)
+        assert r.returncode == 0, r.stderr
+        out = json.loads(r.stdout)
+        assert out["approach_model"] == name
+        assert out["drive"]["arrival_met"]  # approach arrives facing the person by default
+        assert abs(math.atan2(math.sin(out["yaw"][-1] - math.pi), math.cos(out["yaw"][-1] - math.pi))) <= \
+            math.radians(15)
+    (tmp_path / "6-135_left.gmm").unlink()
+    r = run(*base, "--start", "-3,0.2")
+    assert r.returncode == 1 and r.stdout == ""
+    assert "6-135_left.gmm" in r.stderr and "--approach-models" in r.stderr
 
 
 def test_search_flags_take_effect():

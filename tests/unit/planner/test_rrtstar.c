@@ -247,8 +247,14 @@ static void test_bad_problems_get_their_status(void **state)
     test_planner_t t;
     assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
     gmmrrt_problem_t pr = disc_problem();
-    pr.start_x = 0.5; /* inside the disc */
-    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ERR_START_IN_COLLISION);
+    pr.start_x = 0.5; /* inside the disc: escapes (test_escape.c has the details) */
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ESCAPE);
+    pr = disc_problem();
+    pr.obstacles.circles[0].radius_m = 6.0; /* 6.2 m to the nearest free point: frozen */
+    pr.start_x = 0.0;
+    pr.goal_x = -6.5;
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ERR_FROZEN);
+    assert_non_null(strstr(gmmrrt_planner_escape_reason(t.p), "circle obstacle 0"));
     pr = disc_problem();
     pr.goal_x = 2.1; /* outside the disc but the robot's radius touches it */
     assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ERR_GOAL_IN_COLLISION);

@@ -1,0 +1,489 @@
+/*
+ * smooth.c - gmmrrt_planner_drivable_path (drivable.h): from the tree's best path to a path a
+ * wheeled robot can follow.
+ *
+ *  1. The vertices: the real start and the escape's exit when escaping (escape.c), the tree's
+ *     nodes from the root to the best goal node, the goal.
+ *  2. Shortcut (greedy, from the root on): vertex i is joined to the farthest j reachable by one
+ *     run of consecutive vertices such that the chord i-j is free by the planner's own tests and
+ *     costs no more than the tree path it replaces (cost(i, j) <= C(j) - C(i), C the tree's
+ *     cost-to-come; the objective includes the task cost, so a shortcut never trades the learned
+ *     social shape for length). The escape is kept as it is.
+ *  3. Arrival: when the path must end on a heading and does not, a straight leg W -> goal on
+ *     that heading replaces the path's tail from the latest vertex that sees W (legs tried from
+ *     arrival_leg_m up, preferring one whose corner arc fits).
+ *  3b. A corner whose arc cannot fit its segments is dropped when the chord over it is free and costs
+ *     at most 5 % more than the two segments (relax_tight_corners).
+ *  4. Corners: each corner turning by phi gets the circular arc of radius R = min_turn_radius_m
+ *     tangent to both segments (tangent length R tan(phi / 2)); when the segments are too short
+ *     for it, or a chord of the arc is not free, the arc is made smaller and the corner counted
+ *     as tight (reported, never hidden). R = 0: the robot turns in place at the corner. The arc
+ *     is checked by chords of at most GMMRRT_ARC_CHORD_M with the planner's segment test; the
+ *     straight pieces are parts of checked segments.
+ *  5. Resampled by arc length at the planner's waypoint spacing; yaw = the tangent.
+ *  6. Walking people: every waypoint is tested against where each walker is at the waypoint's
+ *     time (arc length / nominal speed), the exact version of the search's time window.
+ * All arrays are bounded (GMMRRT_DRIVE_MAX_VERTICES) and on the stack: no allocation.
+ */
+#include "gmmrrt/drivable.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "planner_internal.h"
+
+#define GMMRRT_ARC_CHORD_M 0.05
+#define GMMRRT_MIN_ARC_RADIUS_M 1e-3
+#define GMMRRT_STRAIGHT_RAD 1e-6
+#define MAXV GMMRRT_DRIVE_MAX_VERTICES
+
+void gmmrrt_drive_options_default(gmmrrt_drive_options_t *opt)
+{
+    if (!opt)
+        return;
+    opt->min_turn_radius_m = 0.3;
+    opt->arrival = GMMRRT_ARRIVAL_ANY;
+    opt->goal_yaw = 0.0;
+    opt->goal_yaw_tolerance_rad = 15.0 * M_PI / 180.0;
+    opt->arrival_leg_m = 0.4;
+    opt->shortcut = 1;
+}
+
+typedef struct {
+    int32_t n;
+    double x[MAXV], y[MAXV], c[MAXV]; /* c: tree cost-to-come, NAN where none (escape start, leg) */
+} polyline_t;
+
+/* One output piece: a line from (x0, y0) of length len along yaw, or an arc (r > 0) centred at
+ * (cx, cy) starting at angle a0 from the centre, turning dir (+1 left, -1 right). */
+typedef struct {
+    double x0, y0, yaw, len;
+    double r, cx, cy, a0, dir;
+} piece_t;
+
+static int seg_free(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1)
+{
+    return gmmrrt_planner_segment_free(p, x0, y0, x1, y1);
+}
+
+static gmmrrt_status_t extract(const struct gmmrrt_planner *p, polyline_t *v, int32_t *first_free)
+{
+    const int32_t leaf = p->goal_idx[p->best_goal];
+    int32_t depth = 1;
+    for (int32_t i = leaf; p->pool.link[i].parent >= 0; i = p->pool.link[i].parent)
+        ++depth;
+    const int esc = p->escape.active;
+    const gmmrrt_problem_t *pr = &p->problem;
+    const int goal_is_leaf = hypot(pr->goal_x - p->pool.xy[leaf].x, pr->goal_y - p->pool.xy[leaf].y) <= 1e-9;
+    const int32_t n = depth + esc + (goal_is_leaf ? 0 : 1);
+    if (n > MAXV - 2) /* two slots left for the arrival leg */
+        return GMMRRT_ERR_BUFFER_TOO_SMALL;
+    v->n = n;
+    int32_t k = n - 1;
+    if (!goal_is_leaf) {
+        v->x[k] = pr->goal_x;
+        v->y[k] = pr->goal_y;
+        v->c[k] = p->best_cost;
+        --k;
+    }
+    for (int32_t i = leaf; i >= 0; i = p->pool.link[i].parent, --k) {
+        v->x[k] = p->pool.xy[i].x;
+        v->y[k] = p->pool.xy[i].y;
+        v->c[k] = p->pool.cost[i];
+    }
+    if (goal_is_leaf)
+        v->c[n - 1] = p->best_cost;
+    if (esc) {
+        v->x[0] = p->escape.start_x;
+        v->y[0] = p->escape.start_y;
+        v->c[0] = NAN;
+    }
+    *first_free = esc;
+    return GMMRRT_OK;
+}
+
+static void shortcut(const struct gmmrrt_planner *p, polyline_t *v, int32_t first_free)
+{
+    int32_t out = first_free + 1, i = first_free;
+    while (i < v->n - 1) {
+        int32_t j = i + 1;
+        while (j + 1 <= v->n - 1) {
+            const int32_t k = j + 1;
+            const double saved = v->c[k] - v->c[i];
+            if (!seg_free(p, v->x[i], v->y[i], v->x[k], v->y[k]))
+                break;
+            if (!(gmmrrt_edge_cost(p, v->x[i], v->y[i], v->x[k], v->y[k]) <= saved + 1e-9 * (1.0 + fabs(v->c[k]))))
+                break;
+            j = k;
+        }
+        v->x[out] = v->x[j];
+        v->y[out] = v->y[j];
+        v->c[out] = v->c[j];
+        ++out;
+        i = j;
+    }
+    v->n = out;
+}
+
+static double turn_angle(double ax, double ay, double bx, double by, double cx, double cy)
+{
+    return fabs(gmmrrt_wrap_angle(atan2(cy - by, cx - bx) - atan2(by - ay, bx - ax)));
+}
+
+/* Tangent length the corner at b needs for radius R (a -> b -> c). */
+static double corner_need(double R, double ax, double ay, double bx, double by, double cx, double cy)
+{
+    return R * tan(0.5 * turn_angle(ax, ay, bx, by, cx, cy));
+}
+
+/* Replaces the tail so the path ends with a straight leg on heading h: vertex k, then the
+ * tail points, then the goal. Tails: the leg's start W alone, or W preceded by a point beside it
+ * (a U-turn in two corners of about 90 degrees, for a path that arrives from the wrong side, as
+ * when approaching a person from behind). Strict pass: every new corner's arc of radius R fits
+ * (half of each segment it shares with another corner); lax pass: any free tail. Returns the
+ * number of tail points put before the goal (0: the tail was not replaced). */
+static int32_t arrival_leg(const struct gmmrrt_planner *p, const gmmrrt_drive_options_t *opt, polyline_t *v,
+                       int32_t first_free, double h)
+{
+    const double gx = v->x[v->n - 1], gy = v->y[v->n - 1];
+    const double ux = cos(h), uy = sin(h), R = opt->min_turn_radius_m;
+    static const double scale[] = {1.0, 1.5, 2.0, 3.0, 4.0, 0.75, 0.5};
+    for (int strict = 1; strict >= 0; --strict) {
+        for (size_t s = 0; s < sizeof scale / sizeof scale[0]; ++s) {
+            const double L = fmax(opt->arrival_leg_m * scale[s], strict ? 1.05 * R : 0.0);
+            const double wx = gx - L * ux, wy = gy - L * uy;
+            if (!gmmrrt_planner_point_free(p, wx, wy) || !seg_free(p, wx, wy, gx, gy))
+                continue;
+            for (int variant = 0; variant < 3; ++variant) {
+                double tx[2], ty[2];
+                int32_t nt = 1;
+                if (variant == 0) {
+                    tx[0] = wx;
+                    ty[0] = wy;
+                } else { /* beside W: W - L2 u(h +- 90 deg), L2 leaves room for two arcs of 90 degrees */
+                    const double side = variant == 1 ? 1.0 : -1.0, l2 = fmax(L, 2.2 * R);
+                    tx[0] = wx + side * l2 * uy;
+                    ty[0] = wy - side * l2 * ux;
+                    tx[1] = wx;
+                    ty[1] = wy;
+                    nt = 2;
+                    if (!gmmrrt_planner_point_free(p, tx[0], ty[0]) || !seg_free(p, tx[0], ty[0], wx, wy))
+                        continue;
+                }
+                for (int32_t k = v->n - 2; k >= first_free; --k) {
+                    const double in = hypot(tx[0] - v->x[k], ty[0] - v->y[k]);
+                    if (in < 1e-6 || !seg_free(p, v->x[k], v->y[k], tx[0], ty[0]))
+                        continue;
+                    if (strict) {
+                        /* corners at the tail points, and at vertex k when it is one */
+                        const double nx0 = nt == 2 ? tx[1] : gx, ny0 = nt == 2 ? ty[1] : gy;
+                        const double t0 = corner_need(R, v->x[k], v->y[k], tx[0], ty[0], nx0, ny0);
+                        const double tk = k > first_free ? corner_need(R, v->x[k - 1], v->y[k - 1], v->x[k], v->y[k],
+                                                                       tx[0], ty[0])
+                                                         : 0.0;
+                        if (!(tk + t0 <= in && tk <= 0.5 * hypot(v->x[k] - v->x[k - 1 < 0 ? 0 : k - 1],
+                                                                 v->y[k] - v->y[k - 1 < 0 ? 0 : k - 1]) +
+                                                         (k > first_free ? 0.0 : INFINITY)))
+                            continue;
+                        if (nt == 1 && !(t0 <= L))
+                            continue;
+                        if (nt == 2) {
+                            const double t1 = corner_need(R, tx[0], ty[0], wx, wy, gx, gy);
+                            if (!(t0 + t1 <= hypot(wx - tx[0], wy - ty[0]) && t1 <= L))
+                                continue;
+                        }
+                    }
+                    for (int32_t q = 0; q < nt; ++q) {
+                        v->x[k + 1 + q] = tx[q];
+                        v->y[k + 1 + q] = ty[q];
+                        v->c[k + 1 + q] = NAN;
+                    }
+                    v->x[k + 1 + nt] = gx;
+                    v->y[k + 1 + nt] = gy;
+                    v->c[k + 1 + nt] = NAN;
+                    v->n = k + 2 + nt;
+                    return nt;
+                }
+            }
+        }
+    }
+    return 0;
+}
+
+/* Corner i's arc of radius R fits its two segments (each shared in proportion to the needs). */
+static int corner_fits(const polyline_t *v, int32_t i, double R, int32_t first_free)
+{
+    double need[3];
+    for (int32_t d = -1; d <= 1; ++d) {
+        const int32_t j = i + d;
+        need[d + 1] = (j <= first_free || j >= v->n - 1)
+                          ? 0.0
+                          : corner_need(R, v->x[j - 1], v->y[j - 1], v->x[j], v->y[j], v->x[j + 1], v->y[j + 1]);
+    }
+    const double lin = hypot(v->x[i] - v->x[i - 1], v->y[i] - v->y[i - 1]);
+    const double lout = hypot(v->x[i + 1] - v->x[i], v->y[i + 1] - v->y[i]);
+    return need[0] + need[1] <= lin && need[1] + need[2] <= lout;
+}
+
+/* Corners whose arc cannot fit are removed when the chord over them is free and costs at most
+ * GMMRRT_RELAX_COST_RATIO times the two segments it replaces (a small price in the objective for a
+ * drivable turn); vertices from `keep_from` on (the arrival leg) and up to first_free stay. */
+#define GMMRRT_RELAX_COST_RATIO 1.05
+static void relax_tight_corners(const struct gmmrrt_planner *p, polyline_t *v, double R, int32_t first_free,
+                                int32_t keep_from)
+{
+    if (!(R > 0.0))
+        return;
+    for (int32_t i = first_free + 1; i < v->n - 1 && i < keep_from;) {
+        if (corner_fits(v, i, R, first_free)) {
+            ++i;
+            continue;
+        }
+        const double old = gmmrrt_edge_cost(p, v->x[i - 1], v->y[i - 1], v->x[i], v->y[i]) +
+                           gmmrrt_edge_cost(p, v->x[i], v->y[i], v->x[i + 1], v->y[i + 1]);
+        const double chord = gmmrrt_edge_cost(p, v->x[i - 1], v->y[i - 1], v->x[i + 1], v->y[i + 1]);
+        if (!(chord <= GMMRRT_RELAX_COST_RATIO * old) ||
+            !seg_free(p, v->x[i - 1], v->y[i - 1], v->x[i + 1], v->y[i + 1])) {
+            ++i;
+            continue;
+        }
+        for (int32_t j = i; j + 1 < v->n; ++j) {
+            v->x[j] = v->x[j + 1];
+            v->y[j] = v->y[j + 1];
+            v->c[j] = v->c[j + 1];
+        }
+        --v->n;
+        --keep_from;
+        if (i > first_free + 1)
+            --i; /* the previous corner changed */
+    }
+}
+
+/* 1 when every chord (at most GMMRRT_ARC_CHORD_M) of the arc is free. */
+static int arc_free(const struct gmmrrt_planner *p, const piece_t *a)
+{
+    const double sweep = a->len / a->r;
+    const int32_t n = (int32_t)ceil(a->len / GMMRRT_ARC_CHORD_M);
+    double px = a->cx + a->r * cos(a->a0), py = a->cy + a->r * sin(a->a0);
+    for (int32_t k = 1; k <= (n < 1 ? 1 : n); ++k) {
+        const double ang = a->a0 + a->dir * sweep * (double)k / (double)(n < 1 ? 1 : n);
+        const double qx = a->cx + a->r * cos(ang), qy = a->cy + a->r * sin(ang);
+        if (!seg_free(p, px, py, qx, qy))
+            return 0;
+        px = qx;
+        py = qy;
+    }
+    return 1;
+}
+
+static void point_on(const piece_t *pc, double s, double *x, double *y, double *yaw)
+{
+    if (pc->r > 0.0) {
+        const double ang = pc->a0 + pc->dir * s / pc->r;
+        *x = pc->cx + pc->r * cos(ang);
+        *y = pc->cy + pc->r * sin(ang);
+        *yaw = gmmrrt_wrap_angle(ang + pc->dir * 0.5 * M_PI);
+    } else {
+        *x = pc->x0 + s * cos(pc->yaw);
+        *y = pc->y0 + s * sin(pc->yaw);
+        *yaw = pc->yaw;
+    }
+}
+
+static int valid_options(const gmmrrt_drive_options_t *o)
+{
+    return isfinite(o->min_turn_radius_m) && o->min_turn_radius_m >= 0.0 && o->min_turn_radius_m <= 100.0 &&
+           (o->arrival == GMMRRT_ARRIVAL_ANY || o->arrival == GMMRRT_ARRIVAL_YAW ||
+            o->arrival == GMMRRT_ARRIVAL_FACE_TARGET) &&
+           isfinite(o->goal_yaw) && isfinite(o->goal_yaw_tolerance_rad) && o->goal_yaw_tolerance_rad > 0.0 &&
+           o->goal_yaw_tolerance_rad <= M_PI && isfinite(o->arrival_leg_m) && o->arrival_leg_m > 0.0 &&
+           o->arrival_leg_m <= 100.0 && (o->shortcut == 0 || o->shortcut == 1);
+}
+
+gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gmmrrt_drive_options_t *opt,
+                                             gmmrrt_path_t *out, gmmrrt_drive_report_t *report)
+{
+    if (!p || !opt || !out || !valid_options(opt))
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    out->num_points = 0;
+    out->length_m = 0.0;
+    out->cost = INFINITY;
+    gmmrrt_drive_report_t rep;
+    memset(&rep, 0, sizeof rep);
+    rep.min_walker_clearance_m = INFINITY;
+    rep.arrival_met = 1;
+    const gmmrrt_problem_t *pr = &p->problem;
+    if (opt->arrival == GMMRRT_ARRIVAL_FACE_TARGET && p->has_problem &&
+        !(pr->task == GMMRRT_TASK_APPROACH && pr->target_person >= 0))
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    if (!p->has_problem || p->best_goal < 0)
+        return GMMRRT_NO_PATH_YET;
+
+    polyline_t v;
+    int32_t first_free;
+    gmmrrt_status_t st = extract(p, &v, &first_free);
+    if (st != GMMRRT_OK)
+        return st;
+    rep.vertices_in = v.n;
+    if (opt->shortcut)
+        shortcut(p, &v, first_free);
+
+    /* Arrival heading. */
+    int want = opt->arrival != GMMRRT_ARRIVAL_ANY;
+    double h = opt->goal_yaw;
+    if (opt->arrival == GMMRRT_ARRIVAL_FACE_TARGET) {
+        const gmmrrt_pose_t *t = &pr->obstacles.people[pr->target_person];
+        h = atan2(t->y - pr->goal_y, t->x - pr->goal_x);
+    }
+    int32_t keep_from = v.n - 1; /* the goal; or the arrival leg's first point */
+    if (want && v.n >= 2) {
+        const double last = atan2(v.y[v.n - 1] - v.y[v.n - 2], v.x[v.n - 1] - v.x[v.n - 2]);
+        if (fabs(gmmrrt_wrap_angle(last - h)) > opt->goal_yaw_tolerance_rad)
+            keep_from = v.n - 1 - arrival_leg(p, opt, &v, first_free, h);
+    }
+    relax_tight_corners(p, &v, opt->min_turn_radius_m, first_free, keep_from);
+    rep.vertices_out = v.n;
+    rep.cost = 0.0;
+    for (int32_t i = first_free; i + 1 < v.n; ++i)
+        rep.cost += gmmrrt_edge_cost(p, v.x[i], v.y[i], v.x[i + 1], v.y[i + 1]);
+
+    /* Corners: what each needs (R tan(phi / 2)), what it may use of its two segments (all it
+     * needs when both corners of a segment fit, else a share in proportion to the needs), then
+     * the pieces. */
+    double need[MAXV], phi_at[MAXV];
+    const double R = opt->min_turn_radius_m;
+    need[0] = need[v.n - 1] = 0.0;
+    phi_at[0] = phi_at[v.n - 1] = 0.0;
+    for (int32_t i = 1; i < v.n - 1; ++i) {
+        phi_at[i] = turn_angle(v.x[i - 1], v.y[i - 1], v.x[i], v.y[i], v.x[i + 1], v.y[i + 1]);
+        /* the escape's end: chords back into the contact cannot be free, so it turns in place */
+        const int no_arc = R <= 0.0 || phi_at[i] <= GMMRRT_STRAIGHT_RAD || (i == first_free && first_free > 0);
+        need[i] = no_arc ? 0.0 : R * tan(0.5 * phi_at[i]);
+    }
+    piece_t pieces[2 * MAXV];
+    int32_t np = 0;
+    double px = v.x[0], py = v.y[0];
+    for (int32_t i = 1; i < v.n; ++i) {
+        double ex = v.x[i], ey = v.y[i]; /* the straight piece ends here */
+        piece_t arc = {0};
+        int has_arc = 0;
+        if (i < v.n - 1 && phi_at[i] > GMMRRT_STRAIGHT_RAD) {
+            double r = 0.0;
+            if (need[i] > 0.0) {
+                const double lin = hypot(v.x[i] - v.x[i - 1], v.y[i] - v.y[i - 1]);
+                const double lout = hypot(v.x[i + 1] - v.x[i], v.y[i + 1] - v.y[i]);
+                const double ain = need[i - 1] + need[i] <= lin ? need[i] : lin * need[i] / (need[i - 1] + need[i]);
+                const double aout =
+                    need[i + 1] + need[i] <= lout ? need[i] : lout * need[i] / (need[i + 1] + need[i]);
+                const double allow = fmin(ain, aout);
+                r = R;
+                if (need[i] > allow) {
+                    r = allow / tan(0.5 * phi_at[i]);
+                    rep.tight_turns++;
+                }
+            }
+            const double phi = phi_at[i];
+            const double yin = atan2(v.y[i] - v.y[i - 1], v.x[i] - v.x[i - 1]);
+            const double yout = atan2(v.y[i + 1] - v.y[i], v.x[i + 1] - v.x[i]);
+            const double dir = gmmrrt_wrap_angle(yout - yin) > 0.0 ? 1.0 : -1.0;
+            int counted_tight = r < R;
+            while (r >= GMMRRT_MIN_ARC_RADIUS_M) {
+                const double t = r * tan(0.5 * phi);
+                const double ax = v.x[i] - t * cos(yin), ay = v.y[i] - t * sin(yin);
+                arc = (piece_t){ax, ay, yin, r * phi, r, ax - dir * r * sin(yin), ay + dir * r * cos(yin), 0.0, dir};
+                arc.a0 = atan2(ay - arc.cy, ax - arc.cx);
+                if (arc_free(p, &arc)) {
+                    has_arc = 1;
+                    ex = ax;
+                    ey = ay;
+                    break;
+                }
+                r *= 0.5;
+                if (!counted_tight) {
+                    rep.tight_turns++;
+                    counted_tight = 1;
+                }
+            }
+            if (!has_arc)
+                rep.turns_in_place++;
+            else if (1.0 / r > rep.max_curvature)
+                rep.max_curvature = 1.0 / r;
+        }
+        const double len = hypot(ex - px, ey - py);
+        if (len > 1e-12)
+            pieces[np++] = (piece_t){px, py, atan2(ey - py, ex - px), len, 0.0, 0.0, 0.0, 0.0, 0.0};
+        if (has_arc) {
+            pieces[np++] = arc;
+            const double yout = atan2(v.y[i + 1] - v.y[i], v.x[i + 1] - v.x[i]);
+            const double t = arc.r * tan(0.5 * arc.len / arc.r);
+            px = v.x[i] + t * cos(yout);
+            py = v.y[i] + t * sin(yout);
+        } else {
+            px = ex;
+            py = ey;
+        }
+    }
+
+    /* Resample. */
+    double total = 0.0;
+    for (int32_t k = 0; k < np; ++k)
+        total += pieces[k].len;
+    double spacing = p->cfg.waypoint_spacing_m;
+    int32_t m = (int32_t)fmin(ceil(total / spacing) + 1.0, (double)GMMRRT_MAX_WAYPOINTS + 1.0);
+    if (m > GMMRRT_MAX_WAYPOINTS) {
+        m = GMMRRT_MAX_WAYPOINTS;
+        spacing = total / (double)(m - 1);
+    }
+    if (m < 2)
+        m = 2;
+    double s0 = 0.0, yaw = np > 0 ? pieces[0].yaw : 0.0;
+    int32_t k = 0;
+    for (int32_t j = 0; j < m - 1; ++j) {
+        const double s = (double)j * spacing;
+        while (k < np - 1 && s > s0 + pieces[k].len) {
+            s0 += pieces[k].len;
+            ++k;
+        }
+        if (np > 0)
+            point_on(&pieces[k], fmin(s - s0, pieces[k].len), &out->x[j], &out->y[j], &yaw);
+        else {
+            out->x[j] = v.x[0];
+            out->y[j] = v.y[0];
+        }
+        out->yaw[j] = yaw;
+    }
+    double gx_, gy_;
+    if (np > 0)
+        point_on(&pieces[np - 1], pieces[np - 1].len, &gx_, &gy_, &yaw);
+    out->x[m - 1] = v.x[v.n - 1];
+    out->y[m - 1] = v.y[v.n - 1];
+    out->yaw[m - 1] = yaw;
+    out->x[0] = v.x[0];
+    out->y[0] = v.y[0];
+    out->num_points = m;
+    out->length_m = total;
+    out->cost = rep.cost;
+
+    rep.arrival_yaw = yaw;
+    if (want) {
+        rep.arrival_error_rad = fabs(gmmrrt_wrap_angle(yaw - h));
+        rep.arrival_met = rep.arrival_error_rad <= opt->goal_yaw_tolerance_rad;
+    }
+    /* Walkers at each waypoint's own time (the escape's part is leaving a contact by design). */
+    if (p->walkers.count > 0) {
+        const double esc_len = p->escape.active ? p->escape.length_m : 0.0;
+        for (int32_t j = 0; j < m; ++j) {
+            const double s = j == m - 1 ? total : (double)j * spacing;
+            if (s < esc_len)
+                continue;
+            const double c = gmmrrt_walkers_clearance_at(&p->walkers, out->x[j], out->y[j], s / p->walkers.speed_m_s);
+            if (c < rep.min_walker_clearance_m)
+                rep.min_walker_clearance_m = c;
+        }
+        rep.walker_conflict = rep.min_walker_clearance_m <= 0.0;
+    }
+    rep.status = p->escape.active ? GMMRRT_ESCAPE : GMMRRT_OK;
+    if (report)
+        *report = rep;
+    return rep.status;
+}

@@ -1,0 +1,433 @@
+/*
+ * test_drivable.c - planner.drivable: drivable paths (drivable.h, smooth.c), arrival headings,
+ * the escape from a start in collision (escape.c) and walking people (moving_people.c).
+ * Oracles: the output's own geometry (turn between consecutive chords against the bound,
+ * chords checked with the collision world), the exact time along the path for walkers, and a
+ * standing person given a sub-threshold velocity planned bit for bit as one without.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include <cmocka.h>
+
+#include "gmmrrt/drivable.h"
+#include "gmmrrt/features.h"
+#include "gmmrrt/model_set.h"
+#include "planner_fixtures.h"
+#include "planner_internal.h" /* gmmrrt_walkers_cost */
+
+static gmmrrt_budget_t iters(int64_t n) { return (gmmrrt_budget_t){0.0, n, 0.0, 0}; }
+
+/* Largest heading change between consecutive chords divided by the mean chord length (1/m),
+ * over chords longer than 1 mm (the turn per metre a follower of the waypoints sees). */
+static double max_turn_per_m(const gmmrrt_path_t *path)
+{
+    double worst = 0.0;
+    for (int32_t i = 1; i + 1 < path->num_points; ++i) {
+        const double ax = path->x[i] - path->x[i - 1], ay = path->y[i] - path->y[i - 1];
+        const double bx = path->x[i + 1] - path->x[i], by = path->y[i + 1] - path->y[i];
+        const double la = hypot(ax, ay), lb = hypot(bx, by);
+        if (la < 1e-3 || lb < 1e-3)
+            continue;
+        const double turn = fabs(gmmrrt_wrap_angle(atan2(by, bx) - atan2(ay, ax)));
+        const double k = turn / (0.5 * (la + lb));
+        if (k > worst)
+            worst = k;
+    }
+    return worst;
+}
+
+static void assert_chords_free(const gmmrrt_planner_t *p, const gmmrrt_path_t *path, int32_t from)
+{
+    const gmmrrt_world_t *w = gmmrrt_planner_world(p);
+    for (int32_t i = from; i + 1 < path->num_points; ++i)
+        if (!gmmrrt_world_segment_free(w, path->x[i], path->y[i], path->x[i + 1], path->y[i + 1])) {
+            fail_msg("chord %d (%.3f, %.3f)-(%.3f, %.3f) is not free", i, path->x[i], path->y[i], path->x[i + 1],
+                     path->y[i + 1]);
+        }
+}
+
+static gmmrrt_problem_t clutter_problem(void)
+{
+    gmmrrt_problem_t pr = empty_problem(-5.0, -1.0, 5.0, 1.0);
+    pr.obstacles.num_circles = 3;
+    pr.obstacles.circles[0] = (gmmrrt_circle_t){-2.0, 0.0, 0.8};
+    pr.obstacles.circles[1] = (gmmrrt_circle_t){1.5, 1.0, 0.6};
+    pr.obstacles.circles[2] = (gmmrrt_circle_t){1.0, -2.0, 0.7};
+    pr.obstacles.num_boxes = 1;
+    pr.obstacles.boxes[0] = (gmmrrt_box_t){3.5, -0.5, 0.4, 2.0, 0.3};
+    pr.obstacles.num_people = 1;
+    pr.obstacles.people[0] = (gmmrrt_pose_t){-0.3, -0.8, 1.0};
+    return pr;
+}
+
+static void test_no_output_turn_exceeds_the_bound(void **state)
+{
+    (void)state;
+    const double radii[] = {0.3, 0.6};
+    for (int r = 0; r < 2; ++r) {
+        for (uint64_t seed = 1; seed <= 4; ++seed) {
+            gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+            cfg.robot_radius_m = 0.3;
+            cfg.seed = seed;
+            test_planner_t t;
+            assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+            gmmrrt_problem_t pr = clutter_problem();
+            assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+            gmmrrt_budget_t b = iters(3000);
+            gmmrrt_plan_stats_t st;
+            assert_int_equal(gmmrrt_planner_run(t.p, &b, &st), GMMRRT_OK);
+            gmmrrt_drive_options_t opt;
+            gmmrrt_drive_options_default(&opt);
+            opt.min_turn_radius_m = radii[r];
+            gmmrrt_path_t raw, path;
+            gmmrrt_drive_report_t rep;
+            assert_int_equal(gmmrrt_planner_best_path(t.p, &raw), GMMRRT_OK);
+            assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_OK);
+            const double k = max_turn_per_m(&path);
+            printf("R %.1f seed %d: raw %.2f m turn %.1f rad/m; drivable %.2f m turn %.2f rad/m (bound %.2f), "
+                   "vertices %d -> %d, tight %d, in place %d\n",
+                   radii[r], (int)seed, raw.length_m, max_turn_per_m(&raw), path.length_m, k, 1.0 / radii[r],
+                   rep.vertices_in, rep.vertices_out, rep.tight_turns, rep.turns_in_place);
+            assert_int_equal(rep.tight_turns, 0);
+            assert_int_equal(rep.turns_in_place, 0);
+            assert_true(rep.max_curvature <= 1.0 / radii[r] * (1.0 + 1e-9));
+            /* Chords of an arc turn by chord / R; 2 % for the chord-vs-arc length difference. */
+            assert_true(k <= 1.02 / radii[r]);
+            assert_chords_free(t.p, &path, 0);
+            /* Shortcuts never raise the planner's cost. */
+            assert_true(rep.cost <= st.best_cost * (1.0 + 1e-9));
+            assert_true(path.length_m <= raw.length_m + 1e-9);
+            /* yaw is the tangent: within half a chord's turn of the chord's direction. */
+            for (int32_t i = 0; i + 1 < path.num_points; ++i) {
+                const double chord = atan2(path.y[i + 1] - path.y[i], path.x[i + 1] - path.x[i]);
+                const double len = hypot(path.y[i + 1] - path.y[i], path.x[i + 1] - path.x[i]);
+                if (len > 1e-3)
+                    assert_true(fabs(gmmrrt_wrap_angle(path.yaw[i] - chord)) <= 0.51 * len / radii[r] + 1e-9);
+            }
+            assert_true(path.x[0] == pr.start_x && path.y[0] == pr.start_y);
+            assert_true(path.x[path.num_points - 1] == pr.goal_x && path.y[path.num_points - 1] == pr.goal_y);
+            test_planner_free(&t);
+        }
+    }
+}
+
+static void test_zero_radius_turns_in_place(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = disc_problem();
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    gmmrrt_budget_t b = iters(3000);
+    assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+    gmmrrt_drive_options_t opt;
+    gmmrrt_drive_options_default(&opt);
+    opt.min_turn_radius_m = 0.0;
+    gmmrrt_path_t path;
+    gmmrrt_drive_report_t rep;
+    assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_OK);
+    assert_true(rep.turns_in_place > 0);
+    assert_true(rep.max_curvature == 0.0);
+    assert_chords_free(t.p, &path, 0);
+    test_planner_free(&t);
+}
+
+/* Approach from behind: the person faces +x, the robot starts 3 m behind them, the goal is
+ * 1.2 m in front; the path must go round and arrive facing the person. */
+static void test_approach_from_behind_arrives_facing(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 4; ++seed) {
+        gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+        cfg.robot_radius_m = 0.3;
+        cfg.seed = seed;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(-3.0, 0.2, 1.2, 0.0);
+        pr.task = GMMRRT_TASK_APPROACH;
+        pr.target_person = 0;
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = (gmmrrt_pose_t){0.0, 0.0, 0.0};
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        gmmrrt_budget_t b = iters(3000);
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+        gmmrrt_drive_options_t opt;
+        gmmrrt_drive_options_default(&opt);
+        opt.arrival = GMMRRT_ARRIVAL_FACE_TARGET;
+        gmmrrt_path_t raw, path;
+        gmmrrt_drive_report_t rep;
+        assert_int_equal(gmmrrt_planner_best_path(t.p, &raw), GMMRRT_OK);
+        assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_OK);
+        const double facing = M_PI; /* from the goal (1.2, 0) to the person at the origin */
+        const double raw_err = fabs(gmmrrt_wrap_angle(raw.yaw[raw.num_points - 1] - facing));
+        const double err = fabs(gmmrrt_wrap_angle(path.yaw[path.num_points - 1] - facing));
+        printf("seed %d: arrival error raw %.1f deg, drivable %.1f deg (reported %.1f), tight %d\n", (int)seed,
+               raw_err * 180.0 / M_PI, err * 180.0 / M_PI, rep.arrival_error_rad * 180.0 / M_PI, rep.tight_turns);
+        assert_true(err <= 15.0 * M_PI / 180.0);
+        assert_true(rep.arrival_met);
+        assert_true(fabs(rep.arrival_error_rad - err) < 1e-9);
+        assert_int_equal(rep.tight_turns, 0);
+        assert_true(max_turn_per_m(&path) <= 1.02 / opt.min_turn_radius_m);
+        assert_chords_free(t.p, &path, 0);
+        test_planner_free(&t);
+    }
+}
+
+static void test_arrival_yaw_is_honoured_and_options_checked(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 2.0, 0.0);
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    gmmrrt_budget_t b = iters(2000);
+    assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+    gmmrrt_drive_options_t opt;
+    gmmrrt_drive_options_default(&opt);
+    opt.arrival = GMMRRT_ARRIVAL_YAW;
+    opt.goal_yaw = M_PI / 2.0; /* arrive heading +y */
+    opt.goal_yaw_tolerance_rad = 5.0 * M_PI / 180.0;
+    gmmrrt_path_t path;
+    gmmrrt_drive_report_t rep;
+    assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_OK);
+    assert_true(rep.arrival_met);
+    assert_true(fabs(gmmrrt_wrap_angle(path.yaw[path.num_points - 1] - M_PI / 2.0)) <= 5.0 * M_PI / 180.0);
+    opt.goal_yaw_tolerance_rad = 0.0;
+    assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_ERR_INVALID_ARGUMENT);
+    opt.goal_yaw_tolerance_rad = 0.1;
+    opt.min_turn_radius_m = NAN;
+    assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_ERR_INVALID_ARGUMENT);
+    opt.min_turn_radius_m = 0.3;
+    opt.arrival = GMMRRT_ARRIVAL_FACE_TARGET; /* no approach target in this problem */
+    assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_ERR_INVALID_ARGUMENT);
+    test_planner_free(&t);
+}
+
+/* A person steps into the robot's disc: one set_problem + run escapes and reaches the goal. */
+static void test_person_stepping_into_the_disc_is_escaped(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    cfg.robot_radius_m = 0.3;
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = empty_problem(0.0, 0.0, 4.0, 0.0);
+    pr.obstacles.num_people = 1;
+    pr.obstacles.people[0] = (gmmrrt_pose_t){0.35, 0.1, M_PI}; /* 0.36 m away, contact at 0.55 m */
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ESCAPE);
+    assert_non_null(strstr(gmmrrt_planner_escape_reason(t.p), "person 0"));
+    gmmrrt_budget_t b = iters(3000);
+    assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+    gmmrrt_drive_options_t opt;
+    gmmrrt_drive_options_default(&opt);
+    gmmrrt_path_t path;
+    gmmrrt_drive_report_t rep;
+    assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_ESCAPE);
+    assert_int_equal(rep.status, GMMRRT_ESCAPE);
+    assert_true(path.x[0] == 0.0 && path.y[0] == 0.0);
+    assert_true(path.x[path.num_points - 1] == 4.0 && path.y[path.num_points - 1] == 0.0);
+    /* Distance to the person never falls until the robot is clear (0.55 m), and stays clear. */
+    const double contact = cfg.robot_radius_m + cfg.person_radius_m;
+    double prev = 0.0;
+    int clear = 0;
+    for (int32_t i = 0; i < path.num_points; ++i) {
+        const double d = hypot(path.x[i] - 0.35, path.y[i] - 0.1);
+        if (!clear)
+            assert_true(d >= prev - 1e-12);
+        else
+            assert_true(d > contact);
+        if (d > contact)
+            clear = 1;
+        prev = d;
+    }
+    assert_true(clear);
+    /* The shortest way out is straight away from the person (within the 5 degree ray spacing). */
+    const double away = atan2(0.0 - 0.1, 0.0 - 0.35);
+    assert_true(fabs(gmmrrt_wrap_angle(atan2(path.y[1], path.x[1]) - away)) <= 2.5 * M_PI / 180.0 + 1e-9);
+    test_planner_free(&t);
+}
+
+/* A walker crossing the robot's line where the robot will be: the plan keeps clear of where
+ * they are at each waypoint's time, while the prediction-free plan meets them. */
+static void test_walker_crossing_is_passed_at_a_safe_distance(void **state)
+{
+    (void)state;
+    const double speed = 1.0, vy = -0.6;
+    for (int with_velocity = 0; with_velocity <= 1; ++with_velocity) {
+        gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+        cfg.robot_radius_m = 0.3;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = (gmmrrt_pose_t){1.0, 3.0, -M_PI / 2.0}; /* at (1, 0) at t = 5 s */
+        pr.person_vy[0] = with_velocity ? vy : 0.0;
+        pr.nominal_speed_m_s = speed;
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        gmmrrt_budget_t b = iters(4000);
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+        gmmrrt_drive_options_t opt;
+        gmmrrt_drive_options_default(&opt);
+        gmmrrt_path_t path;
+        gmmrrt_drive_report_t rep;
+        assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_OK);
+        /* Independent check: the walker at each waypoint's time s / speed. */
+        double s = 0.0, closest = INFINITY;
+        for (int32_t i = 0; i < path.num_points; ++i) {
+            if (i > 0)
+                s += hypot(path.x[i] - path.x[i - 1], path.y[i] - path.y[i - 1]);
+            const double tt = fmin(s / speed, GMMRRT_DEFAULT_PREDICTION_HORIZON_S);
+            const double d = hypot(path.x[i] - 1.0, path.y[i] - (3.0 + vy * tt));
+            if (d < closest)
+                closest = d;
+        }
+        printf("%s: closest to the walker %.2f m (contact %.2f m), reported clearance %.2f m\n",
+               with_velocity ? "predicted" : "prediction-free", closest, 0.55, rep.min_walker_clearance_m);
+        if (with_velocity) {
+            /* the search's time window is wider than the exact times, so the comfort margin holds */
+            assert_true(closest >= 0.55 + GMMRRT_WALKER_COMFORT_M - 1e-3);
+            assert_int_equal(rep.walker_conflict, 0);
+            assert_true(fabs(rep.min_walker_clearance_m - (closest - 0.55)) < 0.02); /* waypoint arc vs chord sums */
+        } else {
+            assert_true(closest < 0.55); /* the scenario really is a collision without prediction */
+        }
+        test_planner_free(&t);
+    }
+}
+
+static void test_slow_person_is_standing_bit_for_bit(void **state)
+{
+    (void)state;
+    gmmrrt_model_t model;
+    const double theta[] = {M_PI / 2.0};
+    assert_int_equal(make_features_model(&model, theta, 1, 1.2, 0.2, 0.3), GMMRRT_OK);
+    gmmrrt_path_t paths[2];
+    double costs[2];
+    for (int v = 0; v < 2; ++v) {
+        gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_GMM_RRT_STAR);
+        cfg.robot_radius_m = 0.3;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
+        pr.task = GMMRRT_TASK_AVOID;
+        pr.model = &model;
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = (gmmrrt_pose_t){0.0, 0.0, M_PI};
+        pr.person_vx[0] = v ? 0.15 : 0.0; /* below GMMRRT_STANDING_SPEED_M_S */
+        pr.person_vy[0] = v ? -0.1 : 0.0;
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        gmmrrt_budget_t b = iters(3000);
+        gmmrrt_plan_stats_t st;
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, &st), GMMRRT_OK);
+        assert_int_equal(gmmrrt_planner_best_path(t.p, &paths[v]), GMMRRT_OK);
+        costs[v] = st.best_cost;
+        test_planner_free(&t);
+    }
+    assert_true(memcmp(&costs[0], &costs[1], sizeof costs[0]) == 0);
+    assert_int_equal(paths[0].num_points, paths[1].num_points);
+    assert_memory_equal(paths[0].x, paths[1].x, sizeof(double) * (size_t)paths[0].num_points);
+    assert_memory_equal(paths[0].y, paths[1].y, sizeof(double) * (size_t)paths[0].num_points);
+}
+
+/* Crossing a walker's lane where they are about to walk costs more than crossing behind them, at
+ * the same distance; the cost is where they will be when the robot gets there. */
+static void test_walker_cost_is_higher_in_front_than_behind(void **state)
+{
+    (void)state;
+    gmmrrt_walkers_t w;
+    memset(&w, 0, sizeof w);
+    w.count = 1;
+    w.x[0] = 0.0;
+    w.y[0] = 0.0;
+    w.vy[0] = 1.0; /* walking +y */
+    w.speed_m_s = 1.0;
+    w.horizon_s = 5.0;
+    w.root_x = 0.0;
+    w.root_y = -100.0; /* far: the robot gets there at the horizon, the walker at (0, 5) */
+    const double front = gmmrrt_walkers_cost(&w, -1.0, 6.0, 1.0, 6.0, 0.05);
+    const double behind = gmmrrt_walkers_cost(&w, -1.0, 4.0, 1.0, 4.0, 0.05);
+    const double far = gmmrrt_walkers_cost(&w, -1.0, 20.0, 1.0, 20.0, 0.05);
+    printf("walker cost of a 2 m crossing 1 m ahead %.3f, 1 m behind %.3f, 15 m ahead %.3g\n", front, behind, far);
+    assert_true(front > 1.0);         /* close to the full 2 m x 1 of the lane */
+    assert_true(behind < 0.1 * front);
+    assert_true(far < 1e-6);
+    /* A robot near the walker's start meets them there: the same crossing is now behind them. */
+    w.root_y = 0.0;
+    w.root_x = 0.0;
+    assert_true(gmmrrt_walkers_cost(&w, -1.0, -1.0, 1.0, -1.0, 0.05) < 0.1);
+}
+
+/* The robot's bearing in the person's frame picks the direction (+left, right = negative). */
+static void test_approach_direction_sectors(void **state)
+{
+    (void)state;
+    const gmmrrt_pose_t person = {1.0, 2.0, M_PI / 2.0}; /* facing world +y */
+    const char *expect[8] = {"1-front", "8-45_left", "7-90_left", "6-135_left", "5-back", "4-135_right",
+                             "3-90_right", "2-45_right"};
+    for (int i = 0; i < 8; ++i) {
+        for (int j = -2; j <= 2; ++j) { /* +-20 degrees inside the sector */
+            const double theta = i * M_PI / 4.0 + j * (10.0 * M_PI / 180.0);
+            double x, y;
+            gmmrrt_features_to_xy(&person, 2.0, theta, &x, &y);
+            const int32_t k = gmmrrt_approach_direction(&person, x, y);
+            assert_string_equal(gmmrrt_approach_direction_name(k), expect[i]);
+        }
+    }
+    assert_int_equal(gmmrrt_approach_direction(&person, NAN, 0.0), -1);
+    assert_null(gmmrrt_approach_direction_name(8));
+    gmmrrt_model_t m;
+    const double theta[] = {0.0};
+    assert_int_equal(make_features_model(&m, theta, 1, 1.2, 0.2, 0.3), GMMRRT_OK);
+    m.task = GMMRRT_TASK_APPROACH;
+    gmmrrt_model_set_t set;
+    for (int i = 0; i < 8; ++i)
+        set.model[i] = &m;
+    char err[128];
+    assert_int_equal(gmmrrt_model_set_validate(&set, err, sizeof err), GMMRRT_OK);
+    set.model[5] = NULL;
+    assert_int_equal(gmmrrt_model_set_validate(&set, err, sizeof err), GMMRRT_ERR_MODEL_MISMATCH);
+    assert_non_null(strstr(err, "6-135_left"));
+}
+
+static void test_bad_velocities_are_refused(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
+    pr.obstacles.num_people = 1;
+    pr.obstacles.people[0] = (gmmrrt_pose_t){0.0, 2.0, 0.0};
+    pr.person_vx[0] = NAN;
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ERR_INVALID_ARGUMENT);
+    pr.person_vx[0] = GMMRRT_MAX_PERSON_SPEED_M_S + 0.1;
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ERR_INVALID_ARGUMENT);
+    pr.person_vx[0] = GMMRRT_MAX_PERSON_SPEED_M_S - 0.1;
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    pr.nominal_speed_m_s = -1.0;
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ERR_INVALID_ARGUMENT);
+    test_planner_free(&t);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_no_output_turn_exceeds_the_bound),
+        cmocka_unit_test(test_zero_radius_turns_in_place),
+        cmocka_unit_test(test_approach_from_behind_arrives_facing),
+        cmocka_unit_test(test_arrival_yaw_is_honoured_and_options_checked),
+        cmocka_unit_test(test_person_stepping_into_the_disc_is_escaped),
+        cmocka_unit_test(test_walker_crossing_is_passed_at_a_safe_distance),
+        cmocka_unit_test(test_slow_person_is_standing_bit_for_bit),
+        cmocka_unit_test(test_walker_cost_is_higher_in_front_than_behind),
+        cmocka_unit_test(test_approach_direction_sectors),
+        cmocka_unit_test(test_bad_velocities_are_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
