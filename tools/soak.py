@@ -5,8 +5,10 @@ sampled all along and must stay flat.
 
 The daemon runs with its defaults (live clock, 10 Hz, 60 ms budget) on a private UDP
 multicast port with ttl=0. The inputs are the fault-free scenarios of logs/scenarios/, one
-after another, re-stamped so that utime only grows (each message decoded, given its new
-utime, encoded again) and sent at --speed times their recorded pace. Samples:
+after another, sent at --speed times their recorded pace and stamped with the sender's clock
+when sent (each message decoded, given its new utime, encoded again), as a real sender does:
+stamps that ran --speed times faster than the clock would be a dragged clock, which the
+daemon refuses (docs/daemon.md, "Clock"). Samples:
   * RSS: VmRSS of the daemon from /proc every second;
   * latency: a plan's waypoints_t.utime names the pose it started from; latency = arrival of
     the plan - sending of that pose (tick wait + planning + transport).
@@ -121,7 +123,7 @@ def soak(args):
 
     start = time.monotonic()
     end = start + args.minutes * 60.0
-    utime_base = int(time.time() * 1e6)
+    last_utime = 0
     rss = []  # (t since start, kB)
     next_rss = start
     loops = 0
@@ -130,7 +132,6 @@ def soak(args):
         while time.monotonic() < end and proc.poll() is None:
             for name, evs in scenarios:
                 scen_start_wall = time.monotonic()
-                scen_start_utime = utime_base
                 for off_us, ch, msg in evs:
                     due = scen_start_wall + off_us * 1e-6 / args.speed
                     while True:
@@ -145,7 +146,8 @@ def soak(args):
                         ready, _, _ = select.select([lc.fileno()], [], [], min(due - now, 0.005))
                         if ready:
                             lc.handle()
-                    msg.utime = scen_start_utime + off_us
+                    last_utime = max(last_utime + 1, int(time.time() * 1e6))
+                    msg.utime = last_utime
                     if ch == "PEOPLE":
                         for i in range(msg.num_people):
                             msg.people[i].utime = msg.utime
@@ -155,7 +157,6 @@ def soak(args):
                         sent[msg.utime] = time.monotonic()
                     if time.monotonic() >= end:
                         break
-                utime_base = scen_start_utime + evs[-1][0] + 100_000
                 if time.monotonic() >= end:
                     break
             loops += 1

@@ -26,13 +26,13 @@ _Static_assert(GMMRRT_MAX_WAYPOINTS <= GMMRRT_WAYPOINTS_T_MAX_WAYPOINTS,
                "limits.h: GMMRRT_MAX_WAYPOINTS > waypoints_t.MAX_WAYPOINTS");
 
 /* Counts `reason` at most once per goal (per goal content, see inputs.c). */
-static void reject_once_per_goal(gmmrrtd_t *d, int reason, gmmrrt_status_t why)
+static void reject_once_per_goal(gmmrrtd_t *d, int reason, int why)
 {
     if (d->counted_goal_version[reason] == d->goal_version)
         return;
     d->counted_goal_version[reason] = d->goal_version;
     gmmrrtd_reject(d, GMMRRTD_RL_PLANNER, reason, "goal (%.2f, %.2f): %s", d->goal.x, d->goal.y,
-                   gmmrrtd_stop_str((int)why));
+                   gmmrrtd_stop_str(why));
 }
 
 /* The status's time label: the log time in a replay, the host's wall clock live. */
@@ -310,7 +310,7 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     if (d->goal.task == GMMRRT_NAV_GOAL_T_TASK_AVOID || d->goal.task == GMMRRT_NAV_GOAL_T_TASK_APPROACH) {
         const int avoid = d->goal.task == GMMRRT_NAV_GOAL_T_TASK_AVOID;
         if (!(avoid ? d->have_avoid : d->have_approach) && d->set.cfg.planner != GMMRRT_PLANNER_RRT_STAR) {
-            reject_once_per_goal(d, ST(REJECT_NO_MODEL), (gmmrrt_status_t)GMMRRTD_STOP_NO_MODEL);
+            reject_once_per_goal(d, ST(REJECT_NO_MODEL), GMMRRTD_STOP_NO_MODEL);
             publish_stop(d, now_us, GMMRRTD_STOP_NO_MODEL, ST(STATE_ERROR));
             return;
         }
@@ -319,7 +319,7 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     if (d->goal.task == GMMRRT_NAV_GOAL_T_TASK_APPROACH) {
         target = people_usable(d) ? find_person(&d->people, d->goal.target_person_id) : -1;
         if (target < 0) {
-            reject_once_per_goal(d, ST(REJECT_UNKNOWN_TARGET), (gmmrrt_status_t)GMMRRTD_STOP_UNKNOWN_TARGET);
+            reject_once_per_goal(d, ST(REJECT_UNKNOWN_TARGET), GMMRRTD_STOP_UNKNOWN_TARGET);
             publish_stop(d, now_us, GMMRRTD_STOP_UNKNOWN_TARGET, ST(STATE_STOPPED));
             return;
         }

@@ -142,12 +142,10 @@ int gmmrrtd_replay_step(gmmrrtd_t *d)
     lcm_eventlog_event_t *ev = lcm_eventlog_read_next_event(d->replay);
     if (ev == NULL)
         return 0;
-    for (int i = 0; i < GMMRRTD_NUM_INPUTS; ++i) {
-        if (ev->channel != NULL && regexec(&d->replay_re[i], ev->channel, 0, NULL, 0) == 0) {
+    /* Every input whose channel pattern matches, as LCM calls every matching subscription. */
+    for (int i = 0; i < GMMRRTD_NUM_INPUTS; ++i)
+        if (ev->channel != NULL && regexec(&d->replay_re[i], ev->channel, 0, NULL, 0) == 0)
             gmmrrtd_handle_message(d, i, ev->timestamp, ev->data, ev->datalen > 0 ? (size_t)ev->datalen : 0);
-            break;
-        }
-    }
     lcm_eventlog_free_event(ev);
     return 1;
 }

@@ -402,6 +402,9 @@ int gmmrrtd_settings_validate(const gmmrrtd_settings_t *s, char *err, size_t err
         return fail(err, errcap, "lcm url is empty");
     if (strncmp(s->lcm_url, "file://", 7) == 0 && s->lcm_out_url[0] == '\0')
         return fail(err, errcap, "a file:// input (%s) cannot be published on: give --lcm-out-url", s->lcm_url);
+    if (strncmp(s->lcm_url, "file://", 7) == 0 && !strcmp(s->clock, "live"))
+        return fail(err, errcap, "clock = live with a file:// input (%s): a log is replayed on its own event times "
+                                 "(clock = log or auto)", s->lcm_url);
     const char *chans[] = {s->ch_pose, s->ch_people, s->ch_goal, s->ch_obstacles, s->ch_plan, s->ch_status};
     for (int i = 0; i < 6; ++i)
         if (chans[i][0] == '\0')

@@ -205,6 +205,24 @@ def test_goal_inside_an_obstacle(gmmrrtd, models, tmp_path):
     assert any(s.state == R.STATE_PLANNING for s in statuses_between(statuses, 3.3, 4.5))
 
 
+def test_goal_beyond_the_clearance_grid(gmmrrtd, models, tmp_path):
+    """A goal 60 m away on both axes: the planning box (66 x 66 m at 5 cm) needs more cells than
+    the default grid (2^20, 51 x 51 m). Counted once (REJECT_PLANNING_BOX), each cycle stops with
+    gmmrrtd's code 54 in STATE_ERROR, and a goal in reach plans again. (It used to publish status
+    2 every cycle with no counter and no log line.)"""
+    def goal_at(t):
+        return ms.goal(t, 60, 60, AVOID) if 1.0 <= t < 2.0 else ms.goal(t, 8, 0, AVOID)
+
+    sc = base("goal_beyond_grid", duration_s=3.5, goal_at=goal_at)
+    sc.expect(R.REJECT_PLANNING_BOX, 1)
+    _, statuses = replay(gmmrrtd, models, tmp_path, sc, min_plans_frac=0.2)
+    bad = statuses_between(statuses, 1.1, 2.0)
+    assert bad and all(s.state == R.STATE_ERROR and s.last_error == 54 for s in bad), \
+        [(s.state, s.last_error) for s in bad]
+    assert bad[-1].stops[R.STOP_PLANNING_BOX] >= len(bad)
+    assert any(s.state == R.STATE_PLANNING for s in statuses_between(statuses, 2.3, 3.5))
+
+
 def test_unreachable_goal(gmmrrtd, models, tmp_path):
     """A free goal walled in by four boxes: no path; after unreachable_after_cycles cycles the
     goal is counted unreachable (once), stops say NO_PATH_YET (40); a reachable goal plans again."""

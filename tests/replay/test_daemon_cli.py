@@ -196,6 +196,20 @@ def test_systemd_notify_ready_watchdog_reloading_stopping(gmmrrtd, models, tmp_p
 
     try:
         collect(1.0)
+        # A goal and a pose: each cycle now sets a problem up (the world may be rebuilt), and
+        # the watchdog interval is stretched around that step too.
+        from gmmrrt import nav_goal_t, pose2d_t
+        lc = lcm.LCM(private_url())
+        for _ in range(5):
+            now = int(time.time() * 1e6)
+            p = pose2d_t()
+            p.utime = now
+            lc.publish("ROBOT_POSE", p.encode())
+            g = nav_goal_t()
+            g.utime, g.x, g.tolerance_m, g.task = now, 3.0, 0.3, nav_goal_t.TASK_NONE
+            lc.publish("NAV_GOAL", g.encode())
+            collect(0.1)
+        setup_stretches = "\n".join(got).count("WATCHDOG_USEC=30000000")
         daemon.send_signal(signal.SIGHUP)
         collect(0.5)
         daemon.send_signal(signal.SIGTERM)
@@ -213,3 +227,8 @@ def test_systemd_notify_ready_watchdog_reloading_stopping(gmmrrtd, models, tmp_p
     assert "READY=1" in got[0], got[:3]
     assert text.count("WATCHDOG=1") >= 5, got  # every cycle at 10 Hz
     assert "RELOADING=1" in text and "STOPPING=1" in got[-1], got[-3:]
+    # A set-up or a reload may take long: the watchdog interval is stretched to long_step_ms for
+    # it and restored to the unit's after it (WATCHDOG_USEC, systemd >= 236).
+    assert setup_stretches >= 2, got
+    assert "WATCHDOG_USEC=30000000" in text, got
+    assert text.index("WATCHDOG_USEC=2000000") > text.index("WATCHDOG_USEC=30000000"), got

@@ -135,3 +135,25 @@ def test_gmmrrt_plan_model_fifo_and_huge_task_weight(gmmrrtd, tmp_path):
     assert res.returncode != 0 and "w_task" in res.stderr, res.stderr
     res = run(plan, "--start", "0,0", "--goal", "3,0", "--w-task", "1e6")
     assert res.returncode == 0, res.stderr
+
+
+def test_goal_flood_writes_a_few_lines_not_one_per_goal(gmmrrtd, models, tmp_path):
+    """2000 different goals in one second of log: each is taken (the last one is planned for),
+    but the "new goal" line is rate-limited like every other (one per log_interval_ms, then a count
+    of the suppressed ones); it used to be written once per goal (55 920 lines in 3 s)."""
+    import make_scenarios as ms
+    sc = ms.Scenario("goal_flood", "", 3.0)
+    for k in range(31):
+        t = k * 0.1
+        sc.add(t, "ROBOT_POSE", ms.pose(t, 0.0, 0.0, 0.0))
+    for k in range(2000):
+        t = 1.0 + k * 0.0005
+        sc.add(t, "NAV_GOAL", ms.goal(t, 3.0 + k * 1e-3, 0.0, ms.AVOID))
+    in_log, out_log = str(tmp_path / "flood.lcmlog"), str(tmp_path / "out.lcmlog")
+    sc.write(in_log)
+    res = run(gmmrrtd, "--lcm-url", "file://%s?speed=0" % in_log, "--lcm-out-url", "file://%s?mode=w" % out_log,
+              "--exit-at-eof", "--model-avoid", models["avoid"], "--budget-ms", "0", "--budget-iterations", "100",
+              timeout=120)
+    assert res.returncode == 0, res.stderr
+    lines = [l for l in res.stderr.splitlines() if "new goal" in l]
+    assert 1 <= len(lines) <= 3, lines[:5]

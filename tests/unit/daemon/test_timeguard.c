@@ -138,6 +138,7 @@ static void test_ratchet_of_goal_resends_stops_nothing(void **state)
     assert_int_equal(d->status.rejected[ST(REJECT_CLOCK_RESYNC)], 0);
     assert_true(d->status.rejected[ST(REJECT_TIME_FUTURE)] >= 55);
     assert_int_equal(d->status.state, ST(STATE_PLANNING));
+    assert_true(d->status.setup_time_ms > 0.0); /* the set-up is reported apart from the run */
     /* A new correctly stamped goal on the attacked channel is taken at once. */
     send_goal(d, 12100 * MS, T0 + 12100 * MS, 3.0, 0.5);
     drive(d, 12150 * MS, 3);

@@ -161,5 +161,6 @@ def test_constants_match_the_c_limits():
     assert people_t.MAX_PEOPLE == 32
     assert obstacles_t.MAX_CIRCLES == 64 and obstacles_t.MAX_BOXES == 64
     assert waypoints_t.MAX_WAYPOINTS == 256
-    assert planner_status_t.NUM_REJECT_REASONS == len(make_status().rejected) == 16
+    assert planner_status_t.NUM_REJECT_REASONS == len(make_status().rejected) == 24
+    assert planner_status_t.NUM_STOP_REASONS == len(make_status().stops) == 16
     assert planner_status_t.REJECT_MODEL_RELOAD < planner_status_t.NUM_REJECT_REASONS
