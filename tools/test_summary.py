@@ -19,7 +19,7 @@ PYTEST_SKIP = re.compile(r"^SKIPPED \[(\d+)\] ([^:]+):\d+: (.*)$")
 
 
 def skip_reasons(out):
-    """Reasons found in one test's output, as (count, text)."""
+    """Reasons found in one test's output, as (text, count) pairs."""
     found = {}
     for line in out.splitlines():
         m = PYTEST_SKIP.match(line.strip())
@@ -48,7 +48,7 @@ def read_junit(path):
             reasons = skip_reasons(out)
             if not reasons:
                 last = [l for l in out.splitlines() if l.strip()]
-                reasons = [(1, last[-1].strip() if last else skipped.get("message"))]
+                reasons = [(last[-1].strip() if last else skipped.get("message"), 1)]
             skips += [(name, n, r) for r, n in reasons]
         elif status == "run":
             counts["passed"] += 1
