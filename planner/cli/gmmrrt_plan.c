@@ -15,6 +15,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "gmmrrt/map_file.h"
 #include "gmmrrt/model_file.h"
 #include "gmmrrt/rrtstar.h"
 
@@ -27,6 +28,11 @@ static const char *prog = "gmmrrt-plan";
  * When it fills, the planner keeps the latest improvement in the last slot and --json says
  * "cost_history_complete": false. */
 #define GMMRRT_CLI_MAX_HISTORY 4096
+
+/* Raster capacity of --map: 4096 x 4096 cells (205 x 205 m at 5 cm), 16384 a side; 9 bytes a
+ * cell (raster.h), allocated once, touched only as far as the map reaches. */
+#define GMMRRT_CLI_MAP_MAX_CELLS (1 << 24)
+#define GMMRRT_CLI_MAP_MAX_SIDE 16384
 
 static double mono_ms(void)
 {
@@ -55,6 +61,8 @@ static void usage(FILE *out)
             "cost_history lists every improvement of the best cost (iteration = samples drawn so far,\n"
             "1-based); the best cost after N iterations is the last entry with iteration <= N.\n"
             "\n"
+            "  --map FILE.yaml     static map (map_server YAML + PGM/PNG, docs/world.md); unknown cells\n"
+            "                      block; default bounds: the map\n"
             "  --model FILE        mixture model (gmmrrt-learn); features kind for gmm-rrt-star,\n"
             "                      xy kind for gmm-rrt; optional for rrt-star\n"
             "  --start x,y         start position [m]\n"
@@ -148,7 +156,7 @@ int main(int argc, char **argv)
 {
     enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_PLANNER, OPT_BIAS, OPT_BUDGET,
            OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_DELTA,
-           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED };
+           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_MAP };
     static const struct option opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
         {"goal", required_argument, NULL, OPT_GOAL},         {"person", required_argument, NULL, OPT_PERSON},
@@ -160,12 +168,13 @@ int main(int argc, char **argv)
         {"goal-tolerance", required_argument, NULL, OPT_TOL}, {"json", no_argument, NULL, OPT_JSON},
         {"delta", required_argument, NULL, OPT_DELTA},       {"w-task", required_argument, NULL, OPT_WTASK},
         {"rewire-k", required_argument, NULL, OPT_REWIRE_K}, {"informed", required_argument, NULL, OPT_INFORMED},
+        {"map", required_argument, NULL, OPT_MAP},
         {"help", no_argument, NULL, 'h'},                    {NULL, 0, NULL, 0}};
 
     static gmmrrt_problem_t pr; /* large (obstacle arrays): static, zeroed */
     gmmrrt_planner_config_t cfg;
     gmmrrt_planner_config_default(&cfg);
-    const char *model_path = NULL;
+    const char *model_path = NULL, *map_path = NULL;
     int have_start = 0, have_goal = 0, have_bounds = 0, json = 0, planner = 0, task = 0;
     double budget_ms = -1.0;
     long long iterations = 0, target = 0;
@@ -300,6 +309,9 @@ int main(int argc, char **argv)
                 return fail("--rewire-k '%s': expected a factor in [0, 64] (0: radius rewiring)%s", optarg, "");
             cfg.rewire_k_factor = v[0];
             break;
+        case OPT_MAP:
+            map_path = optarg;
+            break;
         case OPT_INFORMED:
             if (strcmp(optarg, "0") != 0 && strcmp(optarg, "1") != 0)
                 return fail("--informed '%s': expected 0 or 1%s", optarg, "");
@@ -323,6 +335,19 @@ int main(int argc, char **argv)
         if (ms != GMMRRT_OK)
             return fail("cannot use --model: %s%s", err, "");
     }
+    static gmmrrt_raster_t map;
+    static void *map_mem; /* static: reachable until exit on every path */
+    if (map_path) {
+        const size_t map_size = gmmrrt_raster_mem_size(GMMRRT_CLI_MAP_MAX_CELLS, GMMRRT_CLI_MAP_MAX_SIDE);
+        map_mem = malloc(map_size);
+        if (!map_mem || gmmrrt_raster_init(&map, map_mem, map_size, GMMRRT_CLI_MAP_MAX_CELLS,
+                                           GMMRRT_CLI_MAP_MAX_SIDE) != GMMRRT_OK)
+            return fail("out of memory for the map%s%s", "", "");
+        const gmmrrt_status_t ms = gmmrrt_map_load_file(map_path, 1, &map, err, sizeof err);
+        if (ms != GMMRRT_OK)
+            return fail("cannot use --map: %s%s", err, "");
+        pr.obstacles.raster = &map;
+    }
     if (planner == 0)
         planner = model_path ? GMMRRT_PLANNER_GMM_RRT_STAR : GMMRRT_PLANNER_RRT_STAR;
     if (planner != GMMRRT_PLANNER_RRT_STAR && !model_path)
@@ -341,7 +366,16 @@ int main(int argc, char **argv)
     } else {
         pr.task = GMMRRT_TASK_NONE;
     }
-    if (!have_bounds) {
+    if (!have_bounds && map_path) {
+        /* The map's extent: the box around its four corners. */
+        gmmrrt_bounds_t *b = &pr.obstacles.bounds;
+        const double w = map.width * map.resolution_m, h = map.height * map.resolution_m;
+        *b = (gmmrrt_bounds_t){map.origin_x, map.origin_y, map.origin_x, map.origin_y};
+        const double cx[3] = {w, 0.0, w}, cy[3] = {0.0, h, h};
+        for (int k = 0; k < 3; ++k)
+            grow(b, map.origin_x + cx[k] * map.cos_yaw - cy[k] * map.sin_yaw,
+                 map.origin_y + cx[k] * map.sin_yaw + cy[k] * map.cos_yaw, 0.0);
+    } else if (!have_bounds) {
         gmmrrt_bounds_t *b = &pr.obstacles.bounds;
         *b = (gmmrrt_bounds_t){pr.start_x, pr.start_y, pr.start_x, pr.start_y};
         grow(b, pr.goal_x, pr.goal_y, 0.0);
