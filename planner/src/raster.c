@@ -249,6 +249,8 @@ double gmmrrt_raster_distance_to_blocked(const gmmrrt_raster_t *r, double x, dou
         return NAN;
     double u, v;
     to_cells(r, x, y, &u, &v);
+    if (r->unknown_blocked && !(u >= 0.0 && v >= 0.0 && u <= (double)r->width && v <= (double)r->height))
+        return 0.0; /* in the outside, which blocks */
     const double reach = max_m / r->resolution_m + 1.0;
     double best = max_m / r->resolution_m;
     /* Raster cells and, when the outside blocks, the ring of cells just outside it (the
