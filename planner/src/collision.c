@@ -34,6 +34,19 @@
 /* Lattice indices are kept in doubles and must stay exact integers with room for + 0.5. */
 #define GMMRRT_MAX_CELL_INDEX 1125899906842624.0 /* 2^50 */
 
+/* Static obstacles up to which the queries use the closed forms over all of them instead of the
+ * grid (chosen by measurement: docs/world.md). */
+#ifndef GMMRRT_EXACT_MAX_OBSTACLES
+#define GMMRRT_EXACT_MAX_OBSTACLES 8
+#endif
+
+/* With more statics, the first queries of each world use the closed forms too (a first path
+ * needs few queries, and the tiles they would fill cost more than the queries), the rest the
+ * grid (chosen by measurement: docs/world.md). */
+#ifndef GMMRRT_EXACT_FIRST_QUERIES
+#define GMMRRT_EXACT_FIRST_QUERIES 4096
+#endif
+
 /* Tiles: TILE x TILE cells, computed together on the first query that reads one of them. */
 #define TILE_SHIFT 3
 #define TILE (1 << TILE_SHIFT)
@@ -72,6 +85,8 @@ struct gmmrrt_world {
     double raster_slack_m;
     gmmrrt_world_grid_stats_t stats;
     int64_t lazy_cells; /* cells filled by queries since the last update */
+    int32_t exact_only; /* at most GMMRRT_EXACT_MAX_OBSTACLES statics: no grid, closed forms */
+    int64_t exact_queries_left; /* more statics: the first queries use the closed forms too */
     uint8_t *ready;    /* per tile, row-major (tj * tnx + ti): 1 once its cells are computed */
     float cells[];     /* per tile TILE_CELLS floats (tile-major, then row-major inside the tile) */
 };
@@ -338,6 +353,8 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
     w->max_tiles = max_tiles;
     w->ready = (uint8_t *)mem + align8(sizeof(struct gmmrrt_world) + (size_t)max_tiles * TILE_CELLS * sizeof(float));
     w->stats = counts;
+    w->exact_only = obstacles->num_circles + obstacles->num_boxes <= GMMRRT_EXACT_MAX_OBSTACLES;
+    w->exact_queries_left = GMMRRT_EXACT_FIRST_QUERIES;
     w->raster = obstacles->raster;
     w->raster_generation = obstacles->raster ? obstacles->raster->generation : 0;
     w->raster_slack_m = obstacles->raster ? 0.7071067811865476 * obstacles->raster->resolution_m + 1e-9 : 0.0;
@@ -521,6 +538,25 @@ static double exact_static_clearance(const struct gmmrrt_world *w, near_statics_
 static double static_clearance_obstacles(const struct gmmrrt_world *w, near_statics_t *n, double x, double y,
                                          double need)
 {
+    if (w->exact_only || w->exact_queries_left > 0) {
+        /* Few obstacles: the closed forms over all of them, uncapped (long steps for the edges'
+         * sphere tracing), cheaper than filling the tiles a search reaches. */
+        const gmmrrt_obstacle_set_t *o = &w->obstacles;
+        double best = INFINITY;
+        for (int32_t k = 0; k < o->num_circles; ++k) {
+            const double d = circle_distance(&o->circles[k], x, y);
+            best = d < best ? d : best;
+        }
+        for (int32_t k = 0; k < o->num_boxes; ++k) {
+            const double d = box_distance(w, k, x, y);
+            best = d < best ? d : best;
+        }
+        (void)n;
+        (void)need;
+        if (!w->exact_only)
+            ((struct gmmrrt_world *)(uintptr_t)w)->exact_queries_left--;
+        return best - w->robot_radius_m - EXACT_MARGIN_M;
+    }
     const double lb = clearance_lower_bound(w, x, y);
     if (lb > need)
         return lb;

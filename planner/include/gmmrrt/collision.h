@@ -11,10 +11,15 @@
  * big); a map (raster.h) is read through its distance field; people are checked exactly at
  * query time.
  *
- * Cost bound of the lazy grid: one tile costs at most (circles + boxes) x (1 + 64) closed-form
- * distances (<= 128 x 65 = 8 320 with the wire's limits), and a query reads at most four tiles,
- * so no query pays more than 4 such fills, and a whole run no more than the tiles its
- * queries reach.
+ * With at most 8 circles and boxes the grid is not used: every query takes the closed forms
+ * over all of them. With more, the first 4096 queries of each world do the same (a first path
+ * needs few queries, and the tiles they would fill cost more), the rest read the grid.
+ *
+ * Cost bound: set-up writes O(obstacles + tiles) bytes and computes nothing; a closed-form query
+ * costs at most circles + boxes (<= 128) distances; one tile costs at most (circles + boxes) x
+ * (1 + 64) closed-form distances (<= 8 320 with the wire's limits), and a grid query reads at
+ * most four tiles, so no query pays more than 4 such fills, and a whole run no more than the
+ * tiles its queries reach.
  *
  * Queries write into the world (the tiles they fill): one world must not be queried from two
  * threads at once.
