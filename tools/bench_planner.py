@@ -302,6 +302,7 @@ def run_all_planners(bin_dir: Path, quick: bool, raw: Path) -> dict:
             out["cost"]["%g" % b] = {"ours": med.get("gmmrrt"), "best_ompl": ompl[best], "best_ompl_planner": best,
                                      "met": med.get("gmmrrt", INF) <= ompl[best]}
         problems[name] = out
-    return {"command": " ".join([str(exe.relative_to(root)) if root in exe.parents else str(exe)] + cmd[1:3]
-                                + ["tests/data/bench_problems"] + cmd[4:8] + ["--json", raw.name]),
+    shown = [str(exe.relative_to(root)) if root in exe.parents else str(exe), "--problems",
+             "tests/data/bench_problems"] + cmd[3:7] + ["--json", raw.name]
+    return {"command": " ".join(shown),
             "seconds": round(time.time() - t0, 1), "text": text.strip(), "problems": problems, "trials": trials}
