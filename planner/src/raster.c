@@ -113,9 +113,9 @@ gmmrrt_status_t gmmrrt_raster_set_geometry(gmmrrt_raster_t *r, int32_t width, in
 int gmmrrt_raster_distance_ready(const gmmrrt_raster_t *r) { return r && r->width > 0 && r->distance_ready; }
 
 /* 1-D squared distance transform of f[0..n) (FAR2: no site) into d[0..n): the lower envelope
- * of the parabolas (q - p)^2 + f(p) over the sites p. With border, a site sits just outside
+ * of the parabolas (q - p)^2 + f(p) over the sites p. With border_lo / border_hi, a site sits just outside
  * each end (at -1 and n). */
-static void edt_1d(const double *f, double *d, int32_t *v, double *z, int32_t n, int border)
+static void edt_1d(const double *f, double *d, int32_t *v, double *z, int32_t n, int border_lo, int border_hi)
 {
     int32_t k = -1;
     for (int32_t q = 0; q < n; ++q) {
@@ -147,9 +147,10 @@ static void edt_1d(const double *f, double *d, int32_t *v, double *z, int32_t n,
             d[q] = t * t + f[v[j]];
         }
     }
-    if (border)
+    if (border_lo || border_hi)
         for (int32_t q = 0; q < n; ++q) {
-            const double a = (double)(q + 1), b = (double)(n - q), m = a < b ? a : b;
+            const double a = border_lo ? (double)(q + 1) : INFINITY, b = border_hi ? (double)(n - q) : INFINITY;
+            const double m = a < b ? a : b;
             if (m * m < d[q])
                 d[q] = m * m;
         }
@@ -168,41 +169,112 @@ static int blocks(const gmmrrt_raster_t *r, size_t c, double now_ms, double deca
            mark_active(r, c, now_ms, decay_ms);
 }
 
-gmmrrt_status_t gmmrrt_raster_update_distance(gmmrrt_raster_t *r, int64_t now_utime, double mark_decay_ms)
+/* The field over the cells [i0, i1) x [j0, j1) (write window), from the blocked cells of
+ * [a0, a1) x [b0, b1) (a larger rectangle around it, clipped to the raster), each value at most
+ * cap_m. The cells of the larger rectangle outside the write window are used as scratch. */
+static void field_over(gmmrrt_raster_t *r, double now_ms, double decay_ms, int32_t a0, int32_t a1, int32_t b0,
+                       int32_t b1, int32_t i0, int32_t i1, int32_t j0, int32_t j1, double cap_m)
 {
-    if (!r || r->width < 1 || !isfinite(mark_decay_ms) || mark_decay_ms < 0.0)
-        return GMMRRT_ERR_INVALID_ARGUMENT;
     const int32_t w = r->width, h = r->height;
-    const double now_ms = r->mark_epoch_utime < 0 ? 0.0 : (double)(now_utime - r->mark_epoch_utime) * 1e-3;
-    const int border = r->unknown_blocked; /* the outside is unknown */
+    const int out = r->unknown_blocked; /* the outside is unknown */
     double *f = r->scratch_f, *d = r->scratch_d, *z = r->scratch_z;
     int32_t *v = r->scratch_v;
     /* Columns: squared distance along y to the nearest blocked cell of the same column. */
-    for (int32_t i = 0; i < w; ++i) {
-        for (int32_t j = 0; j < h; ++j)
-            f[j] = blocks(r, (size_t)j * (size_t)w + (size_t)i, now_ms, mark_decay_ms) ? 0.0 : FAR2;
-        edt_1d(f, d, v, z, h, border);
-        for (int32_t j = 0; j < h; ++j)
-            r->dist[(size_t)j * (size_t)w + (size_t)i] = (float)d[j];
+    for (int32_t i = a0; i < a1; ++i) {
+        for (int32_t j = b0; j < b1; ++j)
+            f[j - b0] = blocks(r, (size_t)j * (size_t)w + (size_t)i, now_ms, decay_ms) ? 0.0 : FAR2;
+        edt_1d(f, d, v, z, b1 - b0, out && b0 == 0, out && b1 == h);
+        for (int32_t j = b0; j < b1; ++j)
+            r->dist[(size_t)j * (size_t)w + (size_t)i] = (float)d[j - b0];
     }
     /* Rows: the 2-D squared distance, then the distance in metres, rounded down. */
-    for (int32_t j = 0; j < h; ++j) {
+    for (int32_t j = j0; j < j1; ++j) {
         float *row = r->dist + (size_t)j * (size_t)w;
-        for (int32_t i = 0; i < w; ++i)
-            f[i] = (double)row[i] >= FAR2 * 0.5 ? FAR2 : (double)row[i];
-        edt_1d(f, d, v, z, w, border);
-        for (int32_t i = 0; i < w; ++i) {
-            const double m = d[i] >= FAR2 * 0.5 ? (double)FLT_MAX : sqrt(d[i]) * r->resolution_m * FIELD_SHRINK;
+        for (int32_t i = a0; i < a1; ++i)
+            f[i - a0] = (double)row[i] >= FAR2 * 0.5 ? FAR2 : (double)row[i];
+        edt_1d(f, d, v, z, a1 - a0, out && a0 == 0, out && a1 == w);
+        for (int32_t i = i0; i < i1; ++i) {
+            const double di = d[i - a0];
+            double m = di >= FAR2 * 0.5 ? (double)FLT_MAX : sqrt(di) * r->resolution_m * FIELD_SHRINK;
+            m = m < cap_m ? m : cap_m;
             float x = (float)m;
             if ((double)x > m)
                 x = nextafterf(x, 0.0f);
             row[i] = x;
         }
     }
+    r->valid_i0 = i0;
+    r->valid_i1 = i1;
+    r->valid_j0 = j0;
+    r->valid_j1 = j1;
     r->field_now_ms = now_ms;
-    r->field_decay_ms = mark_decay_ms;
+    r->field_decay_ms = decay_ms;
     r->distance_ready = 1;
     r->generation++;
+}
+
+static double ms_since_epoch(const gmmrrt_raster_t *r, int64_t now_utime)
+{
+    return r->mark_epoch_utime < 0 ? 0.0 : (double)(now_utime - r->mark_epoch_utime) * 1e-3;
+}
+
+gmmrrt_status_t gmmrrt_raster_update_distance(gmmrrt_raster_t *r, int64_t now_utime, double mark_decay_ms)
+{
+    if (!r || r->width < 1 || !isfinite(mark_decay_ms) || mark_decay_ms < 0.0)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    field_over(r, ms_since_epoch(r, now_utime), mark_decay_ms, 0, r->width, 0, r->height, 0, r->width, 0, r->height,
+               INFINITY);
+    return GMMRRT_OK;
+}
+
+/* Index range [lo, hi) of the cells along one raster axis that meet [t0, t1] (cells). */
+static void cell_range(double t0, double t1, int32_t n, int32_t *lo, int32_t *hi)
+{
+    const double a = floor(t0) - 1.0, b = floor(t1) + 2.0; /* a cell more each side: the bound's neighbours */
+    *lo = a < 0.0 ? 0 : (a > (double)n ? n : (int32_t)a);
+    *hi = b < 0.0 ? 0 : (b > (double)n ? n : (int32_t)b);
+}
+
+gmmrrt_status_t gmmrrt_raster_update_distance_window(gmmrrt_raster_t *r, int64_t now_utime, double mark_decay_ms,
+                                                     double xmin, double ymin, double xmax, double ymax,
+                                                     double reach_m)
+{
+    if (!r || r->width < 1 || !isfinite(mark_decay_ms) || mark_decay_ms < 0.0 || !isfinite(xmin) ||
+        !isfinite(ymin) || !isfinite(xmax) || !isfinite(ymax) || !(xmin <= xmax) || !(ymin <= ymax) ||
+        !isfinite(reach_m) || !(reach_m > 0.0))
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    /* The box in raster cells: the range of its four corners. */
+    double ulo = INFINITY, uhi = -INFINITY, vlo = INFINITY, vhi = -INFINITY;
+    const double xs[2] = {xmin, xmax}, ys[2] = {ymin, ymax};
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) {
+            double u, v;
+            const double dx = xs[a] - r->origin_x, dy = ys[b] - r->origin_y;
+            u = (dx * r->cos_yaw + dy * r->sin_yaw) / r->resolution_m;
+            v = (-dx * r->sin_yaw + dy * r->cos_yaw) / r->resolution_m;
+            ulo = fmin(ulo, u);
+            uhi = fmax(uhi, u);
+            vlo = fmin(vlo, v);
+            vhi = fmax(vhi, v);
+        }
+    int32_t i0, i1, j0, j1;
+    cell_range(ulo, uhi, r->width, &i0, &i1);
+    cell_range(vlo, vhi, r->height, &j0, &j1);
+    if (i0 >= i1 || j0 >= j1) {
+        /* The box misses the raster: an empty valid window, every bound "blocked" inside it. */
+        r->valid_i0 = r->valid_i1 = r->valid_j0 = r->valid_j1 = 0;
+        r->distance_ready = 1;
+        r->generation++;
+        return GMMRRT_OK;
+    }
+    /* Margin m cells: a blocked cell beyond it is more than m cells from every window cell, so
+     * capping the field at m cells keeps it a lower bound. */
+    const double md = ceil(reach_m / r->resolution_m) + 1.0;
+    const int32_t m = md > (double)(r->width + r->height) ? r->width + r->height : (int32_t)md;
+    const int32_t a0 = i0 - m < 0 ? 0 : i0 - m, a1 = i1 + m > r->width ? r->width : i1 + m;
+    const int32_t b0 = j0 - m < 0 ? 0 : j0 - m, b1 = j1 + m > r->height ? r->height : j1 + m;
+    field_over(r, ms_since_epoch(r, now_utime), mark_decay_ms, a0, a1, b0, b1, i0, i1, j0, j1,
+               (double)m * r->resolution_m);
     return GMMRRT_OK;
 }
 
@@ -229,11 +301,15 @@ double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double 
     to_cells(r, x, y, &u, &v);
     /* Centres around the point: cells floor(u - 0.5) and the next, clamped. */
     const double fu = floor(u - 0.5), fv = floor(v - 0.5);
-    double best = -INFINITY;
+    double best = -INFINITY; /* no valid neighbour: blocked */
     for (int dj = 0; dj <= 1; ++dj) {
         const int32_t j = clamp_index(fv + dj, r->height);
+        if (j < r->valid_j0 || j >= r->valid_j1)
+            continue;
         for (int di = 0; di <= 1; ++di) {
             const int32_t i = clamp_index(fu + di, r->width);
+            if (i < r->valid_i0 || i >= r->valid_i1)
+                continue;
             const double cu = (double)i + 0.5 - u, cv = (double)j + 0.5 - v;
             const double lb = (double)r->dist[(size_t)j * (size_t)r->width + (size_t)i] -
                               sqrt(cu * cu + cv * cv) * r->resolution_m;

@@ -47,6 +47,7 @@ typedef struct gmmrrt_raster {
     uint32_t generation;         /* changes with every edit of cells, marks or the field */
     int64_t mark_epoch_utime;    /* utime of mark value 1; -1 before the first scan */
     double field_now_ms, field_decay_ms; /* the time (ms since the epoch) and decay of the field */
+    int32_t valid_i0, valid_i1, valid_j0, valid_j1; /* cells where dist[] holds (exclusive ends) */
     uint8_t *cells;              /* width x height: FREE, OCCUPIED, UNKNOWN or 1..99 */
     uint32_t *marks;             /* scan marks: ms since the epoch + 1 of the last hit, 0 none */
     float *dist;                 /* m from each cell's centre to the nearest blocked cell's centre
@@ -78,12 +79,25 @@ gmmrrt_status_t gmmrrt_raster_set_geometry(gmmrrt_raster_t *r, int32_t width, in
  * GMMRRT_ERR_INVALID_ARGUMENT: NULL, an empty raster, decay not finite or < 0. */
 gmmrrt_status_t gmmrrt_raster_update_distance(gmmrrt_raster_t *r, int64_t now_utime, double mark_decay_ms);
 
+/* The field only where a planning problem can read it, for a raster that scans change every
+ * cycle: the cells meeting the world box [xmin, xmax] x [ymin, ymax] (a problem's bounds) and one
+ * more each side, computed from the blocked cells within reach_m (m) around them and capped at
+ * about reach_m (so it stays a lower bound). Cost O((window + 2 reach / res)^2) cells, whatever the
+ * raster's size. Everywhere else the field is invalid and the bound below calls points blocked;
+ * reach_m should exceed the robot's radius by a few cells (a smaller one blocks points near
+ * nothing; a larger one lets the edges' tracing take longer steps). GMMRRT_ERR_INVALID_ARGUMENT:
+ * NULL, an empty raster, a non-finite or inverted box, reach_m not finite or <= 0, decay as above. */
+gmmrrt_status_t gmmrrt_raster_update_distance_window(gmmrrt_raster_t *r, int64_t now_utime, double mark_decay_ms,
+                                                     double xmin, double ymin, double xmax, double ymax,
+                                                     double reach_m);
+
 /* 1 when the field is ready for the collision world. */
 int gmmrrt_raster_distance_ready(const gmmrrt_raster_t *r);
 
 /* A lower bound (m) of the distance from world point (x, y) to the centre of the nearest
  * blocked cell, 1-Lipschitz in (x, y): max over the four cell centres c around the point
- * (clamped to the raster) of dist(c) - |q - c|. Four loads; for the planning loop. */
+ * (clamped to the raster, and inside the field's valid window) of dist(c) - |q - c|; -inf when
+ * none of them is valid. Four loads; for the planning loop. */
 double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double y);
 
 /* Exact distance (m) from world point (x, y) to the nearest blocked cell's square (0 inside

@@ -129,6 +129,63 @@ static void test_clearance_bound_is_a_lower_bound(void **state)
     free(b.mem);
 }
 
+/* The windowed field: inside the window, the full field capped at the reach (to float
+ * rounding, never above the full field); outside it the bound calls every point blocked. */
+static void test_windowed_field_is_the_full_one_capped(void **state)
+{
+    (void)state;
+    raster_block_t full, win;
+    make_raster(&full, 120 * 90, 120);
+    make_raster(&win, 120 * 90, 120);
+    gmmrrt_rng_t g;
+    gmmrrt_rng_seed(&g, 17);
+    int rounds_with_cells = 0;
+    for (int round = 0; round < 12; ++round) {
+        random_raster(&full.r, &g, 120, 90, rnd(&g, 0.001, 0.02), round % 2);
+        assert_int_equal(gmmrrt_raster_set_geometry(&win.r, 120, 90, full.r.resolution_m, full.r.origin_x,
+                                                    full.r.origin_y, full.r.origin_yaw, full.r.unknown_blocked),
+                         GMMRRT_OK);
+        memcpy(win.r.cells, full.r.cells, 120 * 90);
+        assert_int_equal(gmmrrt_raster_update_distance(&full.r, 0, 0.0), GMMRRT_OK);
+        const double cx = rnd(&g, -8, 8), cy = rnd(&g, -8, 8), hw = rnd(&g, 0.2, 3), hh = rnd(&g, 0.2, 3);
+        const double reach = rnd(&g, 0.2, 1.5);
+        assert_int_equal(gmmrrt_raster_update_distance_window(&win.r, 0, 0.0, cx - hw, cy - hh, cx + hw, cy + hh, reach),
+                         GMMRRT_OK);
+        assert_true(gmmrrt_raster_distance_ready(&win.r));
+        const double cap = (ceil(reach / 0.1) + 1.0) * 0.1;
+        int inside = 0;
+        for (int32_t j = win.r.valid_j0; j < win.r.valid_j1; ++j)
+            for (int32_t i = win.r.valid_i0; i < win.r.valid_i1; ++i) {
+                const double want = fmin((double)full.r.dist[j * 120 + i], cap), got = (double)win.r.dist[j * 120 + i];
+                if (!(got <= (double)full.r.dist[j * 120 + i] && got >= want * (1.0 - 1e-6) - 1e-9))
+                    fail_msg("round %d cell (%d, %d): window %.9g, full %.9g, cap %.9g", round, i, j, got,
+                             (double)full.r.dist[j * 120 + i], cap);
+                ++inside;
+            }
+        /* Every point of the box is inside the window and bounded as with the full field, up to the cap. */
+        for (int q = 0; q < 500; ++q) {
+            const double x = cx + rnd(&g, -hw, hw), y = cy + rnd(&g, -hh, hh);
+            const double bw = gmmrrt_raster_clearance_bound(&win.r, x, y), bf = gmmrrt_raster_clearance_bound(&full.r, x, y);
+            assert_true(bw <= bf + 1e-9);
+            const double dx = x - win.r.origin_x, dy = y - win.r.origin_y;
+            const double u = (dx * win.r.cos_yaw + dy * win.r.sin_yaw) / 0.1, v = (-dx * win.r.sin_yaw + dy * win.r.cos_yaw) / 0.1;
+            if (u >= 0.0 && v >= 0.0 && u <= 120.0 && v <= 90.0) /* on the raster: its neighbours are in the window */
+                assert_true(isfinite(bw));
+        }
+        rounds_with_cells += inside > 0;
+        /* Far outside the window: blocked. */
+        if (inside > 0 && win.r.valid_i1 + 3 < 120) {
+            const double u = (double)win.r.valid_i1 + 2.5, v = 0.5 * (win.r.valid_j0 + win.r.valid_j1);
+            const double x = win.r.origin_x + 0.1 * (u * win.r.cos_yaw - v * win.r.sin_yaw);
+            const double y = win.r.origin_y + 0.1 * (u * win.r.sin_yaw + v * win.r.cos_yaw);
+            assert_true(gmmrrt_raster_clearance_bound(&win.r, x, y) == -INFINITY);
+        }
+    }
+    assert_true(rounds_with_cells >= 6); /* most boxes meet the raster */
+    free(full.mem);
+    free(win.mem);
+}
+
 static void test_scans_mark_clear_ignore_and_decay(void **state)
 {
     (void)state;
@@ -246,6 +303,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_distance_field_matches_brute_force),
         cmocka_unit_test(test_clearance_bound_is_a_lower_bound),
+        cmocka_unit_test(test_windowed_field_is_the_full_one_capped),
         cmocka_unit_test(test_scans_mark_clear_ignore_and_decay),
         cmocka_unit_test(test_geometry_beyond_capacity_is_refused),
         cmocka_unit_test(test_world_with_raster_keeps_the_robot_radius),
