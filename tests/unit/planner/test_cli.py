@@ -44,7 +44,7 @@ def test_help_lists_every_option():
     assert r.returncode == 0
     for opt in ["--model", "--start", "--goal", "--person", "--obstacle", "--planner", "--bias",
                 "--budget-ms", "--iterations", "--seed", "--robot-radius", "--bounds", "--json", "--delta",
-                "--w-task", "--rewire-k", "--informed", "cost_history"]:
+                "--w-task", "--rewire-k", "--informed", "--map", "cost_history", "setup_ms"]:
         assert opt in r.stdout
 
 
@@ -65,6 +65,30 @@ def test_json_disc_detour_is_near_the_closed_form():
     assert stats["first_solution_ms"] is not None and stats["first_solution_ms"] >= 0
     assert optimum - 1e-6 <= stats["best_cost"] <= optimum * 1.02
     assert stats["time_ms"] > 0
+    assert stats["setup_ms"] is not None and stats["setup_ms"] >= 0
+
+
+MAPS = Path(__file__).resolve().parents[3] / "logs" / "maps"
+
+
+def test_map_plans_in_the_floor_plan():
+    r = run("--map", str(MAPS / "floor.yaml"), "--start", "-9,-2", "--goal", "8,4", "--iterations", "20000", "--json")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert out["status"] == "ok"
+    # The first room (x < -3, y < -1) to the far room above the corridor (x > 0, y > 1): through the
+    # doorways, so longer than the straight line.
+    assert out["stats"]["length_m"] > math.dist((-9, -2), (8, 4)) + 0.5
+
+
+def test_bad_map_is_refused_naming_the_key(tmp_path):
+    (tmp_path / "m.yaml").write_text("image: floor.pgm\nresolution: -1\norigin: [0, 0, 0]\nnegate: 0\n"
+                                     "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    r = run("--map", str(tmp_path / "m.yaml"), "--start", "0,0", "--goal", "1,1")
+    assert r.returncode == 1 and r.stdout == ""
+    assert "m.yaml:2: key 'resolution'" in r.stderr, r.stderr
+    r = run("--map", str(tmp_path / "missing.yaml"), "--start", "0,0", "--goal", "1,1")
+    assert r.returncode == 1 and "cannot open map YAML" in r.stderr, r.stderr
 
 
 def test_csv_output_and_same_seed_same_path():
