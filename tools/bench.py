@@ -209,7 +209,13 @@ def main(argv=None) -> int:
         else:
             res["ompl"]["figure_error"] = proc.stderr.strip()[-300:]
 
-    section("planners", lambda: bp.run_all_planners(bin_dir, args.quick, raw / "all_planners.jsonl"))
+    def planners():
+        try:  # the social scene needs the avoid model; the geometric problems do not
+            avoid = get_models()["avoid"]
+        except (bp.BenchError, subprocess.SubprocessError, OSError):
+            avoid = None
+        return bp.run_all_planners(bin_dir, args.quick, raw / "all_planners.jsonl", avoid)
+    section("planners", planners)
 
     def social():
         m = get_models()

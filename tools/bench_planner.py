@@ -266,11 +266,12 @@ def find_executable(build_dir: Path, name: str) -> Optional[Path]:
 ALL_PLANNERS_BUDGETS_MS = (1.0, 10.0, 100.0, 1000.0)
 
 
-def run_all_planners(bin_dir: Path, quick: bool, raw: Path) -> dict:
+def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optional[str] = None) -> dict:
     """gmmrrt-bench-all: our RRT* and every OMPL planner of the comparison on the problems of
     tests/data/bench_problems (path length, point robot), exact motion checks and set-up counted on
     both sides. Targets: our first path (set-up included) <= 0.5x the fastest OMPL planner's, and our
-    best cost at each moment <= the best OMPL planner's (medians over trials)."""
+    best cost at each moment <= the best OMPL planner's (medians over trials). With avoid_model, also
+    the social avoid scene (problem "S", task cost) of gmmrrt-bench-ompl."""
     exe = bin_dir / "gmmrrt-bench-all"
     if not exe.is_file():
         raise BenchError(f"{exe} not built (OMPL missing?)")
@@ -279,6 +280,8 @@ def run_all_planners(bin_dir: Path, quick: bool, raw: Path) -> dict:
     trials = 1 if quick else 3
     cmd = [str(exe), "--problems", str(root / "tests" / "data" / "bench_problems"), "--trials", str(trials),
            "--budgets", ",".join("%g" % b for b in budgets), "--json", str(raw)]
+    if avoid_model:
+        cmd += ["--model", str(avoid_model)]
     t0 = time.time()
     text = _run(cmd, 3600)
     recs = [json.loads(line) for line in raw.read_text().splitlines() if line.strip()]
@@ -303,6 +306,7 @@ def run_all_planners(bin_dir: Path, quick: bool, raw: Path) -> dict:
                                      "met": med.get("gmmrrt", INF) <= ompl[best]}
         problems[name] = out
     shown = [str(exe.relative_to(root)) if root in exe.parents else str(exe), "--problems",
-             "tests/data/bench_problems"] + cmd[3:7] + ["--json", raw.name]
+             "tests/data/bench_problems"] + cmd[3:7] + ["--json", raw.name] + (
+                 ["--model", Path(avoid_model).name] if avoid_model else [])
     return {"command": " ".join(shown),
             "seconds": round(time.time() - t0, 1), "text": text.strip(), "problems": problems, "trials": trials}

@@ -271,11 +271,14 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
     else:
         L += [f"`{pl.get('command')}` ({pl.get('seconds')} s). Point robot, path length, problems of "
               "`tests/data/bench_problems/` (A disc, B cluttered, C narrow passage; optima 10.8112, 26.2074, "
-              "11.4639). One fresh run per budget; cost @ t = the cost a run of budget t returns (median over "
+              "11.4639), and S, the social avoid scene of the OMPL RRT* section (task cost, the avoid model "
+              "above; ours GMM-RRT* with uniform sampling). One fresh run per budget; cost @ t = the cost a run of budget t returns (median over "
               "trials, `none`: no exactly free path); first path = set-up + time to the first solution "
               "(OMPL's intermediate-solution callback, or the solve's duration when it stopped early; `-`: the "
               "planner reports neither). OMPL checks motions exactly (circles, boxes) like ours.", "",
               pl.get("text", ""), ""]
+        if pl.get("note"):
+            L += [pl["note"], ""]
     L += ["## Social tasks (GMM-RRT*, bias 0.95, default configuration)", ""]
     so = res.get("social")
     if _err(so):

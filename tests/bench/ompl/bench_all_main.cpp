@@ -13,7 +13,15 @@
  * solution, else unknown: "-"), median over every run of every budget. Set-up: OMPL from the space's construction to the end of
  * setup(); ours from init to the end of set_problem.
  *
+ * With --model FILE (a features avoid model), also the social avoid scene of gmmrrt-bench-ompl
+ * (problem.hpp: a person of radius 2 m at the origin facing the start, (-5, 0) -> (5, 0), cost
+ * the integral of 1 + c(f) along the path, OMPL through GmmTaskCostObjective): every planner that
+ * accepts that objective (those that throw are reported as such), ours as GMM-RRT* with uniform
+ * sampling (bias 0), both sides' cost the same integral (ours by the midpoint rule at OMPL's
+ * motion-check resolution, OMPL's by its trapezoid rule).
+ *
  * Usage: gmmrrt-bench-all --problems DIR [--trials N] [--budgets 1,10,100,1000] [--json FILE]
+ *        [--model FILE]
  * Prints a markdown table per problem (medians over trials).
  */
 #include <algorithm>
@@ -50,6 +58,9 @@
 #include <ompl/util/Console.h>
 
 #include "gmmrrt/rrtstar.h"
+#include "gmmrrt_runner.hpp"
+#include "ompl_runner.hpp"
+#include "problem.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -237,7 +248,8 @@ static double path_cost_if_free(const Problem &p, const std::vector<std::array<d
     return len;
 }
 
-static Run run_ompl(const Problem &p, const std::string &name, double budget_ms)
+static Run run_ompl(const Problem &p, const std::string &name, double budget_ms,
+                    const gmmrrt_bench::TaskSettings *task = nullptr)
 {
     Run r;
     const Clock::time_point t_setup = Clock::now();
@@ -259,7 +271,8 @@ static Run run_ompl(const Problem &p, const std::string &name, double budget_ms)
     goal[0] = p.gx;
     goal[1] = p.gy;
     pdef->setStartAndGoalStates(start, goal, 1e-6);
-    auto obj = std::make_shared<ob::PathLengthOptimizationObjective>(si);
+    ob::OptimizationObjectivePtr obj = task ? gmmrrt_bench::make_objective(si, "task", task)
+                                            : std::make_shared<ob::PathLengthOptimizationObjective>(si);
     obj->setCostThreshold(ob::Cost(0.0)); /* never "good enough": run the whole budget */
     pdef->setOptimizationObjective(obj);
     auto planner = make_planner(name, si);
@@ -282,6 +295,8 @@ static Run run_ompl(const Problem &p, const std::string &name, double budget_ms)
             pts.push_back({v->values[0], v->values[1]});
         }
         r.cost = path_cost_if_free(p, pts, p.gx, p.gy);
+        if (task && std::isfinite(r.cost))
+            r.cost = path->cost(obj).value();
         if (std::isnan(r.first_ms) && solve_ms < 0.9 * budget_ms)
             r.first_ms = solve_ms; /* a planner that stops at its solution */
     }
@@ -353,6 +368,30 @@ static Run run_ours(const Problem &p, double budget_ms, uint64_t seed, std::vect
     return r;
 }
 
+static Run run_ours_task(const gmmrrt_bench::TaskSettings &task, double budget_ms, uint64_t seed,
+                         std::vector<unsigned char> *block)
+{
+    Run r;
+    const gmmrrt_planner_config_t cfg = gmmrrt_bench::gmmrrt_bench_config("task", &task, 2000000, seed);
+    const size_t size = gmmrrt_planner_mem_size(&cfg);
+    if (block->size() < size + 8)
+        block->assign(size + 8, 0);
+    void *mem = reinterpret_cast<void *>((reinterpret_cast<uintptr_t>(block->data()) + 7u) & ~uintptr_t(7));
+    const gmmrrt_problem_t pr = gmmrrt_bench::gmmrrt_bench_problem("task", &task);
+    const Clock::time_point t_setup = Clock::now();
+    gmmrrt_planner_t *pl = nullptr;
+    if (gmmrrt_planner_init(&pl, mem, size, &cfg) != GMMRRT_OK || gmmrrt_planner_set_problem(pl, &pr) != GMMRRT_OK)
+        return r;
+    r.setup_ms = ms_since(t_setup);
+    gmmrrt_budget_t budget{budget_ms, 0, 0.0, 0};
+    gmmrrt_plan_stats_t st;
+    gmmrrt_planner_run(pl, &budget, &st);
+    if (st.first_solution_ms >= 0.0)
+        r.first_ms = r.setup_ms + st.first_solution_ms;
+    r.cost = st.best_cost;
+    return r;
+}
+
 static double median(std::vector<double> v)
 {
     v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return std::isnan(x); }), v.end());
@@ -375,7 +414,7 @@ static std::string fmt(double v, const char *f = "%.3f")
 
 int main(int argc, char **argv)
 {
-    std::string dir = "tests/data/bench_problems", json;
+    std::string dir = "tests/data/bench_problems", json, model_path;
     int trials = 3;
     std::vector<double> budgets = {1, 10, 100, 1000};
     std::vector<std::string> only;
@@ -395,9 +434,11 @@ int main(int argc, char **argv)
             only.push_back(argv[++i]);
         else if (a == "--json" && i + 1 < argc)
             json = argv[++i];
+        else if (a == "--model" && i + 1 < argc)
+            model_path = argv[++i];
         else {
             std::fprintf(stderr, "usage: gmmrrt-bench-all [--problems DIR] [--trials N] [--budgets 1,10,100,1000] "
-                                 "[--only PROBLEM] [--json FILE]\n");
+                                 "[--only PROBLEM] [--json FILE] [--model FILE]\n");
             return 2;
         }
     }
@@ -411,16 +452,39 @@ int main(int argc, char **argv)
                                                "BITstar",   "ABITstar",   "AITstar", "FMT"};
     std::FILE *jf = json.empty() ? nullptr : std::fopen(json.c_str(), "w");
     std::vector<unsigned char> block;
-    for (const char *file : {"problem_A.txt", "problem_B.txt", "problem_C.txt"}) {
+    static gmmrrt_model_t model;
+    gmmrrt_bench::TaskSettings task;
+    if (!model_path.empty()) {
+        std::string err;
+        if (!gmmrrt_bench::load_model_file(model_path, &model, &err)) {
+            std::fprintf(stderr, "gmmrrt-bench-all: --model: %s\n", err.c_str());
+            return 1;
+        }
+        task.model = &model;
+    }
+    std::vector<std::string> files = {"problem_A.txt", "problem_B.txt", "problem_C.txt"};
+    if (task.model)
+        files.push_back("social");
+    for (const std::string &file : files) {
         Problem p;
-        if (!read_problem(dir + "/" + file, &p)) {
-            std::fprintf(stderr, "gmmrrt-bench-all: cannot read %s/%s\n", dir.c_str(), file);
+        const bool social = file == "social";
+        if (social) {
+            p.name = "S";
+            p.xmin = p.ymin = gmmrrt_bench::kBoundLo;
+            p.xmax = p.ymax = gmmrrt_bench::kBoundHi;
+            p.sx = gmmrrt_bench::kStartX;
+            p.sy = gmmrrt_bench::kStartY;
+            p.gx = gmmrrt_bench::kGoalX;
+            p.gy = gmmrrt_bench::kGoalY;
+            p.circles.push_back({0.0, 0.0, gmmrrt_bench::kDiscRadius});
+        } else if (!read_problem(dir + "/" + file, &p)) {
+            std::fprintf(stderr, "gmmrrt-bench-all: cannot read %s/%s\n", dir.c_str(), file.c_str());
             return 1;
         }
         if (!only.empty() && std::find(only.begin(), only.end(), p.name) == only.end())
             continue;
         std::printf("\n### Problem %s (%s, %d trials)\n\n| planner | set-up ms | first path incl. set-up ms |", p.name.c_str(),
-                    file, trials);
+                    social ? "social avoid, task cost" : file.c_str(), trials);
         for (double b : budgets)
             std::printf(" cost @ %g ms |", b);
         std::printf("\n|---|---|---|");
@@ -432,16 +496,27 @@ int main(int argc, char **argv)
             std::vector<std::vector<double>> cost(budgets.size());
             for (int t = 0; t < trials; ++t)
                 for (size_t k = 0; k < budgets.size(); ++k) {
-                    const Run r = name == "gmmrrt" ? run_ours(p, budgets[k], 1 + (uint64_t)t, &block)
-                                                   : run_ompl(p, name, budgets[k]);
+                    Run r;
+                    try {
+                        r = name == "gmmrrt" ? (social ? run_ours_task(task, budgets[k], 1 + (uint64_t)t, &block)
+                                                       : run_ours(p, budgets[k], 1 + (uint64_t)t, &block))
+                                             : run_ompl(p, name, budgets[k], social ? &task : nullptr);
+                    } catch (const std::exception &e) { /* a planner that refuses the objective */
+                        r = Run{};
+                        r.setup_ms = NAN;
+                        if (t == 0 && k == 0)
+                            std::fprintf(stderr, "gmmrrt-bench-all: %s on %s: %s\n", name.c_str(), p.name.c_str(),
+                                         e.what());
+                    }
                     setup.push_back(r.setup_ms);
                     first.push_back(r.first_ms); /* every run times its first solution */
                     cost[k].push_back(r.cost);
                     if (jf)
                         std::fprintf(jf,
                                      "{\"problem\": \"%s\", \"planner\": \"%s\", \"trial\": %d, \"budget_ms\": %g, "
-                                     "\"setup_ms\": %.6f, \"first_ms\": %s, \"cost\": %s}\n",
-                                     p.name.c_str(), name.c_str(), t, budgets[k], r.setup_ms,
+                                     "\"setup_ms\": %s, \"first_ms\": %s, \"cost\": %s}\n",
+                                     p.name.c_str(), name.c_str(), t, budgets[k],
+                                     std::isnan(r.setup_ms) ? "null" : fmt(r.setup_ms, "%.6f").c_str(),
                                      std::isnan(r.first_ms) ? "null" : fmt(r.first_ms, "%.6f").c_str(),
                                      std::isfinite(r.cost) ? fmt(r.cost, "%.6f").c_str() : "null");
                 }
