@@ -19,7 +19,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
 from bench_report import evaluate_targets, write_markdown  # noqa: E402
 
-SECTIONS = ("memory", "ompl", "social", "learner", "micro", "daemon")
+SECTIONS = ("memory", "ompl", "planners", "social", "learner", "micro", "daemon")
 
 
 def main() -> int:

@@ -39,7 +39,7 @@ import bench_planner as bp  # noqa: E402
 from bench_report import evaluate_targets, write_markdown  # noqa: E402
 from bench_stats import clean  # noqa: E402
 
-SECTIONS = ("memory", "ompl", "social", "learner", "micro", "daemon")
+SECTIONS = ("memory", "ompl", "planners", "social", "learner", "micro", "daemon")
 
 
 def host_info() -> dict:
@@ -72,7 +72,7 @@ def load_average() -> list:
 def run_micro(build_dir: Path, quick: bool) -> dict:
     """The mixture and planner micro-benchmarks (other areas' programs: text output kept as is)."""
     out = {}
-    for name in ("bench_gmm", "bench_planner"):
+    for name in ("bench_gmm", "bench_planner", "bench_world"):
         exe = bp.find_executable(build_dir, name)
         if exe is None:
             out[name] = {"error": f"{name} not built (its tests/bench/ folder is not in this tree)"}
@@ -208,6 +208,14 @@ def main(argv=None) -> int:
             res["ompl"]["figure_command"] = " ".join([".venv/bin/python"] + cmd[1:])
         else:
             res["ompl"]["figure_error"] = proc.stderr.strip()[-300:]
+
+    def planners():
+        try:  # the social scene needs the avoid model; the geometric problems do not
+            avoid = get_models()["avoid"]
+        except (bp.BenchError, subprocess.SubprocessError, OSError):
+            avoid = None
+        return bp.run_all_planners(bin_dir, args.quick, raw / "all_planners.jsonl", avoid)
+    section("planners", planners)
 
     def social():
         m = get_models()

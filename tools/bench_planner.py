@@ -14,6 +14,7 @@ import json
 import math
 import os
 import subprocess
+import time
 from pathlib import Path
 from typing import Dict, List, Optional
 
@@ -260,3 +261,52 @@ def find_executable(build_dir: Path, name: str) -> Optional[Path]:
         if p.is_file() and os.access(p, os.X_OK):
             return p
     return None
+
+
+ALL_PLANNERS_BUDGETS_MS = (1.0, 10.0, 100.0, 1000.0)
+
+
+def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optional[str] = None) -> dict:
+    """gmmrrt-bench-all: our RRT* and every OMPL planner of the comparison on the problems of
+    tests/data/bench_problems (path length, point robot), exact motion checks and set-up counted on
+    both sides. Targets: our first path (set-up included) <= 0.5x the fastest OMPL planner's, and our
+    best cost at each moment <= the best OMPL planner's (medians over trials). With avoid_model, also
+    the social avoid scene (problem "S", task cost) of gmmrrt-bench-ompl."""
+    exe = bin_dir / "gmmrrt-bench-all"
+    if not exe.is_file():
+        raise BenchError(f"{exe} not built (OMPL missing?)")
+    root = Path(__file__).resolve().parent.parent
+    budgets = ALL_PLANNERS_BUDGETS_MS[:3] if quick else ALL_PLANNERS_BUDGETS_MS
+    trials = 1 if quick else 3
+    cmd = [str(exe), "--problems", str(root / "tests" / "data" / "bench_problems"), "--trials", str(trials),
+           "--budgets", ",".join("%g" % b for b in budgets), "--json", str(raw)]
+    if avoid_model:
+        cmd += ["--model", str(avoid_model)]
+    t0 = time.time()
+    text = _run(cmd, 3600)
+    recs = [json.loads(line) for line in raw.read_text().splitlines() if line.strip()]
+    problems: Dict[str, dict] = {}
+    for name in sorted({r["problem"] for r in recs}):
+        rs = [r for r in recs if r["problem"] == name]
+        by = {}
+        for r in rs:
+            by.setdefault(r["planner"], []).append(r)
+        first = {p: median([r["first_ms"] for r in v if r["first_ms"] is not None] or [INF]) for p, v in by.items()}
+        ompl_first = {p: f for p, f in first.items() if p != "gmmrrt" and math.isfinite(f)}
+        fastest = min(ompl_first, key=ompl_first.get) if ompl_first else None
+        out = {"first_ms": first.get("gmmrrt"), "fastest_ompl": fastest,
+               "fastest_ompl_first_ms": ompl_first.get(fastest) if fastest else None, "cost": {}}
+        out["first_ratio"] = (out["first_ms"] / out["fastest_ompl_first_ms"]) if fastest else None
+        for b in budgets:
+            med = {p: median([r["cost"] if r["cost"] is not None else INF for r in v if r["budget_ms"] == b])
+                   for p, v in by.items()}
+            ompl = {p: c for p, c in med.items() if p != "gmmrrt"}
+            best = min(ompl, key=ompl.get)
+            out["cost"]["%g" % b] = {"ours": med.get("gmmrrt"), "best_ompl": ompl[best], "best_ompl_planner": best,
+                                     "met": med.get("gmmrrt", INF) <= ompl[best]}
+        problems[name] = out
+    shown = [str(exe.relative_to(root)) if root in exe.parents else str(exe), "--problems",
+             "tests/data/bench_problems"] + cmd[3:7] + ["--json", raw.name] + (
+                 ["--model", Path(avoid_model).name] if avoid_model else [])
+    return {"command": " ".join(shown),
+            "seconds": round(time.time() - t0, 1), "text": text.strip(), "problems": problems, "trials": trials}

@@ -45,6 +45,15 @@ def evaluate_targets(res: dict) -> List[dict]:
         m = _get(res, "social", task, "first_solution_ms_median")
         t.append(_target(f"social {task}: median time to first solution", "<= 1 ms (paper 1.5 s)", m,
                          fmt(m, 3, " ms"), None if m is None else m <= 1.0))
+    for name, pr in sorted((_get(res, "planners", "problems") or {}).items()):
+        ratio_ = pr.get("first_ratio")
+        t.append(_target(f"problem {name}: first path incl. set-up vs fastest OMPL ({pr.get('fastest_ompl')})",
+                         "<= 0.5x", ratio_, fmt(ratio_, 2, "x") + f" ({fmt(pr.get('first_ms'), 3, ' ms')})",
+                         None if ratio_ is None else ratio_ <= 0.5))
+        for b, c in pr.get("cost", {}).items():
+            t.append(_target(f"problem {name}: best cost at {b} ms vs best OMPL ({c.get('best_ompl_planner')})",
+                             "<= it", c.get("ours"), f"{fmt(c.get('ours'), 4)} vs {fmt(c.get('best_ompl'), 4)}",
+                             c.get("met")))
     b = _get(res, "memory", "bytes_per_node")
     t.append(_target("bytes per node", "<= 48", b, fmt(b, 1), None if b is None else b <= 48))
     mem = res.get("memory") if isinstance(res.get("memory"), dict) else {}
@@ -255,6 +264,21 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
               "Planner Arena.", ""]
 
     # ---------------------------------------------------------------- social
+    L += ["## Every OMPL planner (set-up counted, exact motion checks)", ""]
+    pl = res.get("planners")
+    if _err(pl):
+        L += [f"Not run: {_err(pl)}", ""]
+    else:
+        L += [f"`{pl.get('command')}` ({pl.get('seconds')} s). Point robot, path length, problems of "
+              "`tests/data/bench_problems/` (A disc, B cluttered, C narrow passage; optima 10.8112, 26.2074, "
+              "11.4639), and S, the social avoid scene of the OMPL RRT* section (task cost, the avoid model "
+              "above; ours GMM-RRT* with uniform sampling). One fresh run per budget; cost @ t = the cost a run of budget t returns (median over "
+              "trials, `none`: no exactly free path); first path = set-up + time to the first solution "
+              "(OMPL's intermediate-solution callback, or the solve's duration when it stopped early; `-`: the "
+              "planner reports neither). OMPL checks motions exactly (circles, boxes) like ours.", "",
+              pl.get("text", ""), ""]
+        if pl.get("note"):
+            L += [pl["note"], ""]
     L += ["## Social tasks (GMM-RRT*, bias 0.95, default configuration)", ""]
     so = res.get("social")
     if _err(so):
@@ -448,7 +472,9 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
     L += ["## Reproduce", "",
           "Programs: `tests/bench/ompl/` (gmmrrt-bench-ompl: both planners, interleaved trials, optional OMPL "
           "log), `tests/bench/social/` (gmmrrt-bench-social), `tests/bench/memory/` (gmmrrt-bench-memory), "
-          "`tests/bench/learner/` (gmmrrt-bench-learner: times our EM or BIC sweep on a CSV of points); "
+          "`tests/bench/learner/` (gmmrrt-bench-learner: times our EM or BIC sweep on a CSV of points), "
+          "`tests/bench/ompl/bench_all_main.cpp` (gmmrrt-bench-all: every OMPL planner), "
+          "`tests/bench/planner/bench_world.c` (bench_world: the collision world's set-up, maps, scans); "
           "`tools/bench.py` runs them with `tools/bench_planner.py`, `tools/bench_learner.py` (the scikit-learn "
           "peer), `tools/bench_report.py` (targets, this page) and `tools/bench_stats.py`. Each program prints "
           "one JSON object per trial; raw records land in `build/bench-raw/`.", "",

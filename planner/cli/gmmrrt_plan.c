@@ -13,8 +13,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "gmmrrt/drivable.h"
+#include "gmmrrt/map_file.h"
 #include "gmmrrt/model_file.h"
 #include "gmmrrt/model_set.h"
 #include "gmmrrt/rrtstar.h"
@@ -28,6 +30,18 @@ static const char *prog = "gmmrrt-plan";
  * When it fills, the planner keeps the latest improvement in the last slot and --json says
  * "cost_history_complete": false. */
 #define GMMRRT_CLI_MAX_HISTORY 4096
+
+/* Raster capacity of --map: 4096 x 4096 cells (205 x 205 m at 5 cm), 16384 a side; 9 bytes a
+ * cell (raster.h), allocated once, touched only as far as the map reaches. */
+#define GMMRRT_CLI_MAP_MAX_CELLS (1 << 24)
+#define GMMRRT_CLI_MAP_MAX_SIDE 16384
+
+static double mono_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
 
 static void usage(FILE *out)
 {
@@ -45,15 +59,21 @@ static void usage(FILE *out)
             "and prints it as x,y CSV (header line first), or with --json one object:\n"
             "  {\"status\": ..., \"path\": [[x, y], ...], \"stats\": {\"iterations\": ..., \"nodes\": ...,\n"
             "   \"first_solution_ms\": ..., \"best_cost\": ..., \"length_m\": ..., \"time_ms\": ...,\n"
-            "   \"cost_history\": [[iteration, best cost], ...], \"cost_history_complete\": true,\n"
-            "   \"max_nodes\": ..., \"pool_full\": false}}\n"
-            "pool_full is true when the node pool filled before the budget ran out: planning stopped\n"
-            "early (a note on stderr says so too); --max-nodes raises the pool.\n"
+            "   \"setup_ms\": ..., \"cost_history\": [[iteration, best cost], ...], \"cost_history_complete\": true,\n"
+            "   \"max_nodes\": ..., \"pruned\": ..., \"pool_full\": false}}\n"
+            "setup_ms is the time from the problem to the first iteration (planner init and set-up);\n"
+            "first_solution_ms and time_ms count from the first iteration.\n"
+            "A full node pool is pruned (nodes that cannot lie on a cheaper path are recycled; pruned\n"
+            "counts them) and the search goes on; pool_full is true when the pool filled and nothing\n"
+            "could be pruned (no path yet), which ends the run before its budget (a note on stderr\n"
+            "says so too); --max-nodes raises the pool.\n"
             "cost_history lists every improvement of the best cost (iteration = samples drawn so far,\n"
             "1-based); the best cost after N iterations is the last entry with iteration <= N.\n"
             "\n",
             prog);
     fprintf(out,
+            "  --map FILE.yaml     static map (map_server YAML + PGM/PNG, docs/world.md); unknown cells\n"
+            "                      block; default bounds: the map\n"
             "  --model FILE        mixture model (gmmrrt-learn); features kind for gmm-rrt-star,\n"
             "                      xy kind for gmm-rrt; optional for rrt-star\n"
             "  --start x,y         start position [m]\n"
@@ -188,7 +208,7 @@ int main(int argc, char **argv)
 {
     enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_PLANNER, OPT_BIAS, OPT_BUDGET,
            OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_DELTA,
-           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_YAW_TOL, OPT_TURN_RADIUS, OPT_SPEED, OPT_RAW, OPT_SET, OPT_MAX_NODES };
+           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_YAW_TOL, OPT_TURN_RADIUS, OPT_SPEED, OPT_RAW, OPT_SET, OPT_MAX_NODES, OPT_MAP };
     static const struct option opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
         {"goal", required_argument, NULL, OPT_GOAL},         {"person", required_argument, NULL, OPT_PERSON},
@@ -205,12 +225,13 @@ int main(int argc, char **argv)
         {"min-turn-radius", required_argument, NULL, OPT_TURN_RADIUS},
         {"nominal-speed", required_argument, NULL, OPT_SPEED},  {"raw-path", no_argument, NULL, OPT_RAW},
         {"approach-models", required_argument, NULL, OPT_SET},
+        {"map", required_argument, NULL, OPT_MAP},
         {"help", no_argument, NULL, 'h'},                    {NULL, 0, NULL, 0}};
 
     static gmmrrt_problem_t pr; /* large (obstacle arrays): static, zeroed */
     gmmrrt_planner_config_t cfg;
     gmmrrt_planner_config_default(&cfg);
-    const char *model_path = NULL, *set_dir = NULL;
+    const char *model_path = NULL, *set_dir = NULL, *map_path = NULL;
     int have_start = 0, have_goal = 0, have_bounds = 0, json = 0, planner = 0, task = 0, raw = 0, have_yaw = 0;
     gmmrrt_drive_options_t drive;
     gmmrrt_drive_options_default(&drive);
@@ -379,6 +400,9 @@ int main(int argc, char **argv)
                 return fail("--rewire-k '%s': expected a factor in [0, 64] (0: radius rewiring)%s", optarg, "");
             cfg.rewire_k_factor = v[0];
             break;
+        case OPT_MAP:
+            map_path = optarg;
+            break;
         case OPT_INFORMED:
             if (strcmp(optarg, "0") != 0 && strcmp(optarg, "1") != 0)
                 return fail("--informed '%s': expected 0 or 1%s", optarg, "");
@@ -409,6 +433,19 @@ int main(int argc, char **argv)
         const gmmrrt_status_t ms = gmmrrt_model_load_file(model_path, &model, err, sizeof err);
         if (ms != GMMRRT_OK)
             return fail("cannot use --model: %s%s", err, "");
+    }
+    static gmmrrt_raster_t map;
+    static void *map_mem; /* static: reachable until exit on every path */
+    if (map_path) {
+        const size_t map_size = gmmrrt_raster_mem_size(GMMRRT_CLI_MAP_MAX_CELLS, GMMRRT_CLI_MAP_MAX_SIDE);
+        map_mem = malloc(map_size);
+        if (!map_mem || gmmrrt_raster_init(&map, map_mem, map_size, GMMRRT_CLI_MAP_MAX_CELLS,
+                                           GMMRRT_CLI_MAP_MAX_SIDE) != GMMRRT_OK)
+            return fail("out of memory for the map%s%s", "", "");
+        const gmmrrt_status_t ms = gmmrrt_map_load_file(map_path, 1, &map, err, sizeof err);
+        if (ms != GMMRRT_OK)
+            return fail("cannot use --map: %s%s", err, "");
+        pr.obstacles.raster = &map;
     }
     /* An approach model set: every direction must load; the start's direction plans. */
     static gmmrrt_model_t set_models[GMMRRT_APPROACH_DIRECTIONS];
@@ -459,7 +496,16 @@ int main(int argc, char **argv)
     } else {
         pr.task = GMMRRT_TASK_NONE;
     }
-    if (!have_bounds) {
+    if (!have_bounds && map_path) {
+        /* The map's extent: the box around its four corners. */
+        gmmrrt_bounds_t *b = &pr.obstacles.bounds;
+        const double w = map.width * map.resolution_m, h = map.height * map.resolution_m;
+        *b = (gmmrrt_bounds_t){map.origin_x, map.origin_y, map.origin_x, map.origin_y};
+        const double cx[3] = {w, 0.0, w}, cy[3] = {0.0, h, h};
+        for (int k = 0; k < 3; ++k)
+            grow(b, map.origin_x + cx[k] * map.cos_yaw - cy[k] * map.sin_yaw,
+                 map.origin_y + cx[k] * map.sin_yaw + cy[k] * map.cos_yaw, 0.0);
+    } else if (!have_bounds) {
         gmmrrt_bounds_t *b = &pr.obstacles.bounds;
         *b = (gmmrrt_bounds_t){pr.start_x, pr.start_y, pr.start_x, pr.start_y};
         grow(b, pr.goal_x, pr.goal_y, 0.0);
@@ -491,9 +537,13 @@ int main(int argc, char **argv)
     gmmrrt_planner_t *p;
     if (!mem)
         return fail("out of memory for the planner block%s%s", "", "");
+    /* setup_ms: from the problem to the first iteration (init and set_problem; the memory
+     * block's allocation and the map's loading are before). */
+    const double setup_t0 = mono_ms();
     gmmrrt_status_t st = gmmrrt_planner_init(&p, mem, size, &cfg);
     if (st == GMMRRT_OK)
         st = gmmrrt_planner_set_problem(p, &pr);
+    const double setup_ms = mono_ms() - setup_t0;
     if (st == GMMRRT_ERR_FROZEN) {
         static char why[256];
         snprintf(why, sizeof why, "%s", gmmrrt_planner_escape_reason(p));
@@ -566,14 +616,17 @@ int main(int argc, char **argv)
         json_number(found ? path.length_m : NAN);
         printf(", \"time_ms\": ");
         json_number(stats.time_ms);
+        printf(", \"setup_ms\": ");
+        json_number(setup_ms);
         printf(", \"cost_history\": [");
         for (int32_t i = 0; i < num_hist; ++i) {
             printf("%s[%lld, ", i ? ", " : "", (long long)hist_iter[i]);
             json_number(hist_cost[i]);
             printf("]");
         }
-        printf("], \"cost_history_complete\": %s, \"max_nodes\": %d, \"pool_full\": %s}}\n",
-               num_hist < GMMRRT_CLI_MAX_HISTORY ? "true" : "false", (int)cfg.max_nodes, pool_full ? "true" : "false");
+        printf("], \"cost_history_complete\": %s, \"max_nodes\": %d, \"pruned\": %lld, \"pool_full\": %s}}\n",
+               num_hist < GMMRRT_CLI_MAX_HISTORY ? "true" : "false", (int)cfg.max_nodes, (long long)stats.pruned,
+               pool_full ? "true" : "false");
     } else if (found) {
         printf("x,y\n");
         for (int32_t i = 0; i < path.num_points; ++i)

@@ -34,6 +34,24 @@
 /* Lattice indices are kept in doubles and must stay exact integers with room for + 0.5. */
 #define GMMRRT_MAX_CELL_INDEX 1125899906842624.0 /* 2^50 */
 
+/* Static obstacles up to which the queries use the closed forms over all of them instead of the
+ * grid (chosen by measurement: docs/world.md). */
+#ifndef GMMRRT_EXACT_MAX_OBSTACLES
+#define GMMRRT_EXACT_MAX_OBSTACLES 8
+#endif
+
+/* With more statics, the first queries of each world use the closed forms too (a first path
+ * needs few queries, and the tiles they would fill cost more than the queries), the rest the
+ * grid (chosen by measurement: docs/world.md). */
+#ifndef GMMRRT_EXACT_FIRST_QUERIES
+#define GMMRRT_EXACT_FIRST_QUERIES 4096
+#endif
+
+/* Tiles: TILE x TILE cells, computed together on the first query that reads one of them. */
+#define TILE_SHIFT 3
+#define TILE (1 << TILE_SHIFT)
+#define TILE_CELLS (TILE * TILE)
+
 /* Margin an edge must keep from every obstacle and person (m): edges closer than this are
  * refused, which is what keeps sphere tracing exact and finite (see gmmrrt_world_segment_free). */
 #define GMMRRT_EDGE_MIN_CLEARANCE_M 1e-3
@@ -46,19 +64,31 @@ struct gmmrrt_world {
     double person_radius_m;
     double edge_resolution_m;
     double cap_m;
-    double gi0, gj0; /* lattice index of cell (0, 0); integer-valued */
+    double gi0, gj0; /* lattice index of cell (0, 0); integer-valued, a multiple of TILE */
     double gi0h, gj0h; /* gi0 + 0.5, gj0 + 0.5 (exact): cell (i, j) is centred at ((gi0h + i) res, (gj0h + j) res) */
-    int32_t nx, ny;
+    int32_t nx, ny;    /* cells: tnx * TILE, tny * TILE */
+    int32_t tnx, tny;  /* tiles */
     int32_t max_cells;
+    int32_t max_tiles;
     /* People that can come within reach of a point inside the bounds, for the exact tests. */
     int32_t num_near_people;
     double person_reach2;      /* (robot + person radius)^2, m^2: a point closer is blocked */
     double person_edge_reach;  /* robot + person radius + GMMRRT_EDGE_MIN_CLEARANCE_M, m */
     double person_edge_reach2;
     double near_px[GMMRRT_MAX_PEOPLE], near_py[GMMRRT_MAX_PEOPLE];
-    double box_cos[GMMRRT_MAX_BOXES], box_sin[GMMRRT_MAX_BOXES]; /* of each box's yaw, for exact_static_clearance */
+    double box_cos[GMMRRT_MAX_BOXES], box_sin[GMMRRT_MAX_BOXES]; /* of each box's yaw, for the closed forms */
+    /* The occupancy raster of the problem (borrowed), its generation when the world was
+     * updated, and the distance its cells' corners add: clearance to a blocked cell's square
+     * >= distance to its centre - half its diagonal. */
+    const gmmrrt_raster_t *raster;
+    uint32_t raster_generation;
+    double raster_slack_m;
     gmmrrt_world_grid_stats_t stats;
-    float clearance[]; /* nx * ny, row-major (j * nx + i) */
+    int64_t lazy_cells; /* cells filled by queries since the last update */
+    int32_t exact_only; /* at most GMMRRT_EXACT_MAX_OBSTACLES statics: no grid, closed forms */
+    int64_t exact_queries_left; /* more statics: the first queries use the closed forms too */
+    uint8_t *ready;    /* per tile, row-major (tj * tnx + ti): 1 once its cells are computed */
+    float cells[];     /* per tile TILE_CELLS floats (tile-major, then row-major inside the tile) */
 };
 
 /* Compared with memcmp to decide whether the grid can be kept: no padding in them. */
@@ -67,11 +97,22 @@ _Static_assert(sizeof(gmmrrt_box_t) == 5 * sizeof(double), "gmmrrt_box_t has pad
 
 static size_t align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
 
+/* Tiles a grid of grid_max_cells needs: every layout whose bounds fit the capacity as a
+ * square fits in these tiles (the lattice's partial tiles at each side add at most one row
+ * and one column of tiles, about sqrt(cells) / 4 cells of slack in all); a long thin one
+ * may be cut (see layout_for). */
+static int64_t max_tiles_for(int32_t grid_max_cells)
+{
+    const int64_t full = ((int64_t)grid_max_cells + TILE_CELLS - 1) / TILE_CELLS;
+    return full + 2 * (int64_t)ceil(sqrt((double)full)) + 4;
+}
+
 size_t gmmrrt_world_mem_size(int32_t grid_max_cells)
 {
     if (grid_max_cells < 1)
         return 0;
-    return align8(sizeof(struct gmmrrt_world) + (size_t)grid_max_cells * sizeof(float));
+    const size_t tiles = (size_t)max_tiles_for(grid_max_cells);
+    return align8(sizeof(struct gmmrrt_world) + tiles * TILE_CELLS * sizeof(float)) + align8(tiles);
 }
 
 static int finite_bounds(const gmmrrt_bounds_t *b)
@@ -103,16 +144,19 @@ static gmmrrt_status_t validate_obstacles(const gmmrrt_obstacle_set_t *o)
         if (!isfinite(p->x) || !isfinite(p->y) || !isfinite(p->yaw))
             return GMMRRT_ERR_INVALID_ARGUMENT;
     }
+    if (o->raster && !gmmrrt_raster_distance_ready(o->raster))
+        return GMMRRT_ERR_INVALID_ARGUMENT;
     return GMMRRT_OK;
 }
 
-/* The grid's cells for the bounds: the lattice cells that meet them, cut to the capacity. */
+/* The grid's tiles for the bounds: the lattice tiles that meet them, cut to the capacity. */
 typedef struct {
     double gi0, gj0;
-    int32_t nx, ny;
+    int32_t tnx, tny;
 } grid_layout_t;
 
-static gmmrrt_status_t layout_for(const gmmrrt_bounds_t *b, double res, int32_t max_cells, grid_layout_t *out)
+static gmmrrt_status_t layout_for(const gmmrrt_bounds_t *b, double res, int32_t max_cells, int32_t max_tiles,
+                                  grid_layout_t *out)
 {
     /* The capacity check of the bounds' own extent, as it always was. */
     const double cw = ceil((b->xmax - b->xmin) / res), ch = ceil((b->ymax - b->ymin) / res);
@@ -123,101 +167,107 @@ static gmmrrt_status_t layout_for(const gmmrrt_bounds_t *b, double res, int32_t 
     if (!(fabs(i0) <= GMMRRT_MAX_CELL_INDEX && fabs(i1) <= GMMRRT_MAX_CELL_INDEX &&
           fabs(j0) <= GMMRRT_MAX_CELL_INDEX && fabs(j1) <= GMMRRT_MAX_CELL_INDEX))
         return GMMRRT_ERR_INVALID_ARGUMENT;
-    /* Lattice cells meeting [xmin, xmax] are at most one more than ceil(width / res) per axis;
-     * when that extra row or column does not fit, it is left out. Nothing depends on the grid
-     * covering the bounds: any cell's bound is valid everywhere, only weaker further away. */
-    double nx = fmax(i1 - i0, 1.0), ny = fmax(j1 - j0, 1.0);
-    if (nx * ny > (double)max_cells)
-        nx = fmax(fmin(nx, cw), 1.0);
-    if (nx * ny > (double)max_cells)
-        ny = fmax(fmin(ny, ch), 1.0);
-    out->gi0 = i0;
-    out->gj0 = j0;
-    out->nx = (int32_t)nx;
-    out->ny = (int32_t)ny;
+    const double ti0 = floor(i0 / TILE), ti1 = ceil(i1 / TILE), tj0 = floor(j0 / TILE), tj1 = ceil(j1 / TILE);
+    /* A long thin problem may need more tiles than the capacity holds; then the last columns or
+     * rows are left out. Nothing depends on the grid covering the bounds: any cell's bound is
+     * valid everywhere, only weaker further away (the exact test then decides). */
+    double tnx = fmax(ti1 - ti0, 1.0), tny = fmax(tj1 - tj0, 1.0);
+    if (tnx * tny > (double)max_tiles)
+        tnx = fmax(floor((double)max_tiles / tny), 1.0);
+    if (tnx * tny > (double)max_tiles)
+        tny = fmax(floor((double)max_tiles / tnx), 1.0);
+    out->gi0 = ti0 * TILE;
+    out->gj0 = tj0 * TILE;
+    out->tnx = (int32_t)tnx;
+    out->tny = (int32_t)tny;
     return GMMRRT_OK;
 }
 
-/* Lowers the stored clearance of every cell in the local index rectangle [ri0, ri1) x
- * [rj0, rj1) whose centre lies in [x0, x1] x [y0, y1] (widened by a cell) to the FCL distance
- * of one obstacle (kind 0: disc, 1: box). */
-static void splat(struct gmmrrt_world *w, int32_t ri0, int32_t ri1, int32_t rj0, int32_t rj1, int kind,
-                     double cx, double cy, double r_or_w, double h, double yaw, double x0, double y0, double x1,
-                     double y1)
+/* Signed distance (m) from (x, y) to circle k / box k: negative inside (minus the depth). The
+ * closed forms of what FCL computes (fcl_adapter.h); the grid and the exact tests use them. */
+static double circle_distance(const gmmrrt_circle_t *c, double x, double y)
 {
+    const double dx = x - c->x, dy = y - c->y;
+    return sqrt(dx * dx + dy * dy) - c->radius_m; /* plain sqrt: map coordinates */
+}
+
+static double box_distance(const struct gmmrrt_world *w, int32_t k, double x, double y)
+{
+    const gmmrrt_box_t *b = &w->obstacles.boxes[k];
+    const double dx = x - b->x, dy = y - b->y;
+    const double lx = dx * w->box_cos[k] + dy * w->box_sin[k], ly = -dx * w->box_sin[k] + dy * w->box_cos[k];
+    const double qx = fabs(lx) - 0.5 * b->width_m, qy = fabs(ly) - 0.5 * b->height_m;
+    const double ox = qx > 0.0 ? qx : 0.0, oy = qy > 0.0 ? qy : 0.0;
+    const double in = qx > qy ? qx : qy; /* <= 0 inside: minus the depth */
+    return (in > 0.0) ? sqrt(ox * ox + oy * oy) : in;
+}
+
+/* Computes tile t's cells: min(cap, clearance at the centre), clearance from the closed forms,
+ * rounded down to float so a stored value stays a lower bound. Only the obstacles that come
+ * within robot radius + cap of some cell of the tile are looked at; every other one is
+ * farther than the cap from each cell. Cost: one distance per obstacle, then one per cell and
+ * near obstacle: at most (circles + boxes) (1 + TILE_CELLS). */
+static void fill_tile(struct gmmrrt_world *w, int32_t t)
+{
+    const int32_t ti = t % w->tnx, tj = t / w->tnx;
     const double res = w->resolution_m;
-    /* Cell ranges as doubles first: any finite position is valid on the wire, and one far
-     * outside the bounds overflows an int conversion (found by tests/fuzz/fuzz_daemon_inputs).
-     * x0 - e may be -inf for huge sizes; the comparisons below handle that. */
-    const double lo_i = floor(x0 / res - 0.5) - w->gi0, hi_i = ceil(x1 / res - 0.5) - w->gi0;
-    const double lo_j = floor(y0 / res - 0.5) - w->gj0, hi_j = ceil(y1 / res - 0.5) - w->gj0;
-    if (!(hi_i >= (double)ri0 && lo_i <= (double)(ri1 - 1) && hi_j >= (double)rj0 && lo_j <= (double)(rj1 - 1)))
-        return;
-    const int32_t i0 = (int32_t)fmax(lo_i, (double)ri0), i1 = (int32_t)fmin(hi_i, (double)(ri1 - 1));
-    const int32_t j0 = (int32_t)fmax(lo_j, (double)rj0), j1 = (int32_t)fmin(hi_j, (double)(rj1 - 1));
-    for (int32_t j = j0; j <= j1; ++j) {
-        const double y = (w->gj0h + (double)j) * res; /* the same centres as clearance_lower_bound */
-        float *row = w->clearance + (size_t)j * (size_t)w->nx;
-        for (int32_t i = i0; i <= i1; ++i) {
-            const double x = (w->gi0h + (double)i) * res;
-            const double d = kind == 0 ? gmmrrt_fcl_disc_distance(x, y, w->robot_radius_m, cx, cy, r_or_w)
-                                       : gmmrrt_fcl_box_distance(x, y, w->robot_radius_m, cx, cy, r_or_w, h, yaw);
-            /* Round down to float so the stored value stays a lower bound. */
+    const double x0 = (w->gi0h + (double)(ti * TILE)) * res, y0 = (w->gj0h + (double)(tj * TILE)) * res;
+    const double half = 0.5 * (TILE - 1) * res;
+    const double cx = x0 + half, cy = y0 + half;
+    const double reach = w->robot_radius_m + w->cap_m + half * 1.4142135623730951 + 1e-9;
+    const gmmrrt_obstacle_set_t *o = &w->obstacles;
+    int32_t near_c[GMMRRT_MAX_CIRCLES], near_b[GMMRRT_MAX_BOXES], nc = 0, nb = 0;
+    for (int32_t k = 0; k < o->num_circles; ++k)
+        if (circle_distance(&o->circles[k], cx, cy) <= reach)
+            near_c[nc++] = k;
+    for (int32_t k = 0; k < o->num_boxes; ++k)
+        if (box_distance(w, k, cx, cy) <= reach)
+            near_b[nb++] = k;
+    float *cell = w->cells + (size_t)t * TILE_CELLS;
+    const double top = w->robot_radius_m + w->cap_m;
+    for (int32_t j = 0; j < TILE; ++j) {
+        const double y = (w->gj0h + (double)(tj * TILE + j)) * res; /* the same centres as clearance_lower_bound */
+        for (int32_t i = 0; i < TILE; ++i) {
+            const double x = (w->gi0h + (double)(ti * TILE + i)) * res;
+            double best = top;
+            for (int32_t q = 0; q < nc; ++q) {
+                const double d = circle_distance(&o->circles[near_c[q]], x, y);
+                best = d < best ? d : best;
+            }
+            for (int32_t q = 0; q < nb; ++q) {
+                const double d = box_distance(w, near_b[q], x, y);
+                best = d < best ? d : best;
+            }
+            const double d = best - w->robot_radius_m;
             float f = (float)d;
             if ((double)f > d)
-                f = nextafterf(f, 0.0f);
-            if (f < row[i])
-                row[i] = f;
+                f = nextafterf(f, -INFINITY);
+            cell[j * TILE + i] = f;
         }
     }
+    w->ready[t] = 1;
+    w->lazy_cells += TILE_CELLS;
 }
 
-/* Computes the cells of the local rectangle [i0, i1) x [j0, j1) from the static obstacles. */
-static int64_t fill_cells(struct gmmrrt_world *w, int32_t i0, int32_t i1, int32_t j0, int32_t j1)
-{
-    if (i0 >= i1 || j0 >= j1)
-        return 0;
-    for (int32_t j = j0; j < j1; ++j) {
-        float *row = w->clearance + (size_t)j * (size_t)w->nx;
-        for (int32_t i = i0; i < i1; ++i)
-            row[i] = (float)w->cap_m;
-    }
-    /* Only cells within reach (robot radius + cap) of an obstacle can hold less than the cap. */
-    const gmmrrt_obstacle_set_t *o = &w->obstacles;
-    const double reach = w->robot_radius_m + w->cap_m;
-    for (int32_t k = 0; k < o->num_circles; ++k) {
-        const gmmrrt_circle_t *c = &o->circles[k];
-        const double e = c->radius_m + reach;
-        splat(w, i0, i1, j0, j1, 0, c->x, c->y, c->radius_m, 0.0, 0.0, c->x - e, c->y - e, c->x + e,
-                          c->y + e);
-    }
-    for (int32_t k = 0; k < o->num_boxes; ++k) {
-        const gmmrrt_box_t *bx = &o->boxes[k];
-        const double hx = 0.5 * (fabs(cos(bx->yaw)) * bx->width_m + fabs(sin(bx->yaw)) * bx->height_m);
-        const double hy = 0.5 * (fabs(sin(bx->yaw)) * bx->width_m + fabs(cos(bx->yaw)) * bx->height_m);
-        splat(w, i0, i1, j0, j1, 1, bx->x, bx->y, bx->width_m, bx->height_m, bx->yaw,
-                          bx->x - hx - reach, bx->y - hy - reach, bx->x + hx + reach, bx->y + hy + reach);
-    }
-    return (int64_t)(i1 - i0) * (int64_t)(j1 - j0);
-}
-
-/* Moves the cells the old layout shares with the new one to their new places, in place (rows
- * may grow or shrink, and move either way). Row J moves by delta(J), which is linear in J:
- * first the rows moving down (delta <= 0) in ascending J, then those moving up in descending
- * J; no row is overwritten before it has moved (the destinations keep the rows' order). */
-static void move_shared_cells(struct gmmrrt_world *w, const grid_layout_t *old, const grid_layout_t *nw,
+/* Moves the tiles the old layout shares with the new one (cells and ready flags) to their new
+ * places, in place. Row J moves by delta(J), which is linear in J: first the rows moving down
+ * (delta <= 0) in ascending J, then those moving up in descending J; no row is overwritten
+ * before it has moved (the destinations keep the rows' order). */
+static void move_shared_tiles(struct gmmrrt_world *w, const grid_layout_t *old, const grid_layout_t *nw,
                               int32_t ai, int32_t bi, int32_t aj, int32_t bj)
 {
-    /* ai..bi, aj..bj: shared columns and rows as local indices of the new layout (exclusive). */
-    const int32_t di = (int32_t)(nw->gi0 - old->gi0), dj = (int32_t)(nw->gj0 - old->gj0);
-    const size_t len = (size_t)(bi - ai) * sizeof(float);
+    /* ai..bi, aj..bj: shared tile columns and rows as local indices of the new layout (exclusive). */
+    const int32_t di = (int32_t)((nw->gi0 - old->gi0) / TILE), dj = (int32_t)((nw->gj0 - old->gj0) / TILE);
+    const size_t n = (size_t)(bi - ai);
     for (int pass = 0; pass < 2; ++pass) {
         for (int32_t k = 0; k < bj - aj; ++k) {
             const int32_t j = pass == 0 ? aj + k : bj - 1 - k;
-            const ptrdiff_t src = (ptrdiff_t)(j + dj) * old->nx + (ai + di);
-            const ptrdiff_t dst = (ptrdiff_t)j * nw->nx + ai;
-            if ((pass == 0) == (dst <= src))
-                memmove(w->clearance + dst, w->clearance + src, len);
+            const ptrdiff_t src = (ptrdiff_t)(j + dj) * old->tnx + (ai + di);
+            const ptrdiff_t dst = (ptrdiff_t)j * nw->tnx + ai;
+            if ((pass == 0) == (dst <= src)) {
+                memmove(w->cells + dst * TILE_CELLS, w->cells + src * TILE_CELLS, n * TILE_CELLS * sizeof(float));
+                memmove(w->ready + dst, w->ready + src, n);
+            }
         }
     }
 }
@@ -273,14 +323,15 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
     gmmrrt_status_t st = validate_obstacles(obstacles);
     if (st != GMMRRT_OK)
         return st;
+    const int32_t max_tiles = (int32_t)max_tiles_for(grid_max_cells);
     grid_layout_t nw;
-    st = layout_for(&obstacles->bounds, resolution_m, grid_max_cells, &nw);
+    st = layout_for(&obstacles->bounds, resolution_m, grid_max_cells, max_tiles, &nw);
     if (st != GMMRRT_OK)
         return st;
 
     struct gmmrrt_world *w = mem;
     const int keep = prev && same_statics(w, grid_max_cells, resolution_m, robot_radius_m, obstacles);
-    const grid_layout_t old = keep ? (grid_layout_t){w->gi0, w->gj0, w->nx, w->ny} : (grid_layout_t){0};
+    const grid_layout_t old = keep ? (grid_layout_t){w->gi0, w->gj0, w->tnx, w->tny} : (grid_layout_t){0};
     const gmmrrt_world_grid_stats_t counts = prev ? w->stats : (gmmrrt_world_grid_stats_t){0};
 
     memcpy(&w->obstacles, obstacles, sizeof *obstacles);
@@ -294,22 +345,33 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
     w->gj0 = nw.gj0;
     w->gi0h = nw.gi0 + 0.5;
     w->gj0h = nw.gj0 + 0.5;
-    w->nx = nw.nx;
-    w->ny = nw.ny;
+    w->tnx = nw.tnx;
+    w->tny = nw.tny;
+    w->nx = nw.tnx * TILE;
+    w->ny = nw.tny * TILE;
     w->max_cells = grid_max_cells;
+    w->max_tiles = max_tiles;
+    w->ready = (uint8_t *)mem + align8(sizeof(struct gmmrrt_world) + (size_t)max_tiles * TILE_CELLS * sizeof(float));
     w->stats = counts;
+    w->exact_only = obstacles->num_circles + obstacles->num_boxes <= GMMRRT_EXACT_MAX_OBSTACLES;
+    w->exact_queries_left = GMMRRT_EXACT_FIRST_QUERIES;
+    w->raster = obstacles->raster;
+    w->raster_generation = obstacles->raster ? obstacles->raster->generation : 0;
+    w->raster_slack_m = obstacles->raster ? 0.7071067811865476 * obstacles->raster->resolution_m + 1e-9 : 0.0;
     set_people(w);
     for (int32_t k = 0; k < obstacles->num_boxes; ++k) {
         w->box_cos[k] = cos(obstacles->boxes[k].yaw);
         w->box_sin[k] = sin(obstacles->boxes[k].yaw);
     }
 
-    /* Shared cells as local indices of the new layout (exclusive ends); none when the
-     * statics changed. */
+    /* Shared tiles as local indices of the new layout (exclusive ends); none when the
+     * statics changed. Every other tile is marked not computed: the queries fill it. */
     int32_t ai = 0, bi = 0, aj = 0, bj = 0;
     if (keep) {
-        const double ai_d = fmax(old.gi0, nw.gi0) - nw.gi0, bi_d = fmin(old.gi0 + old.nx, nw.gi0 + nw.nx) - nw.gi0;
-        const double aj_d = fmax(old.gj0, nw.gj0) - nw.gj0, bj_d = fmin(old.gj0 + old.ny, nw.gj0 + nw.ny) - nw.gj0;
+        const double ai_d = (fmax(old.gi0, nw.gi0) - nw.gi0) / TILE,
+                     bi_d = (fmin(old.gi0 + old.tnx * TILE, nw.gi0 + nw.tnx * TILE) - nw.gi0) / TILE;
+        const double aj_d = (fmax(old.gj0, nw.gj0) - nw.gj0) / TILE,
+                     bj_d = (fmin(old.gj0 + old.tny * TILE, nw.gj0 + nw.tny * TILE) - nw.gj0) / TILE;
         if (ai_d < bi_d && aj_d < bj_d) {
             ai = (int32_t)ai_d;
             bi = (int32_t)bi_d;
@@ -317,24 +379,27 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
             bj = (int32_t)bj_d;
         }
     }
-    int64_t cells;
     if (ai < bi) {
-        const int same = old.gi0 == nw.gi0 && old.gj0 == nw.gj0 && old.nx == nw.nx && old.ny == nw.ny;
-        if (!same)
-            move_shared_cells(w, &old, &nw, ai, bi, aj, bj);
-        cells = fill_cells(w, 0, nw.nx, 0, aj) + fill_cells(w, 0, nw.nx, bj, nw.ny) + fill_cells(w, 0, ai, aj, bj) +
-                fill_cells(w, bi, nw.nx, aj, bj);
+        const int same = old.gi0 == nw.gi0 && old.gj0 == nw.gj0 && old.tnx == nw.tnx && old.tny == nw.tny;
+        if (!same) {
+            move_shared_tiles(w, &old, &nw, ai, bi, aj, bj);
+            for (int32_t tj = 0; tj < nw.tny; ++tj)
+                for (int32_t ti = 0; ti < nw.tnx; ++ti)
+                    if (tj < aj || tj >= bj || ti < ai || ti >= bi)
+                        w->ready[tj * nw.tnx + ti] = 0;
+        }
         w->stats.last = same ? GMMRRT_GRID_KEPT : GMMRRT_GRID_SHIFTED;
         if (same)
             w->stats.kept++;
         else
             w->stats.shifted++;
     } else {
-        cells = fill_cells(w, 0, nw.nx, 0, nw.ny);
+        memset(w->ready, 0, (size_t)nw.tnx * (size_t)nw.tny);
         w->stats.last = GMMRRT_GRID_BUILT;
         w->stats.built++;
     }
-    w->stats.last_cells = cells;
+    w->stats.last_cells = 0;
+    w->lazy_cells = 0;
     *world = w;
     return GMMRRT_OK;
 }
@@ -356,6 +421,17 @@ gmmrrt_status_t gmmrrt_world_grid_stats(const gmmrrt_world_t *world, gmmrrt_worl
         return GMMRRT_ERR_INVALID_ARGUMENT;
     *out = world->stats;
     return GMMRRT_OK;
+}
+
+/* Cell (i, j)'s stored value, its tile computed first when no query has read it yet. The
+ * world is written (the tile and its flag) through a const pointer: the memory is the
+ * caller's writable block, and a query's answer does not depend on which tiles were ready. */
+static double cell_value(const struct gmmrrt_world *w, int32_t i, int32_t j)
+{
+    const int32_t t = (j >> TILE_SHIFT) * w->tnx + (i >> TILE_SHIFT);
+    if (!w->ready[t])
+        fill_tile((struct gmmrrt_world *)(uintptr_t)w, t);
+    return (double)w->cells[(size_t)t * TILE_CELLS + (size_t)(((j & (TILE - 1)) << TILE_SHIFT) | (i & (TILE - 1)))];
 }
 
 /* Lower bound on the clearance from static obstacles at (x, y), from the four cell centres
@@ -381,7 +457,7 @@ static double clearance_lower_bound(const struct gmmrrt_world *w, double x, doub
             if (i >= w->nx)
                 i = w->nx - 1;
             const double cx = (w->gi0h + (double)i) * res, cy = (w->gj0h + (double)j) * res;
-            const double s = (double)w->clearance[(size_t)j * (size_t)w->nx + (size_t)i];
+            const double s = cell_value(w, i, j);
             const double dx = x - cx, dy = y - cy; /* plain sqrt: hypot is ~10x slower, no overflow here */
             const double lb = s - sqrt(dx * dx + dy * dy);
             if (lb > best)
@@ -444,20 +520,11 @@ static double exact_static_clearance(const struct gmmrrt_world *w, near_statics_
     const gmmrrt_obstacle_set_t *o = &w->obstacles;
     double best = w->robot_radius_m + w->cap_m; /* obstacles not in n are farther */
     for (int32_t q = 0; q < n->n_circles; ++q) {
-        const gmmrrt_circle_t *c = &o->circles[n->circle[q]];
-        const double dx = x - c->x, dy = y - c->y;
-        const double d = sqrt(dx * dx + dy * dy) - c->radius_m; /* plain sqrt: map coordinates */
+        const double d = circle_distance(&o->circles[n->circle[q]], x, y);
         best = d < best ? d : best;
     }
     for (int32_t q = 0; q < n->n_boxes; ++q) {
-        const int32_t k = n->box[q];
-        const gmmrrt_box_t *b = &o->boxes[k];
-        const double dx = x - b->x, dy = y - b->y;
-        const double lx = dx * w->box_cos[k] + dy * w->box_sin[k], ly = -dx * w->box_sin[k] + dy * w->box_cos[k];
-        const double qx = fabs(lx) - 0.5 * b->width_m, qy = fabs(ly) - 0.5 * b->height_m;
-        const double ox = qx > 0.0 ? qx : 0.0, oy = qy > 0.0 ? qy : 0.0;
-        const double in = qx > qy ? qx : qy; /* <= 0 inside: minus the depth */
-        const double d = (in > 0.0) ? sqrt(ox * ox + oy * oy) : in;
+        const double d = box_distance(w, n->box[q], x, y);
         best = d < best ? d : best;
     }
     return best - w->robot_radius_m;
@@ -468,13 +535,52 @@ static double exact_static_clearance(const struct gmmrrt_world *w, near_statics_
  * 1-Lipschitz in (x, y). EXACT_MARGIN_M absorbs the closed forms' rounding against FCL.
  * (x, y) must lie in n's box. */
 #define EXACT_MARGIN_M 1e-9
-static double static_clearance(const struct gmmrrt_world *w, near_statics_t *n, double x, double y, double need)
+static double static_clearance_obstacles(const struct gmmrrt_world *w, near_statics_t *n, double x, double y,
+                                         double need)
 {
+    if (w->exact_only || w->exact_queries_left > 0) {
+        /* Few obstacles: the closed forms over all of them, uncapped (long steps for the edges'
+         * sphere tracing), cheaper than filling the tiles a search reaches. */
+        const gmmrrt_obstacle_set_t *o = &w->obstacles;
+        double best = INFINITY;
+        for (int32_t k = 0; k < o->num_circles; ++k) {
+            const double d = circle_distance(&o->circles[k], x, y);
+            best = d < best ? d : best;
+        }
+        for (int32_t k = 0; k < o->num_boxes; ++k) {
+            const double d = box_distance(w, k, x, y);
+            best = d < best ? d : best;
+        }
+        (void)n;
+        (void)need;
+        if (!w->exact_only)
+            ((struct gmmrrt_world *)(uintptr_t)w)->exact_queries_left--;
+        return best - w->robot_radius_m - EXACT_MARGIN_M;
+    }
     const double lb = clearance_lower_bound(w, x, y);
     if (lb > need)
         return lb;
     const double exact = exact_static_clearance(w, n, x, y) - EXACT_MARGIN_M;
     return exact > lb ? exact : lb;
+}
+
+/* The clearance from everything static (obstacles and the raster's blocked cells) as
+ * static_clearance_obstacles: a lower bound, 1-Lipschitz, at most `need` when that cannot be
+ * proved. The raster's part is its distance field's bound (raster.h) less half a cell's
+ * diagonal (the blocked cell is a square, the field measures to its centre) and the robot's
+ * radius: exact to the cell, never closer to a blocked cell than the robot's radius. */
+static double static_clearance(const struct gmmrrt_world *w, near_statics_t *n, double x, double y, double need)
+{
+    if (w->raster) {
+        /* The raster's bound is the whole answer for the map: when it is at most `need`, so
+         * is the minimum, and the caller refuses whatever the obstacles add. */
+        const double lm = gmmrrt_raster_clearance_bound(w->raster, x, y) - w->raster_slack_m - w->robot_radius_m;
+        if (!(lm > need))
+            return lm;
+        const double ls = static_clearance_obstacles(w, n, x, y, need);
+        return ls < lm ? ls : lm;
+    }
+    return static_clearance_obstacles(w, n, x, y, need);
 }
 
 static int inside_bounds(const struct gmmrrt_world *w, double x, double y)
@@ -614,6 +720,14 @@ double gmmrrt_world_exact_clearance(const gmmrrt_world_t *world, double x, doubl
         if (d < best)
             best = d;
     }
+    if (world->raster) {
+        /* Brute force over the blocked cells within reach: an oracle, not for the loop. */
+        const double reach = isfinite(best) ? best + r : world->raster->resolution_m * 
+            (double)(world->raster->width + world->raster->height) + fabs(x) + fabs(y);
+        const double d = gmmrrt_raster_distance_to_blocked(world->raster, x, y, reach) - r;
+        if (d < best)
+            best = d;
+    }
     return best;
 }
 
@@ -625,14 +739,32 @@ void gmmrrt_world_set_edge_resolution(gmmrrt_world_t *world, double edge_resolut
         world->edge_resolution_m = edge_resolution_m;
 }
 
-const float *gmmrrt_world_grid_cells(const gmmrrt_world_t *world, int32_t *nx, int32_t *ny, double *gi0,
-                                     double *gj0)
+int64_t gmmrrt_world_lazy_cells(const gmmrrt_world_t *world) { return world ? world->lazy_cells : -1; }
+
+int gmmrrt_world_grid_layout(const gmmrrt_world_t *world, int32_t *nx, int32_t *ny, double *gi0, double *gj0)
 {
     if (!world || !nx || !ny || !gi0 || !gj0)
-        return NULL;
+        return 0;
     *nx = world->nx;
     *ny = world->ny;
     *gi0 = world->gi0;
     *gj0 = world->gj0;
-    return world->clearance;
+    return 1;
+}
+
+float gmmrrt_world_grid_cell(const gmmrrt_world_t *world, int32_t i, int32_t j)
+{
+    if (!world || i < 0 || j < 0 || i >= world->nx || j >= world->ny)
+        return NAN;
+    return (float)cell_value(world, i, j);
+}
+
+int64_t gmmrrt_world_grid_tiles_ready(const gmmrrt_world_t *world)
+{
+    if (!world)
+        return -1;
+    int64_t n = 0;
+    for (int32_t t = 0; t < world->tnx * world->tny; ++t)
+        n += world->ready[t];
+    return n;
 }

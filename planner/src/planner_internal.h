@@ -106,6 +106,8 @@ struct gmmrrt_planner {
     double run_base_ms;            /* time_ms when that run started */
     double conv_ref_cost;
     int64_t conv_ref_iter;
+    double setup_ms;               /* duration of the last successful set_problem */
+    int64_t pruned;                /* nodes recycled by pruning since set_problem */
 };
 
 /* objective.c: the edge cost, integral of (w_length + w_task c) ds by the midpoint rule at

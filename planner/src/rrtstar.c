@@ -142,6 +142,7 @@ static void reset_tree(struct gmmrrt_planner *p)
     p->run_base_ms = 0.0;
     p->conv_ref_cost = INFINITY;
     p->conv_ref_iter = 0;
+    p->pruned = 0;
     gmmrrt_rng_seed(&p->rng, p->cfg.seed);
 }
 
@@ -168,6 +169,7 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
 {
     if (!p || !pr)
         return GMMRRT_ERR_INVALID_ARGUMENT;
+    const double setup_t0 = now_ms();
     p->has_problem = 0;
     if (!finite2(pr->start_x, pr->start_y) || !finite2(pr->goal_x, pr->goal_y) ||
         !isfinite(pr->goal_tolerance_m) || pr->goal_tolerance_m <= 0.0)
@@ -264,6 +266,7 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
     p->has_problem = 1;
     consider_goal(p, 0); /* a start already within the goal tolerance is a solution */
     update_best(p);
+    p->setup_ms = now_ms() - setup_t0;
     return start_status == GMMRRT_ESCAPE ? GMMRRT_ESCAPE : GMMRRT_OK;
 }
 
@@ -564,6 +567,127 @@ static void iterate(struct gmmrrt_planner *p)
     update_best(p);
 }
 
+/* ---------------------------------------------------------------- pruning */
+
+/* Informed pruning of a full pool (rrtstar.h, gmmrrt_planner_run): keeps the root, the best
+ * path and every node whose parent is kept and whose f = cost-to-come + unit x distance to
+ * the goal is below the best cost (f never falls along an edge: the edge costs at least unit x
+ * its length, and the distance to the goal falls by at most that length, so whole subtrees go).
+ * This is OMPL's RRTstar pruning with the tree's cost-to-come (setAdmissibleCostToCome(false)):
+ * no dropped node can reach the goal more cheaply than the best path through its current
+ * branch. When that frees less than a quarter of the pool (the tree already lies where a
+ * cheaper path may be), the threshold is lowered to drop the quarter of the nodes of largest
+ * f (prune_threshold): the tree keeps its branches that promise most, around the best path.
+ * Either way the best path and its cost stay, and the space a dropped branch covered is
+ * sampled again. The kept nodes are packed to the front of the pool in their order, the
+ * links and solution candidates renumbered, the spatial index rebuilt: O(nodes), no memory but
+ * the pool (next_in_bucket is the scratch, as in gmmrrt_nn_relayout_sorted). Returns the number
+ * of nodes dropped. */
+/* f of node i: cost-to-come + the lower bound of the cost to the goal. */
+static double node_f(const struct gmmrrt_planner *p, int32_t i, double unit)
+{
+    const gmmrrt_xy_t *q = &p->pool.xy[i];
+    const double gx = q->x - p->problem.goal_x, gy = q->y - p->problem.goal_y;
+    return p->pool.cost[i] + unit * sqrt(gx * gx + gy * gy);
+}
+
+/* The f below which nodes are kept: the best cost when at least a quarter of the pool has
+ * f >= best cost; otherwise lower, so that about a quarter of the nodes (those of largest f)
+ * have f >= it (a 256-bin histogram of f over [unit |start - goal|, best cost]: no memory). */
+#define PRUNE_BINS 256
+static double prune_threshold(const struct gmmrrt_planner *p, double unit)
+{
+    const int32_t n = p->num_nodes, want = n / 4;
+    const double lo = unit * hypot(p->problem.goal_x - p->problem.start_x, p->problem.goal_y - p->problem.start_y);
+    const double hi = p->best_cost;
+    if (!(hi > lo))
+        return hi;
+    int32_t bins[PRUNE_BINS] = {0};
+    int32_t above = 0;
+    for (int32_t i = 0; i < n; ++i) {
+        const double f = node_f(p, i, unit);
+        if (f >= hi) {
+            ++above;
+            continue;
+        }
+        const double b = floor((f - lo) / (hi - lo) * PRUNE_BINS);
+        bins[b < 0.0 ? 0 : (b >= PRUNE_BINS ? PRUNE_BINS - 1 : (int32_t)b)]++;
+    }
+    int32_t b = PRUNE_BINS;
+    while (above < want && b > 0)
+        above += bins[--b];
+    return b == PRUNE_BINS ? hi : lo + (hi - lo) * (double)b / PRUNE_BINS;
+}
+
+static int32_t prune(struct gmmrrt_planner *p)
+{
+    if (!isfinite(p->best_cost) || p->best_goal < 0)
+        return 0;
+    const int32_t n = p->num_nodes;
+    int32_t *keep = p->pool.next_in_bucket; /* 1 kept, 0 dropped; then the new index or -1 */
+    const gmmrrt_problem_t *pr = &p->problem;
+    const double unit = gmmrrt_edge_cost_lower_bound(p, 1.0);
+    const double threshold = prune_threshold(p, unit);
+    for (int32_t i = 0; i < n; ++i)
+        keep[i] = 0;
+    for (int32_t i = p->goal_idx[p->best_goal]; i >= 0; i = p->pool.link[i].parent)
+        keep[i] = 2; /* the best path */
+    /* Depth-first through the child / sibling links from the root. */
+    keep[0] = 1;
+    int32_t cur = p->pool.link[0].first_child;
+    while (cur >= 0) {
+        const int descend = keep[cur] == 2 || node_f(p, cur, unit) < threshold;
+        keep[cur] = descend;
+        if (descend && p->pool.link[cur].first_child >= 0) {
+            cur = p->pool.link[cur].first_child;
+            continue;
+        }
+        while (cur != 0 && p->pool.link[cur].next_sibling < 0)
+            cur = p->pool.link[cur].parent;
+        if (cur == 0)
+            break;
+        cur = p->pool.link[cur].next_sibling;
+    }
+    int32_t m = 0;
+    for (int32_t i = 0; i < n; ++i)
+        keep[i] = keep[i] ? m++ : -1;
+    if (m == n)
+        return 0;
+    /* Pack (new index <= old index, so ascending order never overwrites a node still to move). */
+    for (int32_t i = 0; i < n; ++i) {
+        const int32_t k = keep[i];
+        if (k < 0)
+            continue;
+        p->pool.xy[k] = p->pool.xy[i];
+        p->pool.cost[k] = p->pool.cost[i];
+        p->pool.link[k].parent = p->pool.link[i].parent >= 0 ? keep[p->pool.link[i].parent] : -1;
+    }
+    for (int32_t k = 0; k < m; ++k)
+        p->pool.link[k].first_child = p->pool.link[k].next_sibling = -1;
+    for (int32_t k = 1; k < m; ++k)
+        attach(p, k, p->pool.link[k].parent);
+    /* Solution candidates: every one of them that survived, in their order. */
+    const int32_t best_node = keep[p->goal_idx[p->best_goal]];
+    int32_t g = 0;
+    for (int32_t s = 0; s < p->num_goal; ++s) {
+        const int32_t k = keep[p->goal_idx[s]];
+        if (k < 0)
+            continue;
+        if (k == best_node)
+            p->best_goal = g;
+        p->goal_idx[g] = k;
+        p->goal_edge[g] = p->goal_edge[s];
+        ++g;
+    }
+    p->num_goal = g;
+    p->num_nodes = m;
+    gmmrrt_nn_reset_adaptive(&p->nn, &pr->obstacles.bounds);
+    for (int32_t k = 0; k < m; ++k)
+        gmmrrt_nn_insert(&p->nn, &p->pool, k);
+    gmmrrt_nn_relayout_sorted(&p->nn, &p->pool, m, p->goal_idx, p->num_goal);
+    return n - m;
+}
+
 gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *budget, gmmrrt_plan_stats_t *stats)
 {
     if (!p || !budget || !p->has_problem)
@@ -601,8 +725,12 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
                 break;
         }
         if (p->num_nodes >= p->cfg.max_nodes) {
-            st = GMMRRT_POOL_FULL;
-            break;
+            const int32_t freed = prune(p);
+            p->pruned += freed;
+            if (freed <= p->cfg.max_nodes / 64) { /* too little to go on: a tree of the best path only */
+                st = GMMRRT_POOL_FULL;
+                break;
+            }
         }
         iterate(p);
     }
@@ -624,6 +752,8 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
         stats->first_solution_ms = p->first_solution_ms;
         stats->best_cost = p->best_cost;
         stats->time_ms = p->time_ms;
+        stats->setup_ms = p->setup_ms;
+        stats->pruned = p->pruned;
     }
     return st;
 }

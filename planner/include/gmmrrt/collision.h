@@ -5,8 +5,24 @@
  *
  * Memory: a gmmrrt_world_t lives inside the planner's block (rrtstar.h); the functions
  * here are also usable standalone with gmmrrt_world_mem_size() bytes of caller memory.
- * Static obstacles go into a clearance grid (rebuilt only when they change, see
- * gmmrrt_world_update); people are checked exactly at query time.
+ * Static obstacles go into a clearance grid whose tiles (8 x 8 cells) are computed on the
+ * first query that reads them, so building or updating a world costs no distance computation
+ * at all (O(obstacles + tiles) bytes written, independent of where the obstacles are and how
+ * big); a map (raster.h) is read through its distance field; people are checked exactly at
+ * query time.
+ *
+ * With at most 8 circles and boxes the grid is not used: every query takes the closed forms
+ * over all of them. With more, the first 4096 queries of each world do the same (a first path
+ * needs few queries, and the tiles they would fill cost more), the rest read the grid.
+ *
+ * Cost bound: set-up writes O(obstacles + tiles) bytes and computes nothing; a closed-form query
+ * costs at most circles + boxes (<= 128) distances; one tile costs at most (circles + boxes) x
+ * (1 + 64) closed-form distances (<= 8 320 with the wire's limits), and a grid query reads at
+ * most four tiles, so no query pays more than 4 such fills, and a whole run no more than the
+ * tiles its queries reach.
+ *
+ * Queries write into the world (the tiles they fill): one world must not be queried from two
+ * threads at once.
  */
 #ifndef GMMRRT_COLLISION_H
 #define GMMRRT_COLLISION_H
@@ -16,6 +32,7 @@
 
 #include "gmmrrt/features.h"
 #include "gmmrrt/limits.h"
+#include "gmmrrt/raster.h"
 #include "gmmrrt/status.h"
 
 #ifdef __cplusplus
@@ -47,6 +64,10 @@ typedef struct {
     gmmrrt_box_t boxes[GMMRRT_MAX_BOXES];
     int32_t num_people;
     gmmrrt_pose_t people[GMMRRT_MAX_PEOPLE];
+    /* A static map (raster.h), borrowed: NULL for none. Its distance field must be ready
+     * (gmmrrt_raster_update_distance) and must not change while the world is in use; a world
+     * built with it reads it at every query, so only the part the search touches is read. */
+    const gmmrrt_raster_t *raster;
 } gmmrrt_obstacle_set_t;
 
 typedef struct gmmrrt_world gmmrrt_world_t;
@@ -71,10 +92,12 @@ gmmrrt_status_t gmmrrt_world_build(gmmrrt_world_t **out, void *mem, size_t size,
  * (cell (I, J) centred at ((I + 0.5) res, (J + 0.5) res)), so a cell's value depends only on its
  * place and the static obstacles:
  *   - same circles, boxes, robot_radius_m, resolution_m and grid_max_cells (bit for bit) and the
- *     bounds cover the same cells: the grid is kept as it is (GMMRRT_GRID_KEPT);
- *   - the same, but the bounds moved or changed size: the cells still covered are moved in place
- *     and only the newly covered ones computed (GMMRRT_GRID_SHIFTED);
- *   - anything else: every cell computed, as gmmrrt_world_build (GMMRRT_GRID_BUILT).
+ *     bounds cover the same tiles: the grid is kept as it is (GMMRRT_GRID_KEPT);
+ *   - the same, but the bounds moved or changed size: the tiles still covered are moved in place
+ *     (computed or not) and the newly covered ones marked not computed (GMMRRT_GRID_SHIFTED);
+ *   - anything else: every tile marked not computed (GMMRRT_GRID_BUILT).
+ * No call computes a cell: the queries do, tile by tile (see above). The raster is not part of
+ * the grid: changing it (or its generation) costs nothing here.
  * In every case the world answers every query exactly as a fresh gmmrrt_world_build would.
  * world: in, NULL (then this is gmmrrt_world_build) or the world last returned for this mem;
  * out, the world (== mem) on success, NULL on error. Other parameters, validation and statuses
@@ -85,21 +108,25 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
                                     const gmmrrt_obstacle_set_t *obstacles);
 
 typedef enum {
-    GMMRRT_GRID_BUILT = 0,   /* every cell computed */
-    GMMRRT_GRID_KEPT = 1,    /* nothing computed */
-    GMMRRT_GRID_SHIFTED = 2, /* cells still covered kept, the new ones computed */
+    GMMRRT_GRID_BUILT = 0,   /* every tile to be computed again */
+    GMMRRT_GRID_KEPT = 1,    /* every tile kept */
+    GMMRRT_GRID_SHIFTED = 2, /* tiles still covered kept, the new ones to be computed */
 } gmmrrt_grid_update_t;
 
 /* What the grid cost, for logs, tests and benchmarks. Counts run from the last call that
  * started from no world (gmmrrt_world_build, or gmmrrt_world_update with *world == NULL). */
 typedef struct {
     gmmrrt_grid_update_t last; /* what the last build / update did */
-    int64_t last_cells;        /* cells the last call computed (0 when kept) */
+    int64_t last_cells;        /* cells the last call computed: always 0 (the queries compute them) */
     int64_t built, kept, shifted;
 } gmmrrt_world_grid_stats_t;
 
 /* Fills *out; GMMRRT_ERR_INVALID_ARGUMENT when world or out is NULL. */
 gmmrrt_status_t gmmrrt_world_grid_stats(const gmmrrt_world_t *world, gmmrrt_world_grid_stats_t *out);
+
+/* Cells the queries computed since the last build / update (tiles x 64): the set-up work the
+ * search actually needed; -1 when world is NULL. */
+int64_t gmmrrt_world_lazy_cells(const gmmrrt_world_t *world);
 
 /* 1 when the robot centred at (x, y) is free (inside bounds, touching nothing), else 0.
  * Conservative near static obstacles (may block points within about a cell of one), exact
@@ -112,7 +139,8 @@ int gmmrrt_world_point_free(const gmmrrt_world_t *world, double x, double y);
 int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0, double x1, double y1);
 
 /* Exact clearance (m) from the robot disc at (x, y) to the nearest obstacle or person,
- * computed by FCL; negative when penetrating. Not for the planning loop. */
+ * computed by FCL, and to the nearest blocked cell of the raster (a square; brute force over
+ * the cells within reach); negative when penetrating. Not for the planning loop. */
 double gmmrrt_world_exact_clearance(const gmmrrt_world_t *world, double x, double y);
 
 #ifdef __cplusplus

@@ -43,6 +43,17 @@
  * plan into "no path yet". Not overridable: it guards arithmetic, not memory. */
 #define GMMRRT_MAX_COST_WEIGHT 1e6
 
+/* Occupancy rasters (raster.h): a side is indexed in int32_t and its squared length must stay
+ * exact in a float (2^24 = 4096^2 is exact; 16384^2 cells of a side is the ceiling, whose
+ * rounding the field absorbs, raster.c). The cells ceiling keeps byte offsets inside int32_t. */
+#define GMMRRT_MAX_RASTER_SIDE 16384
+#define GMMRRT_MAX_RASTER_CELLS (1 << 28)
+
+/* Beams of one planar scan: a 1081-beam lidar (270 deg at 0.25 deg) with room. */
+#ifndef GMMRRT_MAX_SCAN_RANGES
+#define GMMRRT_MAX_SCAN_RANGES 4096
+#endif
+
 /* Tree nodes: nodes link by int32_t index, so the ceiling keeps every index and
  * every byte offset into the pool well inside int32_t. */
 #define GMMRRT_MAX_NODES_CEILING (1 << 22)

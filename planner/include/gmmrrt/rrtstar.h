@@ -75,6 +75,9 @@ typedef struct {
     double first_solution_ms;     /* -1 until a path exists */
     double best_cost;             /* INFINITY until a path exists */
     double time_ms;               /* wall-clock time spent in run() calls since set_problem */
+    double setup_ms;              /* wall-clock time of the last set_problem (validation, collision
+                                     world, tree reset): the set-up before the first iteration */
+    int64_t pruned;               /* nodes recycled by pruning since set_problem (see run) */
 } gmmrrt_plan_stats_t;
 
 typedef struct {
@@ -117,9 +120,16 @@ gmmrrt_status_t gmmrrt_planner_model_fits(const gmmrrt_planner_config_t *cfg, co
  * where its edges are still free. Call right after set_problem. */
 gmmrrt_status_t gmmrrt_planner_seed_path(gmmrrt_planner_t *p, const double *x, const double *y, int32_t n);
 
-/* Grows the tree within budget; may be called again to continue (anytime). Returns
- * GMMRRT_OK when a path to the goal exists, GMMRRT_NO_PATH_YET when not, GMMRRT_POOL_FULL
- * when the pool ran out (the best path so far is kept). Fills *stats when non-NULL. */
+/* Grows the tree within budget; may be called again to continue (anytime). When the pool is
+ * full and a path exists, the nodes whose branch cannot lead to a cheaper path are pruned and
+ * their slots reused (informed pruning, as OMPL's RRTstar prune with the tree's cost-to-come:
+ * a node whose cost-to-come plus the lower bound of its cost-to-go, gmmrrt_edge_cost_lower_bound
+ * of its distance to the goal, is at least the best cost; that bound never decreases along a
+ * branch, so whole subtrees go; when that frees less than a quarter of the pool, the quarter of
+ * the nodes with the largest such bound go) and the search goes on in the same memory; the best
+ * path stays. Returns GMMRRT_OK when a path to the goal exists,
+ * GMMRRT_NO_PATH_YET when not, GMMRRT_POOL_FULL when the pool ran out and pruning could not
+ * free at least 1/64 of it (the best path so far is kept). Fills *stats when non-NULL. */
 gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *budget,
                                    gmmrrt_plan_stats_t *stats);
 

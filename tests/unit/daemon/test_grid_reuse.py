@@ -69,7 +69,8 @@ def test_grid_is_kept_while_obstacles_stay_and_rebuilt_when_they_change(tmp_path
     assert abs(built[1] - CHANGE_S * 10) <= 2, "rebuilt at cycle %d, the circle came at %.0f" % (built[1], CHANGE_S * 10)
     n_shifted = sum(1 for k, _ in kinds if k == "shifted")
     n_kept = sum(1 for k, _ in kinds if k == "kept")
-    assert n_shifted >= 10, "the bounds follow the driving robot: expected shifts, got %s" % kinds
+    # The grid moves by whole tiles of 8 cells (40 cm at 5 cm), so a shift every few cycles.
+    assert n_shifted >= 4, "the bounds follow the driving robot: expected shifts, got %s" % kinds
     assert all(int(c) == 0 for k, c in kinds if k == "kept")
     summary = re.search(r"clearance grid: ([0-9]+) built, ([0-9]+) shifted, ([0-9]+) kept", res.stderr)
     assert summary and tuple(map(int, summary.groups())) == (2, n_shifted, n_kept), res.stderr[-1000:]

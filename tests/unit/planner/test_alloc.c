@@ -16,6 +16,7 @@
 #include <cmocka.h>
 
 #include "gmmrrt/drivable.h"
+#include "cluttered_problem.h"
 #include "planner_fixtures.h"
 
 #ifndef GMMRRT_ALLOC_TEST_SKIP
@@ -152,6 +153,30 @@ static void test_escape_walkers_and_drivable_path_allocate_nothing(void **state)
     }
 }
 
+/* A pool that fills and is pruned again and again allocates nothing either. */
+static void test_pruning_a_full_pool_allocates_nothing(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    cfg.max_nodes = 1000;
+    cfg.grid_resolution_m = 0.05;
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = cluttered_problem();
+    gmmrrt_budget_t b = {0.0, 40000, 0.0, 0};
+    gmmrrt_plan_stats_t st;
+    alloc_calls = 0;
+    counting = 1;
+    const gmmrrt_status_t set = gmmrrt_planner_set_problem(t.p, &pr);
+    const gmmrrt_status_t run = gmmrrt_planner_run(t.p, &b, &st);
+    counting = 0;
+    assert_int_equal(set, GMMRRT_OK);
+    assert_int_equal(run, GMMRRT_OK);
+    assert_true(st.pruned > cfg.max_nodes);
+    assert_int_equal(alloc_calls, 0);
+    test_planner_free(&t);
+}
+
 static void test_counter_sees_allocations(void **state)
 {
     (void)state;
@@ -173,6 +198,7 @@ int main(void)
 #endif
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_counter_sees_allocations),
+        cmocka_unit_test(test_pruning_a_full_pool_allocates_nothing),
         cmocka_unit_test(test_planning_allocates_nothing),
         cmocka_unit_test(test_escape_walkers_and_drivable_path_allocate_nothing),
     };

@@ -44,8 +44,8 @@ def test_help_lists_every_option():
     assert r.returncode == 0
     for opt in ["--model", "--start", "--goal", "--person", "--obstacle", "--planner", "--bias",
                 "--budget-ms", "--iterations", "--seed", "--robot-radius", "--bounds", "--json", "--delta",
-                "--w-task", "--rewire-k", "--informed", "cost_history", "--goal-yaw-tolerance",
-                "--min-turn-radius", "--nominal-speed", "--raw-path", "--approach-models"]:
+                "--w-task", "--rewire-k", "--informed", "--map", "cost_history", "setup_ms",
+                "--goal-yaw-tolerance", "--min-turn-radius", "--nominal-speed", "--raw-path", "--approach-models"]:
         assert opt in r.stdout
 
 
@@ -66,6 +66,30 @@ def test_json_disc_detour_is_near_the_closed_form():
     assert stats["first_solution_ms"] is not None and stats["first_solution_ms"] >= 0
     assert optimum - 1e-6 <= stats["best_cost"] <= optimum * 1.02
     assert stats["time_ms"] > 0
+    assert stats["setup_ms"] is not None and stats["setup_ms"] >= 0
+
+
+MAPS = Path(__file__).resolve().parents[3] / "logs" / "maps"
+
+
+def test_map_plans_in_the_floor_plan():
+    r = run("--map", str(MAPS / "floor.yaml"), "--start", "-9,-2", "--goal", "8,4", "--iterations", "20000", "--json")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert out["status"] == "ok"
+    # The first room (x < -3, y < -1) to the far room above the corridor (x > 0, y > 1): through the
+    # doorways, so longer than the straight line.
+    assert out["stats"]["length_m"] > math.dist((-9, -2), (8, 4)) + 0.5
+
+
+def test_bad_map_is_refused_naming_the_key(tmp_path):
+    (tmp_path / "m.yaml").write_text("image: floor.pgm\nresolution: -1\norigin: [0, 0, 0]\nnegate: 0\n"
+                                     "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    r = run("--map", str(tmp_path / "m.yaml"), "--start", "0,0", "--goal", "1,1")
+    assert r.returncode == 1 and r.stdout == ""
+    assert "m.yaml:2: key 'resolution'" in r.stderr, r.stderr
+    r = run("--map", str(tmp_path / "missing.yaml"), "--start", "0,0", "--goal", "1,1")
+    assert r.returncode == 1 and "cannot open map YAML" in r.stderr, r.stderr
 
 
 def test_csv_output_and_same_seed_same_path():
@@ -143,18 +167,27 @@ def test_corrupt_model_is_refused(tmp_path):
     assert "CRC" in r.stderr or "checksum" in r.stderr
 
 
-def test_pool_full_before_the_budget_is_flagged_and_max_nodes_raises_the_pool():
+def test_full_pool_is_pruned_and_a_pool_full_without_a_path_is_flagged():
+    # With a path, a full pool is pruned and the search runs its whole budget.
     r = run(*DISC, "--iterations", "20000", "--max-nodes", "300", "--json")
-    assert r.returncode in (0, 3), r.stderr
+    assert r.returncode == 0, r.stderr
     stats = json.loads(r.stdout)["stats"]
-    assert stats["pool_full"] is True and stats["max_nodes"] == 300
-    assert stats["nodes"] <= 300 and stats["iterations"] < 20000
-    assert "node pool (300 nodes) filled" in r.stderr and "--max-nodes" in r.stderr
+    assert stats["pool_full"] is False and stats["max_nodes"] == 300
+    assert stats["nodes"] <= 300 and stats["pruned"] > 0 and stats["iterations"] == 20000
+    assert "filled" not in r.stderr
+
+    # Without a path nothing can be pruned: the run ends early, flagged, with the way out named.
+    r = run(*DISC, "--iterations", "20000", "--max-nodes", "10", "--json")
+    assert r.returncode == 3, r.stderr
+    stats = json.loads(r.stdout)["stats"]
+    assert stats["pool_full"] is True and stats["max_nodes"] == 10
+    assert stats["nodes"] <= 10 and stats["iterations"] < 20000
+    assert "node pool (10 nodes) filled" in r.stderr and "--max-nodes" in r.stderr
 
     r = run(*DISC, "--iterations", "20000", "--max-nodes", "100000", "--json")
     assert r.returncode == 0, r.stderr
     stats = json.loads(r.stdout)["stats"]
-    assert stats["pool_full"] is False and stats["max_nodes"] == 100000
+    assert stats["pool_full"] is False and stats["max_nodes"] == 100000 and stats["pruned"] == 0
     assert stats["iterations"] == 20000 and "filled" not in r.stderr
 
 

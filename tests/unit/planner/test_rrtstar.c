@@ -13,6 +13,7 @@
 
 #include <cmocka.h>
 
+#include "cluttered_problem.h"
 #include "planner_fixtures.h"
 
 static const int32_t kinds_without_model[] = {GMMRRT_PLANNER_RRT_STAR, GMMRRT_PLANNER_GMM_RRT_STAR,
@@ -218,24 +219,75 @@ static void test_set_problem_restarts_the_same_tree(void **state)
 static void test_pool_exhaustion_gives_pool_full_and_keeps_best(void **state)
 {
     (void)state;
+    /* No path can exist (a wall across the bounds), so nothing can be pruned: the pool fills. */
     gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
     cfg.max_nodes = 300;
     test_planner_t t;
     assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
     gmmrrt_problem_t pr = disc_problem();
+    pr.obstacles.num_boxes = 1;
+    pr.obstacles.boxes[0] = (gmmrrt_box_t){2.5, 0.0, 0.2, 20.0, 0.0};
     assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
     gmmrrt_budget_t b = {0.0, 1000000, 0.0, 0};
     gmmrrt_plan_stats_t st;
     assert_int_equal(gmmrrt_planner_run(t.p, &b, &st), GMMRRT_POOL_FULL);
     assert_int_equal(st.nodes, 300);
+    assert_int_equal(st.pruned, 0);
     assert_true(st.iterations < 1000000);
     /* Calling again does no harm. */
     assert_int_equal(gmmrrt_planner_run(t.p, &b, &st), GMMRRT_POOL_FULL);
     gmmrrt_path_t path;
-    const gmmrrt_status_t ps = gmmrrt_planner_best_path(t.p, &path);
-    assert_true(ps == GMMRRT_OK || ps == GMMRRT_NO_PATH_YET);
-    if (ps == GMMRRT_OK)
-        assert_true(path.cost == st.best_cost);
+    assert_int_equal(gmmrrt_planner_best_path(t.p, &path), GMMRRT_NO_PATH_YET);
+    test_planner_free(&t);
+}
+
+/* A full pool with a path is pruned and the search goes on in the same memory: on the
+ * cluttered problem with a pool of 1500 nodes, many more iterations than the pool holds keep
+ * improving the cost, the tree stays a tree of free edges with consistent costs, and the best
+ * path at the end is the cheapest ever seen. */
+static void test_full_pool_is_pruned_and_the_search_keeps_improving(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    cfg.max_nodes = 1500;
+    cfg.grid_resolution_m = 0.05;
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = cluttered_problem();
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    /* Up to the first time the pool is full. */
+    gmmrrt_budget_t fill = {0.0, 0, 0.0, 0};
+    gmmrrt_plan_stats_t st;
+    double at_full = INFINITY;
+    for (int i = 0; i < 1000 && gmmrrt_planner_node_count(t.p) < cfg.max_nodes - 1; ++i) {
+        fill.max_iterations = 50;
+        (void)gmmrrt_planner_run(t.p, &fill, &st);
+        at_full = st.best_cost;
+    }
+    assert_true(isfinite(at_full));
+    gmmrrt_budget_t b = {0.0, 60000, 0.0, 0};
+    assert_int_equal(gmmrrt_planner_run(t.p, &b, &st), GMMRRT_OK);
+    assert_true(st.pruned > cfg.max_nodes); /* the pool was recycled more than once over */
+    assert_true(st.nodes <= cfg.max_nodes);
+    assert_true(st.best_cost < at_full * 0.999);
+    /* Every node's parent edge is free and its cost is the parent's plus the edge's length. */
+    const gmmrrt_world_t *w = gmmrrt_planner_world(t.p);
+    for (int32_t i = 1; i < st.nodes; ++i) {
+        double x, y, c, px, py, pc;
+        int32_t parent, pp;
+        assert_int_equal(gmmrrt_planner_node(t.p, i, &x, &y, &parent, &c), GMMRRT_OK);
+        assert_true(parent >= 0 && parent < st.nodes);
+        assert_int_equal(gmmrrt_planner_node(t.p, parent, &px, &py, &pp, &pc), GMMRRT_OK);
+        assert_true(gmmrrt_world_segment_free(w, px, py, x, y));
+        assert_true(fabs(c - (pc + hypot(x - px, y - py))) < 1e-9 * (1.0 + c));
+    }
+    gmmrrt_path_t path;
+    assert_int_equal(gmmrrt_planner_best_path(t.p, &path), GMMRRT_OK);
+    assert_true(path.cost == st.best_cost);
+    static int64_t it[1024]; /* the default history capacity: its last entry is the latest */
+    static double hc[1024];
+    const int32_t nh = gmmrrt_planner_cost_history(t.p, it, hc, 1024);
+    assert_true(nh > 0 && hc[nh - 1] == st.best_cost);
     test_planner_free(&t);
 }
 
@@ -517,6 +569,7 @@ int main(void)
         cmocka_unit_test(test_same_seed_gives_same_path_other_seed_differs),
         cmocka_unit_test(test_set_problem_restarts_the_same_tree),
         cmocka_unit_test(test_pool_exhaustion_gives_pool_full_and_keeps_best),
+        cmocka_unit_test(test_full_pool_is_pruned_and_the_search_keeps_improving),
         cmocka_unit_test(test_bad_problems_get_their_status),
         cmocka_unit_test(test_gmm_planners_need_a_model_of_their_kind),
         cmocka_unit_test(test_config_validation_names_the_field),

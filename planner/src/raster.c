@@ -1,0 +1,418 @@
+/*
+ * raster.c - the occupancy raster of raster.h: cells, scan marks and their exact Euclidean
+ * distance field (Felzenszwalb & Huttenlocher 2012: the lower envelope of parabolas, one 1-D
+ * pass along the columns then one along the rows, O(cells)), the bound the collision world
+ * reads, and scan integration by ray casting (Amanatides & Woo 1987 cell traversal).
+ *
+ * The field measures from cell centre to cell centre in cells; the collision world turns it
+ * into a clearance from blocked squares by subtracting half a cell's diagonal (collision.c).
+ */
+#include "gmmrrt/raster.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+/* "Nothing blocks" in squared cells: larger than any real squared distance (2 x 16384^2). */
+#define FAR2 1e18
+/* The field goes through floats (squared, then the distance): each rounding is relative
+ * 2^-24; the stored distance is shrunk by this factor so it stays a lower bound. */
+#define FIELD_SHRINK (1.0 - 1e-6)
+
+static size_t align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
+
+typedef struct {
+    size_t cells, marks, dist, f, d, z, v, total;
+} layout_t;
+
+static layout_t layout_of(int32_t max_cells, int32_t max_side)
+{
+    layout_t l;
+    const size_t n = (size_t)max_cells, s = (size_t)max_side + 1;
+    size_t off = 0;
+    l.cells = off;
+    off += align8(n);
+    l.marks = off;
+    off += align8(n * sizeof(uint32_t));
+    l.dist = off;
+    off += align8(n * sizeof(float));
+    l.f = off;
+    off += align8(s * sizeof(double));
+    l.d = off;
+    off += align8(s * sizeof(double));
+    l.z = off;
+    off += align8((s + 1) * sizeof(double));
+    l.v = off;
+    off += align8(s * sizeof(int32_t));
+    l.total = off;
+    return l;
+}
+
+size_t gmmrrt_raster_mem_size(int32_t max_cells, int32_t max_side)
+{
+    if (max_cells < 1 || max_side < 1 || max_side > GMMRRT_MAX_RASTER_SIDE || max_cells > GMMRRT_MAX_RASTER_CELLS)
+        return 0;
+    return layout_of(max_cells, max_side).total;
+}
+
+gmmrrt_status_t gmmrrt_raster_init(gmmrrt_raster_t *r, void *mem, size_t size, int32_t max_cells, int32_t max_side)
+{
+    if (!r || !mem || ((uintptr_t)mem & 7u) != 0)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    const size_t need = gmmrrt_raster_mem_size(max_cells, max_side);
+    if (need == 0)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    if (size < need)
+        return GMMRRT_ERR_BUFFER_TOO_SMALL;
+    const layout_t l = layout_of(max_cells, max_side);
+    uint8_t *base = mem;
+    memset(r, 0, sizeof *r);
+    r->max_cells = max_cells;
+    r->max_side = max_side;
+    r->resolution_m = 1.0;
+    r->cos_yaw = 1.0;
+    r->unknown_blocked = 1;
+    r->mark_epoch_utime = -1;
+    r->cells = base + l.cells;
+    r->marks = (uint32_t *)(void *)(base + l.marks);
+    r->dist = (float *)(void *)(base + l.dist);
+    r->scratch_f = (double *)(void *)(base + l.f);
+    r->scratch_d = (double *)(void *)(base + l.d);
+    r->scratch_z = (double *)(void *)(base + l.z);
+    r->scratch_v = (int32_t *)(void *)(base + l.v);
+    return GMMRRT_OK;
+}
+
+gmmrrt_status_t gmmrrt_raster_set_geometry(gmmrrt_raster_t *r, int32_t width, int32_t height, double resolution_m,
+                                           double origin_x, double origin_y, double origin_yaw,
+                                           int32_t unknown_blocked)
+{
+    if (!r || width < 1 || height < 1 || !isfinite(resolution_m) || resolution_m <= 0.0 || !isfinite(origin_x) ||
+        !isfinite(origin_y) || !isfinite(origin_yaw) || (unknown_blocked != 0 && unknown_blocked != 1))
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    if (width > r->max_side || height > r->max_side || (int64_t)width * height > (int64_t)r->max_cells)
+        return GMMRRT_ERR_BUFFER_TOO_SMALL;
+    r->width = width;
+    r->height = height;
+    r->resolution_m = resolution_m;
+    r->origin_x = origin_x;
+    r->origin_y = origin_y;
+    r->origin_yaw = origin_yaw;
+    r->cos_yaw = cos(origin_yaw);
+    r->sin_yaw = sin(origin_yaw);
+    r->unknown_blocked = unknown_blocked;
+    const size_t n = (size_t)width * (size_t)height;
+    memset(r->cells, GMMRRT_RASTER_UNKNOWN, n);
+    memset(r->marks, 0, n * sizeof(uint32_t));
+    r->mark_epoch_utime = -1;
+    r->distance_ready = 0;
+    r->generation++;
+    return GMMRRT_OK;
+}
+
+int gmmrrt_raster_distance_ready(const gmmrrt_raster_t *r) { return r && r->width > 0 && r->distance_ready; }
+
+/* 1-D squared distance transform of f[0..n) (FAR2: no site) into d[0..n): the lower envelope
+ * of the parabolas (q - p)^2 + f(p) over the sites p. With border_lo / border_hi, a site sits just outside
+ * each end (at -1 and n). */
+static void edt_1d(const double *f, double *d, int32_t *v, double *z, int32_t n, int border_lo, int border_hi)
+{
+    int32_t k = -1;
+    for (int32_t q = 0; q < n; ++q) {
+        if (!(f[q] < FAR2))
+            continue;
+        const double fq = f[q] + (double)q * (double)q;
+        double s = -INFINITY;
+        while (k >= 0) {
+            const double p = (double)v[k];
+            s = (fq - (f[v[k]] + p * p)) / (2.0 * ((double)q - p));
+            if (s > z[k])
+                break;
+            --k;
+        }
+        ++k;
+        v[k] = q;
+        z[k] = k == 0 ? -INFINITY : s;
+        z[k + 1] = INFINITY;
+    }
+    if (k < 0) {
+        for (int32_t q = 0; q < n; ++q)
+            d[q] = FAR2;
+    } else {
+        int32_t j = 0;
+        for (int32_t q = 0; q < n; ++q) {
+            while (z[j + 1] < (double)q)
+                ++j;
+            const double t = (double)(q - v[j]);
+            d[q] = t * t + f[v[j]];
+        }
+    }
+    if (border_lo || border_hi)
+        for (int32_t q = 0; q < n; ++q) {
+            const double a = border_lo ? (double)(q + 1) : INFINITY, b = border_hi ? (double)(n - q) : INFINITY;
+            const double m = a < b ? a : b;
+            if (m * m < d[q])
+                d[q] = m * m;
+        }
+}
+
+static int mark_active(const gmmrrt_raster_t *r, size_t c, double now_ms, double decay_ms)
+{
+    const uint32_t m = r->marks[c];
+    return m != 0 && now_ms - (double)(m - 1u) <= decay_ms;
+}
+
+static int blocks(const gmmrrt_raster_t *r, size_t c, double now_ms, double decay_ms)
+{
+    const uint8_t v = r->cells[c];
+    return v == GMMRRT_RASTER_OCCUPIED || (v == GMMRRT_RASTER_UNKNOWN && r->unknown_blocked) ||
+           mark_active(r, c, now_ms, decay_ms);
+}
+
+/* The field over the cells [i0, i1) x [j0, j1) (write window), from the blocked cells of
+ * [a0, a1) x [b0, b1) (a larger rectangle around it, clipped to the raster), each value at most
+ * cap_m. The cells of the larger rectangle outside the write window are used as scratch. */
+static void field_over(gmmrrt_raster_t *r, double now_ms, double decay_ms, int32_t a0, int32_t a1, int32_t b0,
+                       int32_t b1, int32_t i0, int32_t i1, int32_t j0, int32_t j1, double cap_m)
+{
+    const int32_t w = r->width, h = r->height;
+    const int out = r->unknown_blocked; /* the outside is unknown */
+    double *f = r->scratch_f, *d = r->scratch_d, *z = r->scratch_z;
+    int32_t *v = r->scratch_v;
+    /* Columns: squared distance along y to the nearest blocked cell of the same column. */
+    for (int32_t i = a0; i < a1; ++i) {
+        for (int32_t j = b0; j < b1; ++j)
+            f[j - b0] = blocks(r, (size_t)j * (size_t)w + (size_t)i, now_ms, decay_ms) ? 0.0 : FAR2;
+        edt_1d(f, d, v, z, b1 - b0, out && b0 == 0, out && b1 == h);
+        for (int32_t j = b0; j < b1; ++j)
+            r->dist[(size_t)j * (size_t)w + (size_t)i] = (float)d[j - b0];
+    }
+    /* Rows: the 2-D squared distance, then the distance in metres, rounded down. */
+    for (int32_t j = j0; j < j1; ++j) {
+        float *row = r->dist + (size_t)j * (size_t)w;
+        for (int32_t i = a0; i < a1; ++i)
+            f[i - a0] = (double)row[i] >= FAR2 * 0.5 ? FAR2 : (double)row[i];
+        edt_1d(f, d, v, z, a1 - a0, out && a0 == 0, out && a1 == w);
+        for (int32_t i = i0; i < i1; ++i) {
+            const double di = d[i - a0];
+            double m = di >= FAR2 * 0.5 ? (double)FLT_MAX : sqrt(di) * r->resolution_m * FIELD_SHRINK;
+            m = m < cap_m ? m : cap_m;
+            float x = (float)m;
+            if ((double)x > m)
+                x = nextafterf(x, 0.0f);
+            row[i] = x;
+        }
+    }
+    r->valid_i0 = i0;
+    r->valid_i1 = i1;
+    r->valid_j0 = j0;
+    r->valid_j1 = j1;
+    r->field_now_ms = now_ms;
+    r->field_decay_ms = decay_ms;
+    r->distance_ready = 1;
+    r->generation++;
+}
+
+static double ms_since_epoch(const gmmrrt_raster_t *r, int64_t now_utime)
+{
+    return r->mark_epoch_utime < 0 ? 0.0 : (double)(now_utime - r->mark_epoch_utime) * 1e-3;
+}
+
+gmmrrt_status_t gmmrrt_raster_update_distance(gmmrrt_raster_t *r, int64_t now_utime, double mark_decay_ms)
+{
+    if (!r || r->width < 1 || !isfinite(mark_decay_ms) || mark_decay_ms < 0.0)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    field_over(r, ms_since_epoch(r, now_utime), mark_decay_ms, 0, r->width, 0, r->height, 0, r->width, 0, r->height,
+               INFINITY);
+    return GMMRRT_OK;
+}
+
+/* Index range [lo, hi) of the cells along one raster axis that meet [t0, t1] (cells). */
+static void cell_range(double t0, double t1, int32_t n, int32_t *lo, int32_t *hi)
+{
+    const double a = floor(t0) - 1.0, b = floor(t1) + 2.0; /* a cell more each side: the bound's neighbours */
+    *lo = a < 0.0 ? 0 : (a > (double)n ? n : (int32_t)a);
+    *hi = b < 0.0 ? 0 : (b > (double)n ? n : (int32_t)b);
+}
+
+gmmrrt_status_t gmmrrt_raster_update_distance_window(gmmrrt_raster_t *r, int64_t now_utime, double mark_decay_ms,
+                                                     double xmin, double ymin, double xmax, double ymax,
+                                                     double reach_m)
+{
+    if (!r || r->width < 1 || !isfinite(mark_decay_ms) || mark_decay_ms < 0.0 || !isfinite(xmin) ||
+        !isfinite(ymin) || !isfinite(xmax) || !isfinite(ymax) || !(xmin <= xmax) || !(ymin <= ymax) ||
+        !isfinite(reach_m) || !(reach_m > 0.0))
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    /* The box in raster cells: the range of its four corners. */
+    double ulo = INFINITY, uhi = -INFINITY, vlo = INFINITY, vhi = -INFINITY;
+    const double xs[2] = {xmin, xmax}, ys[2] = {ymin, ymax};
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) {
+            double u, v;
+            const double dx = xs[a] - r->origin_x, dy = ys[b] - r->origin_y;
+            u = (dx * r->cos_yaw + dy * r->sin_yaw) / r->resolution_m;
+            v = (-dx * r->sin_yaw + dy * r->cos_yaw) / r->resolution_m;
+            ulo = fmin(ulo, u);
+            uhi = fmax(uhi, u);
+            vlo = fmin(vlo, v);
+            vhi = fmax(vhi, v);
+        }
+    int32_t i0, i1, j0, j1;
+    cell_range(ulo, uhi, r->width, &i0, &i1);
+    cell_range(vlo, vhi, r->height, &j0, &j1);
+    if (i0 >= i1 || j0 >= j1) {
+        /* The box misses the raster: an empty valid window, every bound "blocked" inside it. */
+        r->valid_i0 = r->valid_i1 = r->valid_j0 = r->valid_j1 = 0;
+        r->distance_ready = 1;
+        r->generation++;
+        return GMMRRT_OK;
+    }
+    /* Margin m cells: a blocked cell beyond it is more than m cells from every window cell, so
+     * capping the field at m cells keeps it a lower bound. */
+    const double md = ceil(reach_m / r->resolution_m) + 1.0;
+    const int32_t m = md > (double)(r->width + r->height) ? r->width + r->height : (int32_t)md;
+    const int32_t a0 = i0 - m < 0 ? 0 : i0 - m, a1 = i1 + m > r->width ? r->width : i1 + m;
+    const int32_t b0 = j0 - m < 0 ? 0 : j0 - m, b1 = j1 + m > r->height ? r->height : j1 + m;
+    field_over(r, ms_since_epoch(r, now_utime), mark_decay_ms, a0, a1, b0, b1, i0, i1, j0, j1,
+               (double)m * r->resolution_m);
+    return GMMRRT_OK;
+}
+
+/* World point to continuous raster coordinates in cells (cell (i, j) spans [i, i + 1) x [j, j + 1)). */
+static void to_cells(const gmmrrt_raster_t *r, double x, double y, double *u, double *v)
+{
+    const double dx = x - r->origin_x, dy = y - r->origin_y;
+    *u = (dx * r->cos_yaw + dy * r->sin_yaw) / r->resolution_m;
+    *v = (-dx * r->sin_yaw + dy * r->cos_yaw) / r->resolution_m;
+}
+
+static int32_t clamp_index(double t, int32_t n)
+{
+    if (!(t >= 0.0))
+        return 0;
+    if (t >= (double)(n - 1))
+        return n - 1;
+    return (int32_t)t;
+}
+
+double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double y)
+{
+    double u, v;
+    to_cells(r, x, y, &u, &v);
+    /* Centres around the point: cells floor(u - 0.5) and the next, clamped. */
+    const double fu = floor(u - 0.5), fv = floor(v - 0.5);
+    double best = -INFINITY; /* no valid neighbour: blocked */
+    for (int dj = 0; dj <= 1; ++dj) {
+        const int32_t j = clamp_index(fv + dj, r->height);
+        if (j < r->valid_j0 || j >= r->valid_j1)
+            continue;
+        for (int di = 0; di <= 1; ++di) {
+            const int32_t i = clamp_index(fu + di, r->width);
+            if (i < r->valid_i0 || i >= r->valid_i1)
+                continue;
+            const double cu = (double)i + 0.5 - u, cv = (double)j + 0.5 - v;
+            const double lb = (double)r->dist[(size_t)j * (size_t)r->width + (size_t)i] -
+                              sqrt(cu * cu + cv * cv) * r->resolution_m;
+            best = lb > best ? lb : best;
+        }
+    }
+    return best;
+}
+
+double gmmrrt_raster_distance_to_blocked(const gmmrrt_raster_t *r, double x, double y, double max_m)
+{
+    if (!r || r->width < 1 || !isfinite(x) || !isfinite(y) || !(max_m > 0.0))
+        return NAN;
+    double u, v;
+    to_cells(r, x, y, &u, &v);
+    if (r->unknown_blocked && !(u >= 0.0 && v >= 0.0 && u <= (double)r->width && v <= (double)r->height))
+        return 0.0; /* in the outside, which blocks */
+    const double reach = max_m / r->resolution_m + 1.0;
+    double best = max_m / r->resolution_m;
+    /* Raster cells and, when the outside blocks, the ring of cells just outside it (the
+     * outside's nearest part is always on that ring). */
+    const int out = r->unknown_blocked;
+    const double lo_i = fmax(floor(u - reach), out ? -1.0 : 0.0), hi_i = fmin(ceil(u + reach), (double)(r->width - (out ? 0 : 1)));
+    const double lo_j = fmax(floor(v - reach), out ? -1.0 : 0.0), hi_j = fmin(ceil(v + reach), (double)(r->height - (out ? 0 : 1)));
+    const double now_ms = r->field_now_ms, decay_ms = r->field_decay_ms; /* the marks the field counted */
+    for (double jj = lo_j; jj <= hi_j; jj += 1.0) {
+        for (double ii = lo_i; ii <= hi_i; ii += 1.0) {
+            const int32_t i = (int32_t)ii, j = (int32_t)jj;
+            const int outside = i < 0 || j < 0 || i >= r->width || j >= r->height;
+            if (!outside && !blocks(r, (size_t)j * (size_t)r->width + (size_t)i, now_ms, decay_ms))
+                continue;
+            const double ex = u < ii ? ii - u : (u > ii + 1.0 ? u - ii - 1.0 : 0.0);
+            const double ey = v < jj ? jj - v : (v > jj + 1.0 ? v - jj - 1.0 : 0.0);
+            const double e = sqrt(ex * ex + ey * ey);
+            best = e < best ? e : best;
+        }
+    }
+    return best * r->resolution_m;
+}
+
+gmmrrt_status_t gmmrrt_raster_apply_scan(gmmrrt_raster_t *r, const gmmrrt_scan_t *scan, double sensor_x,
+                                         double sensor_y, double sensor_yaw, int64_t utime, int32_t *marked,
+                                         int32_t *cleared)
+{
+    if (marked)
+        *marked = 0;
+    if (cleared)
+        *cleared = 0;
+    if (!r || !scan || r->width < 1 || scan->num_ranges < 0 || scan->num_ranges > GMMRRT_MAX_SCAN_RANGES ||
+        (scan->num_ranges > 0 && !scan->ranges_m) || !isfinite(sensor_x) || !isfinite(sensor_y) ||
+        !isfinite(sensor_yaw) || !isfinite(scan->rad0) || !isfinite(scan->radstep) ||
+        !isfinite(scan->range_min_m) || !isfinite(scan->range_max_m) || scan->range_min_m < 0.0 ||
+        !(scan->range_max_m > scan->range_min_m) || utime < 0)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    const int64_t epoch = r->mark_epoch_utime < 0 ? utime : r->mark_epoch_utime;
+    if (utime < epoch || (utime - epoch) / 1000 >= (int64_t)UINT32_MAX - 1)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    r->mark_epoch_utime = epoch;
+    const uint32_t stamp = (uint32_t)((utime - epoch) / 1000) + 1u;
+    int32_t n_marked = 0, n_cleared = 0;
+    double su, sv;
+    to_cells(r, sensor_x, sensor_y, &su, &sv);
+    for (int32_t k = 0; k < scan->num_ranges; ++k) {
+        const double range = (double)scan->ranges_m[k];
+        if (!(isfinite(range) && range >= scan->range_min_m && range < scan->range_max_m))
+            continue; /* no return */
+        const double a = sensor_yaw + scan->rad0 + (double)k * scan->radstep - r->origin_yaw;
+        const double du = cos(a) * range / r->resolution_m, dv = sin(a) * range / r->resolution_m;
+        const double eu = su + du, ev = sv + dv;
+        /* Cell traversal from the sensor's cell to the end's (Amanatides & Woo). */
+        double ci = floor(su), cj = floor(sv);
+        const double ti = floor(eu), tj = floor(ev);
+        const double step_i = du > 0.0 ? 1.0 : -1.0, step_j = dv > 0.0 ? 1.0 : -1.0;
+        const double dtu = du != 0.0 ? fabs(1.0 / du) : INFINITY, dtv = dv != 0.0 ? fabs(1.0 / dv) : INFINITY;
+        double tmu = du != 0.0 ? (du > 0.0 ? ci + 1.0 - su : su - ci) * dtu : INFINITY;
+        double tmv = dv != 0.0 ? (dv > 0.0 ? cj + 1.0 - sv : sv - cj) * dtv : INFINITY;
+        const double max_steps = fabs(ti - ci) + fabs(tj - cj);
+        for (double s = 0.0; s < max_steps; s += 1.0) {
+            if (ci >= 0.0 && cj >= 0.0 && ci < (double)r->width && cj < (double)r->height) {
+                const size_t c = (size_t)cj * (size_t)r->width + (size_t)ci;
+                if (r->marks[c] != 0) {
+                    r->marks[c] = 0;
+                    ++n_cleared;
+                }
+            }
+            if (tmu < tmv) {
+                ci += step_i;
+                tmu += dtu;
+            } else {
+                cj += step_j;
+                tmv += dtv;
+            }
+        }
+        if (ti >= 0.0 && tj >= 0.0 && ti < (double)r->width && tj < (double)r->height) {
+            r->marks[(size_t)tj * (size_t)r->width + (size_t)ti] = stamp;
+            ++n_marked;
+        }
+    }
+    r->distance_ready = 0;
+    r->generation++;
+    if (marked)
+        *marked = n_marked;
+    if (cleared)
+        *cleared = n_cleared;
+    return GMMRRT_OK;
+}

@@ -1,0 +1,312 @@
+/*
+ * test_raster.c - planner.raster: the occupancy raster (raster.h) against brute-force oracles.
+ * The distance field equals the centre-to-centre distance to the nearest blocked cell found by
+ * scanning every cell (to float rounding, never above it), with the outside blocking or not;
+ * the bound the collision world reads never exceeds the true distance; scans mark their end
+ * cells, clear what the beams cross, ignore NaN / inf / out-of-range ranges, and their marks
+ * decay; a collision world with a raster never calls a point free that is within the robot's
+ * radius of a blocked cell (checked against the cells, not the field).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "gmmrrt/collision.h"
+#include "gmmrrt/raster.h"
+#include "gmmrrt/rng.h"
+#include "planner_fixtures.h"
+
+typedef struct {
+    void *mem;
+    gmmrrt_raster_t r;
+} raster_block_t;
+
+static void make_raster(raster_block_t *b, int32_t max_cells, int32_t max_side)
+{
+    const size_t size = gmmrrt_raster_mem_size(max_cells, max_side);
+    assert_true(size > 0);
+    b->mem = aligned_alloc(8, (size + 7u) & ~(size_t)7u);
+    assert_non_null(b->mem);
+    assert_int_equal(gmmrrt_raster_init(&b->r, b->mem, size, max_cells, max_side), GMMRRT_OK);
+}
+
+static double rnd(gmmrrt_rng_t *g, double lo, double hi) { return lo + (hi - lo) * gmmrrt_rng_uniform(g); }
+
+static int blocked_cell(const gmmrrt_raster_t *r, int32_t i, int32_t j)
+{
+    if (i < 0 || j < 0 || i >= r->width || j >= r->height)
+        return r->unknown_blocked;
+    const uint8_t v = r->cells[(size_t)j * (size_t)r->width + (size_t)i];
+    return v == GMMRRT_RASTER_OCCUPIED || (v == GMMRRT_RASTER_UNKNOWN && r->unknown_blocked);
+}
+
+/* Centre-to-centre distance (cells) from cell (i, j) to the nearest blocked cell, the outside
+ * (when it blocks) as the ring of cells around the raster. */
+static double brute_cells(const gmmrrt_raster_t *r, int32_t i, int32_t j)
+{
+    double best = INFINITY;
+    for (int32_t b = -1; b <= r->height; ++b)
+        for (int32_t a = -1; a <= r->width; ++a)
+            if (blocked_cell(r, a, b)) {
+                const double d = hypot((double)(a - i), (double)(b - j));
+                best = d < best ? d : best;
+            }
+    return best;
+}
+
+static void random_raster(gmmrrt_raster_t *r, gmmrrt_rng_t *g, int32_t w, int32_t h, double fill, int unknown_blocked)
+{
+    assert_int_equal(gmmrrt_raster_set_geometry(r, w, h, 0.1, rnd(g, -3, 3), rnd(g, -3, 3), rnd(g, -3, 3),
+                                                unknown_blocked),
+                     GMMRRT_OK);
+    for (int32_t c = 0; c < w * h; ++c) {
+        const double u = rnd(g, 0, 1);
+        r->cells[c] = u < fill ? GMMRRT_RASTER_OCCUPIED : (u < fill * 1.3 ? GMMRRT_RASTER_UNKNOWN : GMMRRT_RASTER_FREE);
+    }
+}
+
+static void test_distance_field_matches_brute_force(void **state)
+{
+    (void)state;
+    raster_block_t b;
+    make_raster(&b, 64 * 64, 64);
+    gmmrrt_rng_t g;
+    gmmrrt_rng_seed(&g, 5);
+    for (int round = 0; round < 24; ++round) {
+        const int32_t w = 1 + (int32_t)rnd(&g, 0, 40), h = 1 + (int32_t)rnd(&g, 0, 40);
+        const double fill = round % 4 == 0 ? 0.0 : rnd(&g, 0.001, 0.2);
+        random_raster(&b.r, &g, w, h, fill, round % 2);
+        assert_false(gmmrrt_raster_distance_ready(&b.r));
+        assert_int_equal(gmmrrt_raster_update_distance(&b.r, 0, 0.0), GMMRRT_OK);
+        assert_true(gmmrrt_raster_distance_ready(&b.r));
+        for (int32_t j = 0; j < h; ++j)
+            for (int32_t i = 0; i < w; ++i) {
+                const double want = brute_cells(&b.r, i, j) * b.r.resolution_m;
+                const double got = (double)b.r.dist[j * w + i];
+                if (isinf(want)) {
+                    assert_true(got > 1e30);
+                    continue;
+                }
+                if (!(got <= want && got >= want * (1.0 - 1e-5) - 1e-9))
+                    fail_msg("round %d cell (%d, %d) of %d x %d: field %.9g, brute force %.9g", round, i, j, w, h,
+                             got, want);
+            }
+    }
+    free(b.mem);
+}
+
+static void test_clearance_bound_is_a_lower_bound(void **state)
+{
+    (void)state;
+    raster_block_t b;
+    make_raster(&b, 50 * 50, 50);
+    gmmrrt_rng_t g;
+    gmmrrt_rng_seed(&g, 9);
+    for (int round = 0; round < 8; ++round) {
+        random_raster(&b.r, &g, 30, 20, 0.03, round % 2);
+        assert_int_equal(gmmrrt_raster_update_distance(&b.r, 0, 0.0), GMMRRT_OK);
+        for (int q = 0; q < 3000; ++q) {
+            /* Points in and around the raster, in the raster frame, then to the world. */
+            const double u = rnd(&g, -5, 35), v = rnd(&g, -5, 25);
+            const double x = b.r.origin_x + 0.1 * (u * b.r.cos_yaw - v * b.r.sin_yaw);
+            const double y = b.r.origin_y + 0.1 * (u * b.r.sin_yaw + v * b.r.cos_yaw);
+            double best = INFINITY;
+            for (int32_t jj = -1; jj <= b.r.height; ++jj)
+                for (int32_t ii = -1; ii <= b.r.width; ++ii)
+                    if (blocked_cell(&b.r, ii, jj))
+                        best = fmin(best, 0.1 * hypot(u - (ii + 0.5), v - (jj + 0.5)));
+            const double lb = gmmrrt_raster_clearance_bound(&b.r, x, y);
+            if (!(lb <= best + 1e-9))
+                fail_msg("bound %.9g above the true distance %.9g at (%g, %g) cells", lb, best, u, v);
+        }
+    }
+    free(b.mem);
+}
+
+/* The windowed field: inside the window, the full field capped at the reach (to float
+ * rounding, never above the full field); outside it the bound calls every point blocked. */
+static void test_windowed_field_is_the_full_one_capped(void **state)
+{
+    (void)state;
+    raster_block_t full, win;
+    make_raster(&full, 120 * 90, 120);
+    make_raster(&win, 120 * 90, 120);
+    gmmrrt_rng_t g;
+    gmmrrt_rng_seed(&g, 17);
+    int rounds_with_cells = 0;
+    for (int round = 0; round < 12; ++round) {
+        random_raster(&full.r, &g, 120, 90, rnd(&g, 0.001, 0.02), round % 2);
+        assert_int_equal(gmmrrt_raster_set_geometry(&win.r, 120, 90, full.r.resolution_m, full.r.origin_x,
+                                                    full.r.origin_y, full.r.origin_yaw, full.r.unknown_blocked),
+                         GMMRRT_OK);
+        memcpy(win.r.cells, full.r.cells, 120 * 90);
+        assert_int_equal(gmmrrt_raster_update_distance(&full.r, 0, 0.0), GMMRRT_OK);
+        const double cx = rnd(&g, -8, 8), cy = rnd(&g, -8, 8), hw = rnd(&g, 0.2, 3), hh = rnd(&g, 0.2, 3);
+        const double reach = rnd(&g, 0.2, 1.5);
+        assert_int_equal(gmmrrt_raster_update_distance_window(&win.r, 0, 0.0, cx - hw, cy - hh, cx + hw, cy + hh, reach),
+                         GMMRRT_OK);
+        assert_true(gmmrrt_raster_distance_ready(&win.r));
+        const double cap = (ceil(reach / 0.1) + 1.0) * 0.1;
+        int inside = 0;
+        for (int32_t j = win.r.valid_j0; j < win.r.valid_j1; ++j)
+            for (int32_t i = win.r.valid_i0; i < win.r.valid_i1; ++i) {
+                const double want = fmin((double)full.r.dist[j * 120 + i], cap), got = (double)win.r.dist[j * 120 + i];
+                if (!(got <= (double)full.r.dist[j * 120 + i] && got >= want * (1.0 - 1e-6) - 1e-9))
+                    fail_msg("round %d cell (%d, %d): window %.9g, full %.9g, cap %.9g", round, i, j, got,
+                             (double)full.r.dist[j * 120 + i], cap);
+                ++inside;
+            }
+        /* Every point of the box is inside the window and bounded as with the full field, up to the cap. */
+        for (int q = 0; q < 500; ++q) {
+            const double x = cx + rnd(&g, -hw, hw), y = cy + rnd(&g, -hh, hh);
+            const double bw = gmmrrt_raster_clearance_bound(&win.r, x, y), bf = gmmrrt_raster_clearance_bound(&full.r, x, y);
+            assert_true(bw <= bf + 1e-9);
+            const double dx = x - win.r.origin_x, dy = y - win.r.origin_y;
+            const double u = (dx * win.r.cos_yaw + dy * win.r.sin_yaw) / 0.1, v = (-dx * win.r.sin_yaw + dy * win.r.cos_yaw) / 0.1;
+            if (u >= 0.0 && v >= 0.0 && u <= 120.0 && v <= 90.0) /* on the raster: its neighbours are in the window */
+                assert_true(isfinite(bw));
+        }
+        rounds_with_cells += inside > 0;
+        /* Far outside the window: blocked. */
+        if (inside > 0 && win.r.valid_i1 + 3 < 120) {
+            const double u = (double)win.r.valid_i1 + 2.5, v = 0.5 * (win.r.valid_j0 + win.r.valid_j1);
+            const double x = win.r.origin_x + 0.1 * (u * win.r.cos_yaw - v * win.r.sin_yaw);
+            const double y = win.r.origin_y + 0.1 * (u * win.r.sin_yaw + v * win.r.cos_yaw);
+            assert_true(gmmrrt_raster_clearance_bound(&win.r, x, y) == -INFINITY);
+        }
+    }
+    assert_true(rounds_with_cells >= 6); /* most boxes meet the raster */
+    free(full.mem);
+    free(win.mem);
+}
+
+static void test_scans_mark_clear_ignore_and_decay(void **state)
+{
+    (void)state;
+    raster_block_t b;
+    make_raster(&b, 100 * 100, 100);
+    assert_int_equal(gmmrrt_raster_set_geometry(&b.r, 100, 100, 0.1, -5.0, -5.0, 0.0, 0), GMMRRT_OK);
+    memset(b.r.cells, GMMRRT_RASTER_FREE, 100 * 100);
+    /* Four beams along +x, +y, -x, -y of 2.05 m, then bad ones. */
+    float ranges[8] = {2.05f, 2.05f, 2.05f, 2.05f, NAN, INFINITY, 0.01f, 30.0f};
+    gmmrrt_scan_t scan = {0.0, M_PI / 2.0, 0.05, 10.0, 8, ranges};
+    int32_t marked, cleared;
+    const int64_t t0 = 1000000000;
+    assert_int_equal(gmmrrt_raster_apply_scan(&b.r, &scan, 0.0, 0.0, 0.0, t0, &marked, &cleared), GMMRRT_OK);
+    assert_int_equal(marked, 4);
+    assert_int_equal(cleared, 0);
+    assert_false(gmmrrt_raster_distance_ready(&b.r));
+    assert_int_equal(gmmrrt_raster_update_distance(&b.r, t0, 500.0), GMMRRT_OK);
+    /* The end cell of the +x beam: x = 2.05 -> cell 70, y = 0 -> cell 50. */
+    assert_true(b.r.dist[50 * 100 + 70] == 0.0f);
+    assert_true(fabs(gmmrrt_raster_distance_to_blocked(&b.r, 0.0, 0.0, 5.0) - 2.0) < 1e-9);
+    /* A second scan whose +x beam reaches further clears the old end cell and marks the new. */
+    float longer[1] = {3.05f};
+    gmmrrt_scan_t one = {0.0, 0.0, 0.05, 10.0, 1, longer};
+    assert_int_equal(gmmrrt_raster_apply_scan(&b.r, &one, 0.0, 0.0, 0.0, t0 + 100000, &marked, &cleared), GMMRRT_OK);
+    assert_int_equal(marked, 1);
+    assert_int_equal(cleared, 1);
+    assert_int_equal(gmmrrt_raster_update_distance(&b.r, t0 + 100000, 500.0), GMMRRT_OK);
+    assert_true(b.r.dist[50 * 100 + 70] > 0.0f);
+    assert_true(b.r.dist[50 * 100 + 80] == 0.0f);
+    /* 0.6 s after the first scan its marks have decayed (500 ms), the second scan's not. */
+    assert_int_equal(gmmrrt_raster_update_distance(&b.r, t0 + 600000, 500.0), GMMRRT_OK);
+    assert_true(b.r.dist[70 * 100 + 50] > 0.0f); /* +y end cell of the first scan */
+    assert_true(b.r.dist[50 * 100 + 80] == 0.0f);
+    assert_int_equal(gmmrrt_raster_update_distance(&b.r, t0 + 700000, 500.0), GMMRRT_OK);
+    assert_true(b.r.dist[50 * 100 + 80] > 1e30f); /* nothing blocks any more */
+    /* Bad scans are refused and change nothing. */
+    const uint32_t gen = b.r.generation;
+    gmmrrt_scan_t bad = scan;
+    bad.num_ranges = GMMRRT_MAX_SCAN_RANGES + 1;
+    assert_int_equal(gmmrrt_raster_apply_scan(&b.r, &bad, 0, 0, 0, t0, NULL, NULL), GMMRRT_ERR_INVALID_ARGUMENT);
+    bad = scan;
+    bad.range_max_m = NAN;
+    assert_int_equal(gmmrrt_raster_apply_scan(&b.r, &bad, 0, 0, 0, t0, NULL, NULL), GMMRRT_ERR_INVALID_ARGUMENT);
+    assert_int_equal(gmmrrt_raster_apply_scan(&b.r, &scan, NAN, 0, 0, t0, NULL, NULL), GMMRRT_ERR_INVALID_ARGUMENT);
+    assert_int_equal(gmmrrt_raster_apply_scan(&b.r, &scan, 0, 0, 0, t0 - 1, NULL, NULL), GMMRRT_ERR_INVALID_ARGUMENT);
+    assert_int_equal(b.r.generation, gen);
+    free(b.mem);
+}
+
+static void test_geometry_beyond_capacity_is_refused(void **state)
+{
+    (void)state;
+    raster_block_t b;
+    make_raster(&b, 1000, 50);
+    assert_int_equal(gmmrrt_raster_set_geometry(&b.r, 51, 10, 0.1, 0, 0, 0, 1), GMMRRT_ERR_BUFFER_TOO_SMALL);
+    assert_int_equal(gmmrrt_raster_set_geometry(&b.r, 40, 26, 0.1, 0, 0, 0, 1), GMMRRT_ERR_BUFFER_TOO_SMALL);
+    assert_int_equal(gmmrrt_raster_set_geometry(&b.r, 40, 25, -0.1, 0, 0, 0, 1), GMMRRT_ERR_INVALID_ARGUMENT);
+    assert_int_equal(gmmrrt_raster_set_geometry(&b.r, 40, 25, 0.1, 0, INFINITY, 0, 1), GMMRRT_ERR_INVALID_ARGUMENT);
+    assert_int_equal(gmmrrt_raster_set_geometry(&b.r, 40, 25, 0.1, 0, 0, 0, 1), GMMRRT_OK);
+    assert_int_equal(gmmrrt_raster_mem_size(GMMRRT_MAX_RASTER_CELLS, GMMRRT_MAX_RASTER_SIDE + 1), 0);
+    free(b.mem);
+}
+
+/* The world never calls a point free within the robot's radius of a blocked cell's square. */
+static void test_world_with_raster_keeps_the_robot_radius(void **state)
+{
+    (void)state;
+    raster_block_t b;
+    make_raster(&b, 80 * 60, 80);
+    gmmrrt_rng_t g;
+    gmmrrt_rng_seed(&g, 13);
+    random_raster(&b.r, &g, 80, 60, 0.01, 1);
+    assert_int_equal(gmmrrt_raster_update_distance(&b.r, 0, 0.0), GMMRRT_OK);
+    gmmrrt_obstacle_set_t o;
+    memset(&o, 0, sizeof o);
+    o.bounds = (gmmrrt_bounds_t){-15, -15, 15, 15};
+    o.num_circles = 1;
+    o.circles[0] = (gmmrrt_circle_t){1.0, 1.0, 0.5};
+    o.raster = &b.r;
+    const int32_t cells = 1 << 20;
+    const size_t size = gmmrrt_world_mem_size(cells);
+    void *mem = aligned_alloc(8, (size + 7u) & ~(size_t)7u);
+    gmmrrt_world_t *w = NULL;
+    const double robot = 0.25;
+    assert_int_equal(gmmrrt_world_build(&w, mem, size, cells, 0.05, robot, 0.3, &o), GMMRRT_OK);
+    int free_seen = 0, blocked_seen = 0;
+    for (int q = 0; q < 20000; ++q) {
+        const double x = rnd(&g, -15, 15), y = rnd(&g, -15, 15);
+        const int f = gmmrrt_world_point_free(w, x, y);
+        const double exact = gmmrrt_world_exact_clearance(w, x, y);
+        if (f && !(exact > 0.0))
+            fail_msg("(%g, %g) called free with exact clearance %.9g", x, y, exact);
+        /* Exact to the cell: free wherever the clearance exceeds a cell's diagonal. */
+        if (exact > b.r.resolution_m * 1.5 + 0.05 * 1.5)
+            assert_true(f);
+        free_seen += f;
+        blocked_seen += !f;
+        if (q % 8 == 0) {
+            const double x1 = fmin(fmax(x + rnd(&g, -1, 1), -15), 15), y1 = fmin(fmax(y + rnd(&g, -1, 1), -15), 15);
+            if (gmmrrt_world_segment_free(w, x, y, x1, y1))
+                for (int k = 0; k <= 200; ++k) {
+                    const double t = k / 200.0;
+                    assert_true(gmmrrt_world_exact_clearance(w, x + t * (x1 - x), y + t * (y1 - y)) > 0.0);
+                }
+        }
+    }
+    if (!(free_seen > 200 && blocked_seen > 1000)) /* the raster is 5 % of the bounds, its outside blocks */
+        fail_msg("%d free, %d blocked", free_seen, blocked_seen);
+    free(mem);
+    free(b.mem);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_distance_field_matches_brute_force),
+        cmocka_unit_test(test_clearance_bound_is_a_lower_bound),
+        cmocka_unit_test(test_windowed_field_is_the_full_one_capped),
+        cmocka_unit_test(test_scans_mark_clear_ignore_and_decay),
+        cmocka_unit_test(test_geometry_beyond_capacity_is_refused),
+        cmocka_unit_test(test_world_with_raster_keeps_the_robot_radius),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
