@@ -36,6 +36,7 @@ static void usage(FILE *out)
             "       [--iterations N] [--seed S] [--robot-radius R] [--bounds xmin,ymin,xmax,ymax]\n"
             "       [--task avoid|approach] [--target-person I] [--goal-tolerance M]\n"
             "       [--delta D] [--w-task W] [--rewire-k F] [--informed 0|1] [--json]\n"
+            "       [--side left|right|either] [--cost inward|paper]\n"
             "\n"
             "Plans a path with GMM-RRT* (the paper's planner), plain RRT* or the GMM-RRT baseline\n"
             "and prints it as x,y CSV (header line first), or with --json one object:\n"
@@ -67,6 +68,14 @@ static void usage(FILE *out)
             "  --rewire-k F        near set: at least the F ln(n+1) nearest nodes (default 4.485,\n"
             "                      OMPL's k_rrg); 0: the radius 15 sqrt(ln n / n)\n"
             "  --informed 0|1      informed sampling once a path exists (default 1)\n"
+            "  --side S            left: the path goes counterclockwise round the person (the person\n"
+            "                      stays on the robot's left), right: clockwise; either: plan both and\n"
+            "                      print the cheaper, with each side's path and cost under \"sides\".\n"
+            "                      Default: one plan, whichever side is cheapest. No path on the side\n"
+            "                      within the budget: status \"no path on the preferred side\", exit 3\n"
+            "  --side-person I     person index (0-based) the side is about (default: the person\n"
+            "                      nearest the segment start-goal)\n"
+            "  --cost NAME         task cost: inward (default) or paper (delta / max(p, delta))\n"
             "  --json              print one JSON object instead of CSV\n"
             "  -h, --help          this text\n"
             "\n"
@@ -138,7 +147,7 @@ int main(int argc, char **argv)
 {
     enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_PLANNER, OPT_BIAS, OPT_BUDGET,
            OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_DELTA,
-           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED };
+           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_SIDE, OPT_SIDE_PERSON, OPT_COST };
     static const struct option opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
         {"goal", required_argument, NULL, OPT_GOAL},         {"person", required_argument, NULL, OPT_PERSON},
@@ -150,6 +159,8 @@ int main(int argc, char **argv)
         {"goal-tolerance", required_argument, NULL, OPT_TOL}, {"json", no_argument, NULL, OPT_JSON},
         {"delta", required_argument, NULL, OPT_DELTA},       {"w-task", required_argument, NULL, OPT_WTASK},
         {"rewire-k", required_argument, NULL, OPT_REWIRE_K}, {"informed", required_argument, NULL, OPT_INFORMED},
+        {"side", required_argument, NULL, OPT_SIDE},         {"side-person", required_argument, NULL, OPT_SIDE_PERSON},
+        {"cost", required_argument, NULL, OPT_COST},
         {"help", no_argument, NULL, 'h'},                    {NULL, 0, NULL, 0}};
 
     static gmmrrt_problem_t pr; /* large (obstacle arrays): static, zeroed */
@@ -158,7 +169,8 @@ int main(int argc, char **argv)
     const char *model_path = NULL;
     int have_start = 0, have_goal = 0, have_bounds = 0, json = 0, planner = 0, task = 0;
     double budget_ms = -1.0;
-    long long iterations = 0, target = 0;
+    long long iterations = 0, target = 0, side_person = -1;
+    int side = -1; /* -1: no --side (one plan); GMMRRT_SIDE_EITHER: both sides */
     pr.goal_tolerance_m = 0.1;
     pr.target_person = -1;
 
@@ -295,6 +307,29 @@ int main(int argc, char **argv)
                 return fail("--informed '%s': expected 0 or 1%s", optarg, "");
             cfg.informed_sampling = optarg[0] == '1';
             break;
+        case OPT_SIDE:
+            if (strcmp(optarg, "left") == 0)
+                side = GMMRRT_SIDE_LEFT;
+            else if (strcmp(optarg, "right") == 0)
+                side = GMMRRT_SIDE_RIGHT;
+            else if (strcmp(optarg, "either") == 0)
+                side = GMMRRT_SIDE_EITHER;
+            else
+                return fail("--side '%s': expected left, right or either%s", optarg, "");
+            break;
+        case OPT_SIDE_PERSON:
+            if (!parse_int64(optarg, &n) || n < 0)
+                return fail("--side-person '%s': expected an index >= 0%s", optarg, "");
+            side_person = n;
+            break;
+        case OPT_COST:
+            if (strcmp(optarg, "inward") == 0)
+                cfg.task_cost = GMMRRT_TASK_COST_INWARD;
+            else if (strcmp(optarg, "paper") == 0)
+                cfg.task_cost = GMMRRT_TASK_COST_PAPER;
+            else
+                return fail("--cost '%s': expected inward or paper%s", optarg, "");
+            break;
         case ':':
             return fail("option '%s' needs a value (see --help)%s", argv[optind - 1], "");
         default:
@@ -331,6 +366,10 @@ int main(int argc, char **argv)
     } else {
         pr.task = GMMRRT_TASK_NONE;
     }
+    if (side_person >= pr.obstacles.num_people)
+        return fail("--side-person is out of range (fewer --person given)%s%s", "", "");
+    pr.side_person = (int32_t)side_person;
+    pr.side = side > 0 ? side : GMMRRT_SIDE_EITHER;
     if (!have_bounds) {
         gmmrrt_bounds_t *b = &pr.obstacles.bounds;
         *b = (gmmrrt_bounds_t){pr.start_x, pr.start_y, pr.start_x, pr.start_y};
@@ -374,8 +413,27 @@ int main(int argc, char **argv)
     }
     gmmrrt_budget_t budget = {0.0, iterations, 0.0, 0};
     budget.time_ms = budget_ms > 0.0 ? budget_ms : (iterations > 0 ? 0.0 : 1000.0);
+    /* --side either: one plan per side (same seed and budget each); the cheaper is the answer. */
+    static gmmrrt_path_t side_path[2];
+    gmmrrt_status_t side_st[2] = {GMMRRT_NO_PATH_YET, GMMRRT_NO_PATH_YET};
+    if (side == GMMRRT_SIDE_EITHER) {
+        for (int k = 0; k < 2 && st == GMMRRT_OK; ++k) {
+            pr.side = k == 0 ? GMMRRT_SIDE_LEFT : GMMRRT_SIDE_RIGHT;
+            st = gmmrrt_planner_set_problem(p, &pr);
+            side_st[k] = st == GMMRRT_OK ? gmmrrt_planner_run(p, &budget, NULL) : st;
+            if (gmmrrt_planner_best_path(p, &side_path[k]) != GMMRRT_OK)
+                side_path[k].num_points = 0;
+        }
+        const int pick = side_path[1].num_points > 0 &&
+                         (side_path[0].num_points == 0 || side_path[1].cost < side_path[0].cost);
+        pr.side = pick ? GMMRRT_SIDE_RIGHT : GMMRRT_SIDE_LEFT;
+        st = gmmrrt_planner_set_problem(p, &pr); /* the chosen side again, for its statistics and history */
+    }
     gmmrrt_plan_stats_t stats;
-    st = gmmrrt_planner_run(p, &budget, &stats);
+    memset(&stats, 0, sizeof stats);
+    stats.first_solution_ms = -1.0;
+    stats.best_cost = INFINITY;
+    st = st == GMMRRT_OK ? gmmrrt_planner_run(p, &budget, &stats) : st;
     static gmmrrt_path_t path;
     const gmmrrt_status_t ps = gmmrrt_planner_best_path(p, &path);
     /* The history lives in the planner block: copy it out before the block is freed. */
@@ -404,7 +462,26 @@ int main(int argc, char **argv)
             json_number(hist_cost[i]);
             printf("]");
         }
-        printf("], \"cost_history_complete\": %s}}\n", num_hist < GMMRRT_CLI_MAX_HISTORY ? "true" : "false");
+        printf("], \"cost_history_complete\": %s}", num_hist < GMMRRT_CLI_MAX_HISTORY ? "true" : "false");
+        if (pr.side != GMMRRT_SIDE_EITHER)
+            printf(", \"side\": \"%s\"", pr.side == GMMRRT_SIDE_LEFT ? "left" : "right");
+        if (side == GMMRRT_SIDE_EITHER) {
+            printf(", \"sides\": {");
+            for (int k = 0; k < 2; ++k) {
+                const int ok = side_path[k].num_points > 0;
+                printf("%s\"%s\": {\"status\": \"%s\", \"cost\": ", k ? ", " : "", k ? "right" : "left",
+                       ok ? "ok" : gmmrrt_status_str(side_st[k]));
+                json_number(ok ? side_path[k].cost : NAN);
+                printf(", \"length_m\": ");
+                json_number(ok ? side_path[k].length_m : NAN);
+                printf(", \"path\": [");
+                for (int32_t i = 0; i < side_path[k].num_points; ++i)
+                    printf("%s[%.6f, %.6f]", i ? ", " : "", side_path[k].x[i], side_path[k].y[i]);
+                printf("]}");
+            }
+            printf("}");
+        }
+        printf("}\n");
     } else if (found) {
         printf("x,y\n");
         for (int32_t i = 0; i < path.num_points; ++i)

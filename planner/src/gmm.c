@@ -166,6 +166,55 @@ static double task_cost_2d(const gmmrrt_model_t *m, const double *f, double delt
     return (p > delta) ? delta / p : 1.0;
 }
 
+/* Exponents of the inward density p~ (gmm.h) at f = (d, theta) (theta wrapped) into x[],
+ * for a (d linear, theta angle) model: per component and image of theta, d - mu_d is held
+ * at the ridge -b c y1 / (a^2 + b^2) (L^-1 = [[a, 0], [b, c]]: the d minimising the
+ * quadratic form for that theta offset y1) when it lies beyond it. */
+static int inward_terms_2d(const gmmrrt_model_t *m, double f0, double f1, double *x, double *max_out)
+{
+    double mx = -INFINITY;
+    int n = 0;
+    for (int32_t i = 0; i < m->k; ++i) {
+        const double *inv = m->inv_chol[i];
+        const double ridge = -(inv[1] * inv[2]) / (inv[0] * inv[0] + inv[1] * inv[1]);
+        const double d0 = f0 - m->mean[i][0];
+        const double d1 = wrap_diff(f1 - m->mean[i][1]);
+        for (int img = 0; img < 3; ++img) {
+            const double y1 = d1 + (img == 0 ? 0.0 : img == 1 ? -TWO_PI : TWO_PI);
+            const double r = ridge * y1;
+            const double y0 = d0 > r ? r : d0;
+            const double z0 = inv[0] * y0, z1 = inv[1] * y0 + inv[2] * y1;
+            const double t = m->log_coef[i] - 0.5 * (z0 * z0) - 0.5 * (z1 * z1);
+            x[n++] = t;
+            mx = max2(mx, t);
+        }
+    }
+    *max_out = mx;
+    return n;
+}
+
+double gmmrrt_gmm_inward_task_cost(const gmmrrt_model_t *model, const double *f, double delta)
+{
+    assert(model != NULL && f != NULL && delta > 0.0);
+    if (model->dim != 2 || model->angle_mask != 2u)
+        return gmmrrt_gmm_task_cost(model, f, delta);
+    const double f0 = f[0], f1 = gmmrrt_wrap_angle(f[1]);
+    if (isnan(f0) || isnan(f1) || isinf(f0))
+        return 1.0;
+    double x[GMMRRT_MAX_K * 3];
+    double mx;
+    const int n = inward_terms_2d(model, f0, f1, x, &mx);
+    if (!(mx > -INFINITY))
+        return 1.0;
+    const double cut = mx - LSE_CUTOFF;
+    double s = 0.0;
+    for (int t = 0; t < n; ++t)
+        if (x[t] > cut)
+            s += exp(x[t] - mx);
+    const double p = exp(mx) * s;
+    return (p > delta) ? delta / p : 1.0;
+}
+
 /* ------------------------------------------------------------------ any D */
 
 /* fw: f with its angle entries already wrapped into (-pi, pi]. */

@@ -25,6 +25,7 @@ const char *gmmrrt_status_str(gmmrrt_status_t status)
     case GMMRRT_ERR_GOAL_OUT_OF_BOUNDS: return "goal outside the planning bounds";
     case GMMRRT_ERR_MODEL_MISMATCH: return "model kind or dimension does not fit the planner";
     case GMMRRT_NO_PATH_YET: return "no path yet";
+    case GMMRRT_NO_PATH_ON_SIDE: return "no path on the preferred side";
     case GMMRRT_POOL_FULL: return "node pool full";
     case GMMRRT_TIMEOUT: return "timeout";
     case GMMRRT_STOP_POSE_STALE: return "stopped: robot pose is stale";

@@ -8,9 +8,9 @@
  * allocated: set_problem, run and best_path only use the block.
  *
  * Cost of an edge (paper Sect. 4): integral over the edge of (w_length + w_task c(f(x))) ds,
- * c(f) = delta / max(p(f), delta), f the features of x relative to the person the task is
- * about; with several people in avoid, c is the largest over the people within
- * person_influence_m. Quadrature: docs/planner.md.
+ * c(f) the task cost of cfg.task_cost (gmm.h), f the features of x relative to the person the
+ * task is about; with several people in avoid, relative to the one nearest x among those
+ * within person_influence_m of the segment start-goal. Quadrature: docs/planner.md.
  */
 #ifndef GMMRRT_RRTSTAR_H
 #define GMMRRT_RRTSTAR_H
@@ -30,6 +30,17 @@ extern "C" {
 
 typedef struct gmmrrt_planner gmmrrt_planner_t;
 
+/* Which way round a person the path goes (problem.side). Counted by the bearing from the
+ * person to the robot, as metrics.same_homotopy counts it: LEFT = the bearing turns
+ * counterclockwise from start to goal (the person stays on the robot's left; for a person
+ * facing the oncoming robot that is the person's left, the data's `left` homotopy), RIGHT =
+ * clockwise. EITHER = no preference: the cheapest path, whichever side. */
+typedef enum {
+    GMMRRT_SIDE_EITHER = 0,
+    GMMRRT_SIDE_LEFT = 1,
+    GMMRRT_SIDE_RIGHT = 2
+} gmmrrt_side_t;
+
 /* One planning problem. Models are borrowed (not copied) and must outlive the run. */
 typedef struct {
     double start_x, start_y;      /* m, world */
@@ -40,6 +51,11 @@ typedef struct {
     const gmmrrt_model_t *model;  /* FEATURES model for the task (GMM-RRT*), or the XY model
                                      (GMM-RRT); NULL for plain RRT* */
     gmmrrt_obstacle_set_t obstacles; /* bounds, obstacles, people (people are obstacles too) */
+    int32_t side;                 /* gmmrrt_side_t: every edge keeps off the ray from side_person
+                                     through the middle of the other side's arc (0: EITHER, so a
+                                     zeroed problem has no preference); ignored without people */
+    int32_t side_person;          /* index into obstacles.people the side is about; -1: the person
+                                     nearest the segment start-goal */
 } gmmrrt_problem_t;
 
 /* Budget of one run: stops at whichever comes first. */
@@ -87,7 +103,8 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
 gmmrrt_status_t gmmrrt_planner_seed_path(gmmrrt_planner_t *p, const double *x, const double *y, int32_t n);
 
 /* Grows the tree within budget; may be called again to continue (anytime). Returns
- * GMMRRT_OK when a path to the goal exists, GMMRRT_NO_PATH_YET when not, GMMRRT_POOL_FULL
+ * GMMRRT_OK when a path to the goal exists, GMMRRT_NO_PATH_YET when not (GMMRRT_NO_PATH_ON_SIDE
+ * when problem.side asked for a side: the caller may re-plan with EITHER), GMMRRT_POOL_FULL
  * when the pool ran out (the best path so far is kept). Fills *stats when non-NULL. */
 gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *budget,
                                    gmmrrt_plan_stats_t *stats);

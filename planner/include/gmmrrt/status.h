@@ -44,6 +44,8 @@ typedef enum {
     GMMRRT_NO_PATH_YET = 40,             /* budget spent, goal not reached (yet) */
     GMMRRT_POOL_FULL = 41,               /* node pool exhausted; best path so far kept */
     GMMRRT_TIMEOUT = 42,                 /* deadline reached before any work could be done */
+    GMMRRT_NO_PATH_ON_SIDE = 43,         /* budget spent, no path on the preferred side (yet); re-plan
+                                            with GMMRRT_SIDE_EITHER to take the other side */
 
     /* Why gmmrrtd published a stop (an empty plan) when the planner was not asked */
     GMMRRT_STOP_POSE_STALE = 50,         /* no robot pose newer than the configured limit */
