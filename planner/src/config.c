@@ -35,7 +35,7 @@ void gmmrrt_planner_config_default(gmmrrt_planner_config_t *cfg)
     cfg->informed_sampling = 1;
     cfg->w_length = 1.0;
     cfg->w_task = 2.0;
-    cfg->task_cost = GMMRRT_TASK_COST_INWARD;
+    cfg->task_cost = GMMRRT_TASK_COST_PAPER; /* measured better on the real splits (docs/planner.md) */
     cfg->delta = 0.0;
     cfg->person_influence_m = 3.0;
     cfg->waypoint_spacing_m = 0.1;

@@ -166,14 +166,13 @@ static double task_cost_2d(const gmmrrt_model_t *m, const double *f, double delt
     return (p > delta) ? delta / p : 1.0;
 }
 
-/* Exponents of the inward density p~ (gmm.h) at f = (d, theta) (theta wrapped) into x[],
- * for a (d linear, theta angle) model: per component and image of theta, d - mu_d is held
- * at the ridge -b c y1 / (a^2 + b^2) (L^-1 = [[a, 0], [b, c]]: the d minimising the
- * quadratic form for that theta offset y1) when it lies beyond it. */
-static int inward_terms_2d(const gmmrrt_model_t *m, double f0, double f1, double *x, double *max_out)
+/* The largest held term of the inward density (gmm.h) at f = (d, theta) (theta wrapped), for
+ * a (d linear, theta angle) model: per component and image of theta, log w_i - q/2 with
+ * d - mu_d held at the ridge -b c y1 / (a^2 + b^2) (L^-1 = [[a, 0], [b, c]]: the d that
+ * minimises the quadratic form q at that theta offset y1) where it lies beyond it. */
+static double inward_held_max(const gmmrrt_model_t *m, double f0, double f1)
 {
     double mx = -INFINITY;
-    int n = 0;
     for (int32_t i = 0; i < m->k; ++i) {
         const double *inv = m->inv_chol[i];
         const double ridge = -(inv[1] * inv[2]) / (inv[0] * inv[0] + inv[1] * inv[1]);
@@ -184,13 +183,10 @@ static int inward_terms_2d(const gmmrrt_model_t *m, double f0, double f1, double
             const double r = ridge * y1;
             const double y0 = d0 > r ? r : d0;
             const double z0 = inv[0] * y0, z1 = inv[1] * y0 + inv[2] * y1;
-            const double t = m->log_coef[i] - 0.5 * (z0 * z0) - 0.5 * (z1 * z1);
-            x[n++] = t;
-            mx = max2(mx, t);
+            mx = max2(mx, m->log_coef[i] - 0.5 * (z0 * z0) - 0.5 * (z1 * z1));
         }
     }
-    *max_out = mx;
-    return n;
+    return mx;
 }
 
 double gmmrrt_gmm_inward_task_cost(const gmmrrt_model_t *model, const double *f, double delta)
@@ -201,18 +197,10 @@ double gmmrrt_gmm_inward_task_cost(const gmmrrt_model_t *model, const double *f,
     const double f0 = f[0], f1 = gmmrrt_wrap_angle(f[1]);
     if (isnan(f0) || isnan(f1) || isinf(f0))
         return 1.0;
-    double x[GMMRRT_MAX_K * 3];
-    double mx;
-    const int n = inward_terms_2d(model, f0, f1, x, &mx);
-    if (!(mx > -INFINITY))
-        return 1.0;
-    const double cut = mx - LSE_CUTOFF;
-    double s = 0.0;
-    for (int t = 0; t < n; ++t)
-        if (x[t] > cut)
-            s += exp(x[t] - mx);
-    const double p = exp(mx) * s;
-    return (p > delta) ? delta / p : 1.0;
+    const double p = gmmrrt_gmm_density(model, f);
+    const double held = exp(inward_held_max(model, f0, f1));
+    const double pt = p > held ? p : held;
+    return (pt > delta) ? delta / pt : 1.0;
 }
 
 /* ------------------------------------------------------------------ any D */

@@ -1,9 +1,9 @@
 /*
  * objective.c - the planner's cost (paper Sect. 4): the cost of an edge is
  *     integral over the edge of (w_length + w_task c(f(x))) ds,
- * c the task cost of cfg.task_cost (gmm.h): the paper's delta / max(p(f), delta) or the
- * inward variant (gmmrrt_gmm_inward_task_cost, the default; docs/planner.md gives the
- * evidence), f the features (d, theta) of x relative to the person the task is about. In
+ * c the task cost of cfg.task_cost (gmm.h): the paper's delta / max(p(f), delta) (the
+ * default) or the inward variant (gmmrrt_gmm_inward_task_cost; docs/planner.md gives the
+ * evidence for both), f the features (d, theta) of x relative to the person the task is about. In
  * AVOID with several people that is, point by point, the person nearest x among the active
  * ones (those within person_influence_m of the start-goal segment): the person a walker at x
  * is passing is the one it is next to, and the demonstrations are of one person at a time.

@@ -63,7 +63,7 @@ typedef struct {
                                   0: off */
     double w_length;           /* >= 0, weight of length in the edge cost */
     double w_task;             /* >= 0, weight of the task cost c(f) (paper Sect. 4) */
-    int32_t task_cost;         /* gmmrrt_task_cost_kind_t (default INWARD; a model that is not over
+    int32_t task_cost;         /* gmmrrt_task_cost_kind_t (default PAPER; a model that is not over
                                   (d, theta) gets the paper's cost either way) */
     double delta;              /* > 0 overrides the model's delta; 0 uses the model's */
     double person_influence_m; /* > 0, avoid model applies to people within this distance of the segment start-goal */

@@ -37,17 +37,22 @@ double gmmrrt_gmm_component_log_density(const gmmrrt_model_t *model, int32_t i, 
 double gmmrrt_gmm_task_cost(const gmmrrt_model_t *model, const double *f, double delta);
 
 /* The inward task cost: c~(f) = delta / max(p~(f), delta) for a (d, theta) model (dim 2, d
- * linear, theta an angle: angle_mask 2; other models get the paper's cost). p~ is the mixture
- * with each component i, at the bearing theta, held at its largest value along d for every d
- * beyond its ridge d_i*(theta) = argmax_d N_i(d, theta) (the conditional mean of d given theta):
- *     p~(d, theta) = sum_i w_i N_w,i(min(d, d_i*(theta)), theta).
+ * linear, theta an angle: angle_mask 2; other models get the paper's cost), with
+ *     p~(d, theta) = max(p(d, theta), max_i w_i N_w,i(min(d, d_i*(theta)), theta)),
+ * d_i*(theta) = argmax_d N_i(d, theta), component i's ridge (the conditional mean of d given
+ * theta); the inner max runs over components and the images of theta.
  * Why: the demonstrations' density falls off in two directions from where people walk. Towards
  * the person it falls because people keep away (behaviour, to be charged); away from the
  * person it falls because recordings end a few metres out and people far away do not swerve
  * (no behaviour at all). The paper's cost charges both the same, so a path that passes wide
- * is charged as much as one that hits the person and is bent in towards the model's support;
- * c~ charges only the inward fall-off. Equals gmmrrt_gmm_task_cost wherever every component
- * is at or inside its ridge; never larger than it. */
+ * is charged as much as one that hits the person and is bent in towards the model's support.
+ * Here a point farther out than a component's ridge, at a bearing that component covers, costs
+ * no more than that component's best point: the outward fall-off is not charged. One component
+ * at a time, not their sum: a sum of held components would be largest beyond every ridge and
+ * push paths out past the widest one; each single held term is at most the mixture's density
+ * on that component's ridge, so far out is never cheaper than the best distance at that bearing.
+ * Equals gmmrrt_gmm_task_cost where p is at least every held term (inside the ridges); never
+ * larger than it. */
 double gmmrrt_gmm_inward_task_cost(const gmmrrt_model_t *model, const double *f, double delta);
 
 /* The task cost of n points of a D = 2 model at once: cost[i] = c((f0[i], f1[i])), what the

@@ -368,9 +368,9 @@ static void test_task_cost_vector_widths_give_the_same_bits(void **state)
 
 /* The inward cost (gmm.h): the batch agrees with the one-point call; it never exceeds the
  * paper's cost; it equals it at points inside every component's ridge; beyond the data, far
- * from the person at a bearing the data covers, it is below 1 where the paper's cost is 1;
- * along d at a fixed bearing it never increases outwards past the components' ridges. Models
- * other than (d, theta) get the paper's cost. */
+ * from the person at a bearing the data covers, it is below 1 where the paper's cost is 1, and
+ * constant along d, and no cheaper than a component's own best point. Models other than
+ * (d, theta) get the paper's cost. */
 static void test_inward_task_cost_charges_only_the_fall_off_towards_the_person(void **state)
 {
     (void)state;
@@ -406,15 +406,21 @@ static void test_inward_task_cost_charges_only_the_fall_off_towards_the_person(v
     const double far[2] = {m.mean[0][0] + 50.0, m.mean[0][1]};
     assert_true(gmmrrt_gmm_task_cost(&m, far, m.delta) == 1.0);
     assert_true(gmmrrt_gmm_inward_task_cost(&m, far, m.delta) < 1.0);
-    /* Outwards along d at a fixed bearing, past every ridge: the cost does not grow. */
+    /* Far out along d at a fixed bearing, past every ridge and the mixture's own tail: the
+     * cost no longer changes with d (the held terms do not depend on it). */
     for (double theta = -3.0; theta <= 3.0; theta += 0.5) {
-        double prev = 2.0;
+        const double f10[2] = {10.0, theta};
+        const double c10 = gmmrrt_gmm_inward_task_cost(&m, f10, m.delta);
         for (double d = 10.0; d <= 30.0; d += 0.5) {
             const double f[2] = {d, theta};
-            const double c = gmmrrt_gmm_inward_task_cost(&m, f, m.delta);
-            assert_true(c <= prev * (1.0 + 1e-12));
-            prev = c;
+            assert_true(gmmrrt_gmm_inward_task_cost(&m, f, m.delta) == c10);
         }
+    }
+    /* Never below the cost at the best distance of the single strongest component at that
+     * bearing: at a component's mean, far out costs at least what the mean costs. */
+    for (int k = 0; k < m.k; ++k) {
+        const double at[2] = {m.mean[k][0], m.mean[k][1]}, out[2] = {m.mean[k][0] + 40.0, m.mean[k][1]};
+        assert_true(gmmrrt_gmm_inward_task_cost(&m, out, m.delta) >= gmmrrt_gmm_inward_task_cost(&m, at, m.delta));
     }
     /* A generic model gets the paper's cost. */
     gmmrrt_model_t g;

@@ -239,7 +239,7 @@ def test_side_is_kept_and_either_reports_both_sides(tmp_path):
 
 def test_cost_choice_changes_the_plan(tmp_path):
     """Start and goal 2.5 m to the side of the person, the model's support at 1.2 m: the paper's cost
-    bends the path in, the inward cost (the default) does not."""
+    bends the path in, the inward cost does not; the default is the paper's."""
     model = write_features_model(tmp_path / "both.gmm", [math.pi * i / 6 for i in range(-5, 6) if i])
     base = ["--model", str(model), "--start", "-4,2.5", "--goal", "4,2.5", "--person", "0,0,3.141592653589793",
             "--iterations", "6000", "--bias", "0.5", "--bounds", "-6,-4,6,5", "--json"]
@@ -249,4 +249,4 @@ def test_cost_choice_changes_the_plan(tmp_path):
         assert r.returncode == 0, r.stderr
         closest[cost] = min(math.hypot(x, y) for x, y in json.loads(r.stdout)["path"])
     assert closest["paper"] < 2.0 < 2.3 < closest["inward"]
-    assert closest[None] == closest["inward"]
+    assert closest[None] == closest["paper"]
