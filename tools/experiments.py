@@ -279,6 +279,7 @@ def homotopies(ctx: Ctx, task: str) -> List[str]:
 PLANNERS_T1 = [  # label, planner, model homotopy ("row" = the row's homotopy, "all" = the task model), kind, extra
     ("GMM-RRT*", "gmm-rrt-star", "row", "features", ("--cost", "paper")),
     ("GMM-RRT* (inward cost)", "gmm-rrt-star", "row", "features", ("--cost", "inward")),
+    ("GMM-RRT* (background cost)", "gmm-rrt-star", "row", "features", ("--cost", "background", "BACKGROUND")),
     ("GMM-RRT* (task model)", "gmm-rrt-star", "all", "features", ("--cost", "paper")),
     ("GMM-RRT", "gmm-rrt", "row", "xy", ()),
     ("RRT*", "rrt-star", None, None, ()),
@@ -299,6 +300,10 @@ def exp_table1(ctx: Ctx) -> None:
             ds = d[(task, hom)]
             for label, planner, mh, kind, extra in PLANNERS_T1:
                 mdl = model(ctx, task, hom if mh == "row" else "all", kind) if mh else None
+                if "BACKGROUND" in extra:  # the straight lines of all the task's demonstrations
+                    every = [e for (t, _), es in d.items() if t == task for e in es]
+                    bg = background_model(ctx, f"demos_{task}", None, None, task, every)
+                    extra = tuple(a for a in extra if a != "BACKGROUND") + ("--background-model", str(bg))
                 iters = s.gmm_rrt_iterations if planner == "gmm-rrt" else s.iterations
                 for i in range(s.trials):
                     demo = ds[i % len(ds)]
@@ -352,7 +357,9 @@ def exp_table1(ctx: Ctx) -> None:
         "over the successful trials. The paper's nine demonstrations share one set-up, ours vary start, goal and "
         "person pose, hence one demonstration per trial instead of all nine (see docs/experiments.md). GMM-RRT* "
         "uses the features model of the row's homotopy, bias 0.95 and the paper's task cost c = δ / max(p, δ), "
-        "'GMM-RRT* (inward cost)' the same with the inward cost (docs/planner.md); 'GMM-RRT* (task model)' one model of all "
+        "'GMM-RRT* (inward cost)' the same with the inward cost and 'GMM-RRT* (background cost)' with the background cost "
+        "(docs/planner.md; background = the straight lines start-goal of all the task's demonstrations); "
+        "'GMM-RRT* (task model)' one model of all "
         "the task's homotopies (the paper's Sect. 5.1: one model per task); GMM-RRT the x-y model of the row's "
         "homotopy; RRT* no model. Models are learned from the same demonstrations, as in the paper (no hold-out). "
         "'same side' = the plan passes the person on the same side as the demonstration (swept bearing angles "
@@ -739,10 +746,37 @@ DEFAULT_COST = "paper"
 DEFAULT_LABEL = f"GMM-RRT* ({DEFAULT_COST} cost)"
 
 
-def _avoid_planners(mdl: Path, one_person: bool) -> List[Tuple[str, str, Optional[Path], Tuple[str, ...]]]:
+def background_model(ctx: Ctx, name: str, ep_csv: Optional[str], index: Optional[str], task: str = "avoid",
+                     episodes: Optional[List[S.Episode]] = None) -> Path:
+    """The background of the task model: a features model fitted (gmmrrt-learn fit, same split) to the
+    straight lines start-goal of the same episodes, as many points per episode as the human's, each
+    with its own person: where the walkers would have been had they not reacted to the person."""
+    eps = episodes if episodes is not None else S.read_episodes(ep_csv, index=index)
+    csv_out = ctx.work / "models" / f"{name}_straight.csv"
+    csv_out.parent.mkdir(parents=True, exist_ok=True)
+    lines = ["episode_id,task,homotopy,t,robot_x,robot_y,person_x,person_y,person_yaw"]
+    for e in eps:
+        n = len(e.xy)
+        for i in range(n):
+            u = i / (n - 1) if n > 1 else 0.0
+            x, y = (1 - u) * e.xy[0] + u * e.xy[-1]
+            lines.append(f"{e.episode_id},{e.task},{e.homotopy},{0.1 * i:.1f},{x!r},{y!r},{e.person[0]!r},"
+                         f"{e.person[1]!r},{e.person[2]!r}")
+    text = "\n".join(lines) + "\n"
+    if not csv_out.is_file() or csv_out.read_text() != text:
+        csv_out.write_text(text)
+    return R.fit_model(ctx.work / "models" / f"{name}_straight_{ctx.train_split if index else 'all'}.gmm", task,
+                       [str(csv_out)], homotopy="all", seed=ctx.s.seed, index=index,
+                       split=ctx.train_split if index else None, bin_dir=ctx.bin_dir)
+
+
+def _avoid_planners(mdl: Path, one_person: bool, bg: Optional[Path] = None) -> List[Tuple[str, str, Optional[Path], Tuple[str, ...]]]:
     d = ("--cost", DEFAULT_COST)
     out = [("GMM-RRT* (paper cost)", "gmm-rrt-star", mdl, ("--cost", "paper")),
            ("GMM-RRT* (inward cost)", "gmm-rrt-star", mdl, ("--cost", "inward"))]
+    if bg is not None:
+        out.append(("GMM-RRT* (background cost)", "gmm-rrt-star", mdl, ("--cost", "background", "--background-model",
+                                                                       str(bg))))
     if one_person:
         out.append(("GMM-RRT* (paper cost, own person only)", "gmm-rrt-star", mdl, ("--cost", "paper", "ONE_PERSON")))
     out += [(f"GMM-RRT* ({DEFAULT_COST} cost, straight line's side)", "gmm-rrt-star", mdl, d + ("STRAIGHT_SIDE",)),
@@ -777,7 +811,7 @@ def real_upo_avoid(ctx: Ctx) -> RealSet:
                    "person of its recording (the index's scene column: the persons of all episodes of that recording), "
                    "its own person first, and compared with what the human drove.",
                    eps, [multi_person_scene(e, people[e.episode_id]) for e in eps],
-                   _avoid_planners(mdl, one_person=True),
+                   _avoid_planners(mdl, one_person=True, bg=background_model(ctx, "upo_avoid", ep_csv, idx)),
                    agreement=RD.human_side_agreement(every, lambda e: e.meta["scene"]))
 
 
@@ -804,7 +838,7 @@ def real_ucy_avoid(ctx: Ctx) -> RealSet:
                    f"{RD.STANDING_SPAN_M} m of their mean) through the whole episode (ucy_tracks.csv); their facing is "
                    "the annotated gaze when an episode is about them, else towards the walker.",
                    eps, [multi_person_scene(e, people[e.episode_id]) for e in eps],
-                   _avoid_planners(mdl, one_person=False),
+                   _avoid_planners(mdl, one_person=False, bg=background_model(ctx, "ucy_avoid", ep_csv, idx)),
                    agreement=RD.human_side_agreement(every, lambda e: (e.meta["scene"], e.meta["person_track"])))
 
 

@@ -36,7 +36,7 @@ static void usage(FILE *out)
             "       [--iterations N] [--seed S] [--robot-radius R] [--bounds xmin,ymin,xmax,ymax]\n"
             "       [--task avoid|approach] [--target-person I] [--goal-tolerance M]\n"
             "       [--delta D] [--w-task W] [--rewire-k F] [--informed 0|1] [--json]\n"
-            "       [--side left|right|either] [--cost paper|inward]\n"
+            "       [--side left|right|either] [--cost paper|inward|background] [--background-model FILE]\n"
             "\n"
             "Plans a path with GMM-RRT* (the paper's planner), plain RRT* or the GMM-RRT baseline\n"
             "and prints it as x,y CSV (header line first), or with --json one object:\n"
@@ -75,7 +75,9 @@ static void usage(FILE *out)
             "                      within the budget: status \"no path on the preferred side\", exit 3\n"
             "  --side-person I     person index (0-based) the side is about (default: the person\n"
             "                      nearest the segment start-goal)\n"
-            "  --cost NAME         task cost: paper (default, delta / max(p, delta)) or inward (gmm.h)\n"
+            "  --cost NAME         task cost: paper (default, delta / max(p, delta)), inward (gmm.h) or\n"
+            "                      background ((p_bg + delta) / (p + p_bg + 2 delta), needs the next)\n"
+            "  --background-model FILE  features model of where walkers go without the person\n"
             "  --json              print one JSON object instead of CSV\n"
             "  -h, --help          this text\n"
             "\n"
@@ -147,7 +149,7 @@ int main(int argc, char **argv)
 {
     enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_PLANNER, OPT_BIAS, OPT_BUDGET,
            OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_DELTA,
-           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_SIDE, OPT_SIDE_PERSON, OPT_COST };
+           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_SIDE, OPT_SIDE_PERSON, OPT_COST, OPT_BG };
     static const struct option opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
         {"goal", required_argument, NULL, OPT_GOAL},         {"person", required_argument, NULL, OPT_PERSON},
@@ -160,13 +162,13 @@ int main(int argc, char **argv)
         {"delta", required_argument, NULL, OPT_DELTA},       {"w-task", required_argument, NULL, OPT_WTASK},
         {"rewire-k", required_argument, NULL, OPT_REWIRE_K}, {"informed", required_argument, NULL, OPT_INFORMED},
         {"side", required_argument, NULL, OPT_SIDE},         {"side-person", required_argument, NULL, OPT_SIDE_PERSON},
-        {"cost", required_argument, NULL, OPT_COST},
+        {"cost", required_argument, NULL, OPT_COST},         {"background-model", required_argument, NULL, OPT_BG},
         {"help", no_argument, NULL, 'h'},                    {NULL, 0, NULL, 0}};
 
     static gmmrrt_problem_t pr; /* large (obstacle arrays): static, zeroed */
     gmmrrt_planner_config_t cfg;
     gmmrrt_planner_config_default(&cfg);
-    const char *model_path = NULL;
+    const char *model_path = NULL, *bg_path = NULL;
     int have_start = 0, have_goal = 0, have_bounds = 0, json = 0, planner = 0, task = 0;
     double budget_ms = -1.0;
     long long iterations = 0, target = 0, side_person = -1;
@@ -322,13 +324,18 @@ int main(int argc, char **argv)
                 return fail("--side-person '%s': expected an index >= 0%s", optarg, "");
             side_person = n;
             break;
+        case OPT_BG:
+            bg_path = optarg;
+            break;
         case OPT_COST:
             if (strcmp(optarg, "inward") == 0)
                 cfg.task_cost = GMMRRT_TASK_COST_INWARD;
             else if (strcmp(optarg, "paper") == 0)
                 cfg.task_cost = GMMRRT_TASK_COST_PAPER;
+            else if (strcmp(optarg, "background") == 0)
+                cfg.task_cost = GMMRRT_TASK_COST_BACKGROUND;
             else
-                return fail("--cost '%s': expected inward or paper%s", optarg, "");
+                return fail("--cost '%s': expected paper, inward or background%s", optarg, "");
             break;
         case ':':
             return fail("option '%s' needs a value (see --help)%s", argv[optind - 1], "");
@@ -348,6 +355,15 @@ int main(int argc, char **argv)
         if (ms != GMMRRT_OK)
             return fail("cannot use --model: %s%s", err, "");
     }
+    static gmmrrt_model_t background;
+    if (bg_path) {
+        const gmmrrt_status_t ms = gmmrrt_model_load_file(bg_path, &background, err, sizeof err);
+        if (ms != GMMRRT_OK)
+            return fail("cannot use --background-model: %s%s", err, "");
+        pr.background_model = &background;
+    }
+    if (cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND && !bg_path)
+        return fail("--cost background needs --background-model%s%s", "", "");
     if (planner == 0)
         planner = model_path ? GMMRRT_PLANNER_GMM_RRT_STAR : GMMRRT_PLANNER_RRT_STAR;
     if (planner != GMMRRT_PLANNER_RRT_STAR && !model_path)

@@ -115,6 +115,14 @@ void gmmrrt_gmm_task_cost_batch(const gmmrrt_model_t *model, const double *f0, c
     (void)gmmrrt_gmm_task_cost_batch_lanes(model, f0, f1, n, delta, cost, 0, 0); /* 0: always available */
 }
 
+void gmmrrt_gmm_density_batch(const gmmrrt_model_t *model, const double *f0, const double *f1, int32_t n, double *p)
+{
+    const double floor = 1e-280; /* above the kernel's floor (TC_MIN_KERNEL_DELTA): the vector path */
+    (void)gmmrrt_gmm_task_cost_batch_lanes(model, f0, f1, n, floor, p, 0, 0);
+    for (int32_t i = 0; i < n; ++i)
+        p[i] = p[i] < 1.0 ? floor / p[i] : 0.0; /* c = floor / p where p > floor, else 1 */
+}
+
 void gmmrrt_gmm_inward_task_cost_batch(const gmmrrt_model_t *model, const double *f0, const double *f1, int32_t n,
                                        double delta, double *cost)
 {

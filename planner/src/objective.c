@@ -47,10 +47,20 @@ static void task_costs(const struct gmmrrt_planner *p, const double *x, const do
         gmmrrt_features_from_xy_cs(&people[p->active[best]], p->active_cos[best], p->active_sin[best], x[i], y[i],
                                    &d[i], &theta[i]);
     }
-    if (p->cfg.task_cost == GMMRRT_TASK_COST_INWARD)
+    if (p->cfg.task_cost == GMMRRT_TASK_COST_INWARD) {
         gmmrrt_gmm_inward_task_cost_batch(p->problem.model, d, theta, n, p->delta, c);
-    else
+    } else if (p->cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND) {
+        /* The share of the background at x: 0 where only the demonstrations go (people swerve
+         * there), 1 where only the straight lines go (people keep away), 1/2 where both or
+         * neither do (delta, the model's floor, stands for "no evidence"). */
+        double pb[EDGE_CHUNK];
+        gmmrrt_gmm_density_batch(p->problem.model, d, theta, n, c);
+        gmmrrt_gmm_density_batch(p->problem.background_model, d, theta, n, pb);
+        for (int32_t i = 0; i < n; ++i)
+            c[i] = (pb[i] + p->delta) / (c[i] + pb[i] + 2.0 * p->delta);
+    } else {
         gmmrrt_gmm_task_cost_batch(p->problem.model, d, theta, n, p->delta, c);
+    }
 }
 
 double gmmrrt_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1)

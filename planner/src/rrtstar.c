@@ -241,6 +241,10 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
             return GMMRRT_ERR_MODEL_MISMATCH;
         if (p->cfg.delta == 0.0 && !(isfinite(m->delta) && m->delta > 0.0))
             return GMMRRT_ERR_MODEL_MISMATCH;
+        const gmmrrt_model_t *bg = pr->background_model;
+        if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT_STAR && p->cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND &&
+            (!bg || bg->kind != GMMRRT_MODEL_KIND_FEATURES || bg->dim != 2 || bg->k < 1 || bg->k > GMMRRT_MAX_K))
+            return GMMRRT_ERR_MODEL_MISMATCH;
     }
 
     /* Builds the world (validates every obstacle number and the bounds); keeps the last

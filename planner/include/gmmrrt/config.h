@@ -25,10 +25,14 @@ typedef enum {
 /* Which task cost c(f) GMM-RRT* integrates (docs/planner.md, "Task cost"). */
 typedef enum {
     GMMRRT_TASK_COST_PAPER = 1,  /* c = delta / max(p, delta) (paper Sect. 4) */
-    GMMRRT_TASK_COST_INWARD = 2  /* the same with each component's density held at its value on
+    GMMRRT_TASK_COST_INWARD = 2, /* the same with each component's density held at its value on
                                     its ridge for points farther from the person than the ridge
                                     (gmm.h, gmmrrt_gmm_inward_task_cost): only the fall-off
                                     towards the person, where people keep away, is charged */
+    GMMRRT_TASK_COST_BACKGROUND = 3 /* c = (p_bg + delta) / (p + p_bg + 2 delta), p_bg the density of
+                                    problem.background_model (where the walkers would have been
+                                    without the person): the share of "would be here anyway";
+                                    1/2 where neither model has data (objective.c) */
 } gmmrrt_task_cost_kind_t;
 
 typedef struct {

@@ -62,6 +62,11 @@ double gmmrrt_gmm_inward_task_cost(const gmmrrt_model_t *model, const double *f,
 void gmmrrt_gmm_task_cost_batch(const gmmrrt_model_t *model, const double *f0, const double *f1, int32_t n,
                                 double delta, double *cost);
 
+/* p(f) of n points of a D = 2 model at once into p[i], through the task-cost kernel (p = d / c
+ * with a floor d = 1e-280: below it p is 0). Agrees with gmmrrt_gmm_density to about 1e-13
+ * relative above the floor; the same bits on every vector width. */
+void gmmrrt_gmm_density_batch(const gmmrrt_model_t *model, const double *f0, const double *f1, int32_t n, double *p);
+
 /* gmmrrt_gmm_inward_task_cost of n points at once (same kernel, same contract as
  * gmmrrt_gmm_task_cost_batch; agrees with the one-point call to about 1e-14 relative). */
 void gmmrrt_gmm_inward_task_cost_batch(const gmmrrt_model_t *model, const double *f0, const double *f1, int32_t n,

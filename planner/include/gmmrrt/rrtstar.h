@@ -56,6 +56,10 @@ typedef struct {
                                      zeroed problem has no preference); ignored without people */
     int32_t side_person;          /* index into obstacles.people the side is about; -1: the person
                                      nearest the segment start-goal */
+    const gmmrrt_model_t *background_model; /* FEATURES model for cfg.task_cost BACKGROUND (else
+                                     unused, may be NULL): where walkers would be without the
+                                     person, e.g. fitted to the straight lines start-goal of the
+                                     task model's episodes */
 } gmmrrt_problem_t;
 
 /* Budget of one run: stops at whichever comes first. */

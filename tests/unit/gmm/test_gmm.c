@@ -422,6 +422,16 @@ static void test_inward_task_cost_charges_only_the_fall_off_towards_the_person(v
         const double at[2] = {m.mean[k][0], m.mean[k][1]}, out[2] = {m.mean[k][0] + 40.0, m.mean[k][1]};
         assert_true(gmmrrt_gmm_inward_task_cost(&m, out, m.delta) >= gmmrrt_gmm_inward_task_cost(&m, at, m.delta));
     }
+    /* The density batch (the background cost's p) agrees with the scalar density. */
+    double dens[200];
+    gmmrrt_gmm_density_batch(&m, f0, f1, n, dens);
+    for (int i = 0; i < n; ++i) {
+        const double f[2] = {f0[i], f1[i]};
+        const double p = gmmrrt_gmm_density(&m, f);
+        if (!isfinite(f[0]) || !isfinite(f[1]) || !(p > 1e-270))
+            continue;
+        assert_rel(dens[i], p, 1e-13, "density batch vs gmmrrt_gmm_density");
+    }
     /* A generic model gets the paper's cost. */
     gmmrrt_model_t g;
     masked_fixture(&g, 0u);

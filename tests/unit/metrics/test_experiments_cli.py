@@ -91,12 +91,13 @@ def test_real_data_harness_scores_what_the_planner_returns(tmp_path):
     out = tmp_path / "out"
     md = (out / "real_upo_avoid-quick.md").read_text()
     for row in ("| GMM-RRT* (paper cost) |", "| GMM-RRT* (inward cost) |", "| RRT* |", "| human (reference) |",
+                "| GMM-RRT* (background cost) |",
                 "| GMM-RRT* (paper cost, human's side) |", "| GMM-RRT* (paper cost, own person only) |"):
         assert row in md
     assert "tools/experiments.py real --quick" in md and "two humans in nearly the same situation" in md
     data = json.loads((out / "real_upo_avoid-quick.json").read_text())
     runs = data["runs"]
-    assert len(runs) == 12  # 2 episodes x 6 planners
+    assert len(runs) == 14  # 2 episodes x 7 planners
     assert sorted({r["seed"] for r in runs}) == [7, 8]
     assert all("--seed" in r["argv"] and "--json" in r["argv"] for r in runs)
     gmm_runs = [r for r in runs if r["planner"].startswith("GMM-RRT*")]
@@ -110,6 +111,9 @@ def test_real_data_harness_scores_what_the_planner_returns(tmp_path):
     # the learner was asked for the train split only
     model_args = (tmp_path / "work" / "models" / "upo_avoid_train_all.gmm").read_text()
     assert "--split train" in model_args and "--task avoid" in model_args
+    bg_args = (tmp_path / "work" / "models" / "upo_avoid_straight_train.gmm").read_text()
+    assert "--split train" in bg_args and "upo_avoid_straight.csv" in bg_args
+    assert all("--background-model" in r["argv"] for r in runs if "background" in r["planner"])
     ucy_args = (tmp_path / "work" / "models" / "ucy_avoid_train_all.gmm").read_text()
     assert "--split train" in ucy_args and "ucy_index.csv" in ucy_args
     assert (out / "real_upo_avoid-quick.png").stat().st_size > 1000

@@ -44,7 +44,7 @@ def test_help_lists_every_option():
     assert r.returncode == 0
     for opt in ["--model", "--start", "--goal", "--person", "--obstacle", "--planner", "--bias",
                 "--budget-ms", "--iterations", "--seed", "--robot-radius", "--bounds", "--json", "--delta",
-                "--w-task", "--rewire-k", "--informed", "--side", "--side-person", "--cost", "cost_history"]:
+                "--w-task", "--rewire-k", "--informed", "--side", "--side-person", "--cost", "--background-model", "cost_history"]:
         assert opt in r.stdout
 
 
@@ -116,6 +116,8 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0", "--goal", "1,1", "--side-person", "-1"], "--side-person"),
     (["--start", "0,0", "--goal", "3,3", "--person", "1,1,0", "--side-person", "1"], "--side-person"),
     (["--start", "0,0", "--goal", "1,1", "--cost", "max"], "--cost"),
+    (["--start", "0,0", "--goal", "1,1", "--cost", "background"], "needs --background-model"),
+    (["--start", "0,0", "--goal", "1,1", "--background-model", "/nonexistent/bg.gmm"], "/nonexistent/bg.gmm"),
 ])
 def test_bad_input_is_refused_with_a_clear_error(args, message):
     r = run(*args)

@@ -221,8 +221,9 @@ static void test_only_people_near_the_path_count(void **state)
 /* The edge cost by definition (objective.c's contract), point by point: midpoint rule with
  * n = ceil(len / res), each point costed through a one-point batch (lanes never mix, so a
  * point gets the same bits alone as in a chunk) relative to the nearest of people[0..np). */
-static double oracle_edge_cost(const gmmrrt_planner_config_t *cfg, const gmmrrt_model_t *m, double delta,
-                               const gmmrrt_pose_t *people, int np, double x0, double y0, double x1, double y1)
+static double oracle_edge_cost(const gmmrrt_planner_config_t *cfg, const gmmrrt_model_t *m, const gmmrrt_model_t *bg,
+                               double delta, const gmmrrt_pose_t *people, int np, double x0, double y0, double x1,
+                               double y1)
 {
     const double dx = x1 - x0, dy = y1 - y0;
     const double len = sqrt(dx * dx + dy * dy);
@@ -240,9 +241,14 @@ static double oracle_edge_cost(const gmmrrt_planner_config_t *cfg, const gmmrrt_
                 best = k;
         double d, theta, c;
         gmmrrt_features_from_xy_cs(&people[best], cos(people[best].yaw), sin(people[best].yaw), x, y, &d, &theta);
-        if (cfg->task_cost == GMMRRT_TASK_COST_INWARD)
+        if (cfg->task_cost == GMMRRT_TASK_COST_INWARD) {
             gmmrrt_gmm_inward_task_cost_batch(m, &d, &theta, 1, delta, &c);
-        else
+        } else if (cfg->task_cost == GMMRRT_TASK_COST_BACKGROUND) {
+            double p, pb;
+            gmmrrt_gmm_density_batch(m, &d, &theta, 1, &p);
+            gmmrrt_gmm_density_batch(bg, &d, &theta, 1, &pb);
+            c = (pb + delta) / (p + pb + 2.0 * delta);
+        } else
             gmmrrt_gmm_task_cost_batch(m, &d, &theta, 1, delta, &c);
         sum += c;
     }
@@ -271,11 +277,12 @@ static double planner_edge_cost(const gmmrrt_planner_config_t *cfg, const gmmrrt
 static void test_each_point_is_costed_by_its_nearest_person(void **state)
 {
     (void)state;
-    gmmrrt_model_t m;
+    gmmrrt_model_t m, bg;
     two_side_model(&m);
+    left_model(&bg); /* any features model will do as the background here */
     const gmmrrt_pose_t people[2] = {person, {1.5, 2.2, -M_PI / 2}};
     const double ends[4][2] = {{-1.0, -1.5}, {0.0, 1.2}, {1.0, 3.2}, {2.8, 2.0}};
-    for (int kind = GMMRRT_TASK_COST_PAPER; kind <= GMMRRT_TASK_COST_INWARD; ++kind) {
+    for (int kind = GMMRRT_TASK_COST_PAPER; kind <= GMMRRT_TASK_COST_BACKGROUND; ++kind) {
         gmmrrt_planner_config_t cfg;
         gmmrrt_planner_config_default(&cfg);
         cfg.task_cost = kind;
@@ -283,17 +290,18 @@ static void test_each_point_is_costed_by_its_nearest_person(void **state)
         gmmrrt_problem_t pr = empty_problem(-3.0, -0.3, 4.0, 0.0);
         pr.task = GMMRRT_TASK_AVOID;
         pr.model = &m;
+        pr.background_model = &bg;
         pr.obstacles.num_people = 1;
         pr.obstacles.people[0] = people[0];
         int changed = 0;
         for (int e = 0; e < 4; ++e) {
             pr.obstacles.num_people = 1;
             const double alone = planner_edge_cost(&cfg, &pr, ends[e][0], ends[e][1]);
-            assert_true(alone == oracle_edge_cost(&cfg, &m, m.delta, people, 1, -3.0, -0.3, ends[e][0], ends[e][1]));
+            assert_true(alone == oracle_edge_cost(&cfg, &m, &bg, m.delta, people, 1, -3.0, -0.3, ends[e][0], ends[e][1]));
             pr.obstacles.num_people = 2;
             pr.obstacles.people[1] = people[1];
             const double both = planner_edge_cost(&cfg, &pr, ends[e][0], ends[e][1]);
-            assert_true(both == oracle_edge_cost(&cfg, &m, m.delta, people, 2, -3.0, -0.3, ends[e][0], ends[e][1]));
+            assert_true(both == oracle_edge_cost(&cfg, &m, &bg, m.delta, people, 2, -3.0, -0.3, ends[e][0], ends[e][1]));
             /* the first edge never comes nearer the second person than the first */
             if (e == 0)
                 assert_true(both == alone);
@@ -301,6 +309,22 @@ static void test_each_point_is_costed_by_its_nearest_person(void **state)
         }
         assert_true(changed >= 2);
     }
+    /* The background cost without a background model is a model mismatch. */
+    gmmrrt_planner_config_t cfg;
+    gmmrrt_planner_config_default(&cfg);
+    cfg.task_cost = GMMRRT_TASK_COST_BACKGROUND;
+    cfg.max_nodes = 100;
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = empty_problem(-3.0, -0.3, 4.0, 0.0);
+    pr.task = GMMRRT_TASK_AVOID;
+    pr.model = &m;
+    pr.obstacles.num_people = 1;
+    pr.obstacles.people[0] = person;
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ERR_MODEL_MISMATCH);
+    pr.background_model = &bg;
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    test_planner_free(&t);
 }
 
 /* ---------------------------------------------------------------- the inward cost */
