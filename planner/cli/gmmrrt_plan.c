@@ -53,7 +53,8 @@ static void usage(FILE *out)
             "       [--task avoid|approach] [--target-person I] [--goal-tolerance M]\n"
             "       [--delta D] [--w-task W] [--rewire-k F] [--informed 0|1] [--max-nodes N] [--json]\n"
             "       [--goal-yaw-tolerance DEG] [--min-turn-radius M] [--nominal-speed M_S] [--raw-path]\n"
-            "       [--approach-models DIR]\n"
+            "       [--approach-models DIR] [--map FILE.yaml]\n"
+            "       [--side left|right|either] [--cost paper|inward|background] [--background-model FILE]\n"
             "\n"
             "Plans a path with GMM-RRT* (the paper's planner), plain RRT* or the GMM-RRT baseline\n"
             "and prints it as x,y CSV (header line first), or with --json one object:\n"
@@ -108,6 +109,16 @@ static void usage(FILE *out)
             "                      OMPL's k_rrg); 0: the radius 15 sqrt(ln n / n)\n"
             "  --informed 0|1      informed sampling once a path exists (default 1)\n"
             "  --max-nodes N       tree node pool, 2..%d (default %d); memory grows with it\n"
+            "  --side S            left: the path goes counterclockwise round the person (the person\n"
+            "                      stays on the robot's left), right: clockwise; either: plan both and\n"
+            "                      print the cheaper, with each side's path and cost under \"sides\".\n"
+            "                      Default: one plan, whichever side is cheapest. No path on the side\n"
+            "                      within the budget: status \"no path on the preferred side\", exit 3\n"
+            "  --side-person I     person index (0-based) the side is about (default: the person\n"
+            "                      nearest the segment start-goal)\n"
+            "  --cost NAME         task cost: paper (default, delta / max(p, delta)), inward (gmm.h) or\n"
+            "                      background ((p_bg + delta) / (p + p_bg + 2 delta), needs the next)\n"
+            "  --background-model FILE  features model of where walkers go without the person\n"
             "  --json              print one JSON object instead of CSV\n"
             "  -h, --help          this text\n"
             "\n"
@@ -118,6 +129,9 @@ static void usage(FILE *out)
             "within the budget.\n",
             GMMRRT_MAX_NODES_CEILING, GMMRRT_DEFAULT_MAX_NODES);
 }
+
+/* set_problem accepted the problem: as asked (OK) or starting with an escape (ESCAPE). */
+static int problem_set(gmmrrt_status_t st) { return st == GMMRRT_OK || st == GMMRRT_ESCAPE; }
 
 static const char *task_name(int32_t task)
 {
@@ -208,7 +222,8 @@ int main(int argc, char **argv)
 {
     enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_PLANNER, OPT_BIAS, OPT_BUDGET,
            OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_DELTA,
-           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_YAW_TOL, OPT_TURN_RADIUS, OPT_SPEED, OPT_RAW, OPT_SET, OPT_MAX_NODES, OPT_MAP };
+           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_YAW_TOL, OPT_TURN_RADIUS, OPT_SPEED, OPT_RAW, OPT_SET, OPT_MAX_NODES, OPT_MAP,
+           OPT_SIDE, OPT_SIDE_PERSON, OPT_COST, OPT_BG };
     static const struct option opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
         {"goal", required_argument, NULL, OPT_GOAL},         {"person", required_argument, NULL, OPT_PERSON},
@@ -226,17 +241,20 @@ int main(int argc, char **argv)
         {"nominal-speed", required_argument, NULL, OPT_SPEED},  {"raw-path", no_argument, NULL, OPT_RAW},
         {"approach-models", required_argument, NULL, OPT_SET},
         {"map", required_argument, NULL, OPT_MAP},
+        {"side", required_argument, NULL, OPT_SIDE},         {"side-person", required_argument, NULL, OPT_SIDE_PERSON},
+        {"cost", required_argument, NULL, OPT_COST},         {"background-model", required_argument, NULL, OPT_BG},
         {"help", no_argument, NULL, 'h'},                    {NULL, 0, NULL, 0}};
 
     static gmmrrt_problem_t pr; /* large (obstacle arrays): static, zeroed */
     gmmrrt_planner_config_t cfg;
     gmmrrt_planner_config_default(&cfg);
-    const char *model_path = NULL, *set_dir = NULL, *map_path = NULL;
+    const char *model_path = NULL, *set_dir = NULL, *map_path = NULL, *bg_path = NULL;
     int have_start = 0, have_goal = 0, have_bounds = 0, json = 0, planner = 0, task = 0, raw = 0, have_yaw = 0;
     gmmrrt_drive_options_t drive;
     gmmrrt_drive_options_default(&drive);
     double budget_ms = -1.0;
-    long long iterations = 0, target = 0;
+    long long iterations = 0, target = 0, side_person = -1;
+    int side = -1; /* -1: no --side (one plan); GMMRRT_SIDE_EITHER: both sides */
     pr.goal_tolerance_m = 0.1;
     pr.target_person = -1;
 
@@ -416,6 +434,34 @@ int main(int argc, char **argv)
             }
             cfg.max_nodes = (int32_t)n;
             break;
+        case OPT_SIDE:
+            if (strcmp(optarg, "left") == 0)
+                side = GMMRRT_SIDE_LEFT;
+            else if (strcmp(optarg, "right") == 0)
+                side = GMMRRT_SIDE_RIGHT;
+            else if (strcmp(optarg, "either") == 0)
+                side = GMMRRT_SIDE_EITHER;
+            else
+                return fail("--side '%s': expected left, right or either%s", optarg, "");
+            break;
+        case OPT_SIDE_PERSON:
+            if (!parse_int64(optarg, &n) || n < 0)
+                return fail("--side-person '%s': expected an index >= 0%s", optarg, "");
+            side_person = n;
+            break;
+        case OPT_BG:
+            bg_path = optarg;
+            break;
+        case OPT_COST:
+            if (strcmp(optarg, "inward") == 0)
+                cfg.task_cost = GMMRRT_TASK_COST_INWARD;
+            else if (strcmp(optarg, "paper") == 0)
+                cfg.task_cost = GMMRRT_TASK_COST_PAPER;
+            else if (strcmp(optarg, "background") == 0)
+                cfg.task_cost = GMMRRT_TASK_COST_BACKGROUND;
+            else
+                return fail("--cost '%s': expected paper, inward or background%s", optarg, "");
+            break;
         case ':':
             return fail("option '%s' needs a value (see --help)%s", argv[optind - 1], "");
         default:
@@ -470,6 +516,15 @@ int main(int argc, char **argv)
         model_path = set_dir;
         task = GMMRRT_TASK_APPROACH;
     }
+    static gmmrrt_model_t background;
+    if (bg_path) {
+        const gmmrrt_status_t ms = gmmrrt_model_load_file(bg_path, &background, err, sizeof err);
+        if (ms != GMMRRT_OK)
+            return fail("cannot use --background-model: %s%s", err, "");
+        pr.background_model = &background;
+    }
+    if (cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND && !bg_path)
+        return fail("--cost background needs --background-model%s%s", "", "");
     if (planner == 0)
         planner = model_path ? GMMRRT_PLANNER_GMM_RRT_STAR : GMMRRT_PLANNER_RRT_STAR;
     if (planner != GMMRRT_PLANNER_RRT_STAR && !model_path)
@@ -496,6 +551,10 @@ int main(int argc, char **argv)
     } else {
         pr.task = GMMRRT_TASK_NONE;
     }
+    if (side_person >= pr.obstacles.num_people)
+        return fail("--side-person is out of range (fewer --person given)%s%s", "", "");
+    pr.side_person = (int32_t)side_person;
+    pr.side = side > 0 ? side : GMMRRT_SIDE_EITHER;
     if (!have_bounds && map_path) {
         /* The map's extent: the box around its four corners. */
         gmmrrt_bounds_t *b = &pr.obstacles.bounds;
@@ -560,8 +619,27 @@ int main(int argc, char **argv)
                              : (pr.task == GMMRRT_TASK_APPROACH ? GMMRRT_ARRIVAL_FACE_TARGET : GMMRRT_ARRIVAL_ANY);
     gmmrrt_budget_t budget = {0.0, iterations, 0.0, 0};
     budget.time_ms = budget_ms > 0.0 ? budget_ms : (iterations > 0 ? 0.0 : 1000.0);
+    /* --side either: one plan per side (same seed and budget each); the cheaper is the answer. */
+    static gmmrrt_path_t side_path[2];
+    gmmrrt_status_t side_st[2] = {GMMRRT_NO_PATH_YET, GMMRRT_NO_PATH_YET};
+    if (side == GMMRRT_SIDE_EITHER) {
+        for (int k = 0; k < 2 && problem_set(st); ++k) {
+            pr.side = k == 0 ? GMMRRT_SIDE_LEFT : GMMRRT_SIDE_RIGHT;
+            st = gmmrrt_planner_set_problem(p, &pr);
+            side_st[k] = problem_set(st) ? gmmrrt_planner_run(p, &budget, NULL) : st;
+            if (gmmrrt_planner_best_path(p, &side_path[k]) != GMMRRT_OK)
+                side_path[k].num_points = 0;
+        }
+        const int pick = side_path[1].num_points > 0 &&
+                         (side_path[0].num_points == 0 || side_path[1].cost < side_path[0].cost);
+        pr.side = pick ? GMMRRT_SIDE_RIGHT : GMMRRT_SIDE_LEFT;
+        st = gmmrrt_planner_set_problem(p, &pr); /* the chosen side again, for its statistics and history */
+    }
     gmmrrt_plan_stats_t stats;
-    st = gmmrrt_planner_run(p, &budget, &stats);
+    memset(&stats, 0, sizeof stats);
+    stats.first_solution_ms = -1.0;
+    stats.best_cost = INFINITY;
+    st = problem_set(st) ? gmmrrt_planner_run(p, &budget, &stats) : st;
     static gmmrrt_path_t path;
     gmmrrt_drive_report_t rep = {0};
     rep.status = GMMRRT_OK;
@@ -624,9 +702,28 @@ int main(int argc, char **argv)
             json_number(hist_cost[i]);
             printf("]");
         }
-        printf("], \"cost_history_complete\": %s, \"max_nodes\": %d, \"pruned\": %lld, \"pool_full\": %s}}\n",
+        printf("], \"cost_history_complete\": %s, \"max_nodes\": %d, \"pruned\": %lld, \"pool_full\": %s}",
                num_hist < GMMRRT_CLI_MAX_HISTORY ? "true" : "false", (int)cfg.max_nodes, (long long)stats.pruned,
                pool_full ? "true" : "false");
+        if (pr.side != GMMRRT_SIDE_EITHER)
+            printf(", \"side\": \"%s\"", pr.side == GMMRRT_SIDE_LEFT ? "left" : "right");
+        if (side == GMMRRT_SIDE_EITHER) {
+            printf(", \"sides\": {");
+            for (int k = 0; k < 2; ++k) {
+                const int ok = side_path[k].num_points > 0;
+                printf("%s\"%s\": {\"status\": \"%s\", \"cost\": ", k ? ", " : "", k ? "right" : "left",
+                       ok ? "ok" : gmmrrt_status_str(side_st[k]));
+                json_number(ok ? side_path[k].cost : NAN);
+                printf(", \"length_m\": ");
+                json_number(ok ? side_path[k].length_m : NAN);
+                printf(", \"path\": [");
+                for (int32_t i = 0; i < side_path[k].num_points; ++i)
+                    printf("%s[%.6f, %.6f]", i ? ", " : "", side_path[k].x[i], side_path[k].y[i]);
+                printf("]}");
+            }
+            printf("}");
+        }
+        printf("}\n");
     } else if (found) {
         printf("x,y\n");
         for (int32_t i = 0; i < path.num_points; ++i)

@@ -35,6 +35,7 @@ void gmmrrt_planner_config_default(gmmrrt_planner_config_t *cfg)
     cfg->informed_sampling = 1;
     cfg->w_length = 1.0;
     cfg->w_task = 2.0;
+    cfg->task_cost = GMMRRT_TASK_COST_PAPER; /* measured better on the real splits (docs/planner.md) */
     cfg->delta = 0.0;
     cfg->person_influence_m = 3.0;
     cfg->waypoint_spacing_m = 0.1;
@@ -84,6 +85,9 @@ gmmrrt_status_t gmmrrt_planner_config_validate(const gmmrrt_planner_config_t *cf
     CHECK(isfinite(cfg->w_task) && cfg->w_task >= 0.0 && cfg->w_task <= GMMRRT_MAX_COST_WEIGHT, "w_task",
           "must be in [0, 1e6] (GMMRRT_MAX_COST_WEIGHT)");
     CHECK(cfg->w_length > 0.0 || cfg->w_task > 0.0, "w_length", "and w_task must not both be 0");
+    CHECK(cfg->task_cost == GMMRRT_TASK_COST_PAPER || cfg->task_cost == GMMRRT_TASK_COST_INWARD ||
+              cfg->task_cost == GMMRRT_TASK_COST_BACKGROUND,
+          "task_cost", "must be 1 (paper), 2 (inward) or 3 (background)");
     CHECK(isfinite(cfg->delta) && cfg->delta >= 0.0, "delta", "must be finite and >= 0 (0: the model's)");
     CHECK(isfinite(cfg->person_influence_m) && cfg->person_influence_m > 0.0, "person_influence_m",
           "must be finite and > 0");

@@ -166,6 +166,43 @@ static double task_cost_2d(const gmmrrt_model_t *m, const double *f, double delt
     return (p > delta) ? delta / p : 1.0;
 }
 
+/* The largest held term of the inward density (gmm.h) at f = (d, theta) (theta wrapped), for
+ * a (d linear, theta angle) model: per component and image of theta, log w_i - q/2 with
+ * d - mu_d held at the ridge -b c y1 / (a^2 + b^2) (L^-1 = [[a, 0], [b, c]]: the d that
+ * minimises the quadratic form q at that theta offset y1) where it lies beyond it. */
+static double inward_held_max(const gmmrrt_model_t *m, double f0, double f1)
+{
+    double mx = -INFINITY;
+    for (int32_t i = 0; i < m->k; ++i) {
+        const double *inv = m->inv_chol[i];
+        const double ridge = -(inv[1] * inv[2]) / (inv[0] * inv[0] + inv[1] * inv[1]);
+        const double d0 = f0 - m->mean[i][0];
+        const double d1 = wrap_diff(f1 - m->mean[i][1]);
+        for (int img = 0; img < 3; ++img) {
+            const double y1 = d1 + (img == 0 ? 0.0 : img == 1 ? -TWO_PI : TWO_PI);
+            const double r = ridge * y1;
+            const double y0 = d0 > r ? r : d0;
+            const double z0 = inv[0] * y0, z1 = inv[1] * y0 + inv[2] * y1;
+            mx = max2(mx, m->log_coef[i] - 0.5 * (z0 * z0) - 0.5 * (z1 * z1));
+        }
+    }
+    return mx;
+}
+
+double gmmrrt_gmm_inward_task_cost(const gmmrrt_model_t *model, const double *f, double delta)
+{
+    assert(model != NULL && f != NULL && delta > 0.0);
+    if (model->dim != 2 || model->angle_mask != 2u)
+        return gmmrrt_gmm_task_cost(model, f, delta);
+    const double f0 = f[0], f1 = gmmrrt_wrap_angle(f[1]);
+    if (isnan(f0) || isnan(f1) || isinf(f0))
+        return 1.0;
+    const double p = gmmrrt_gmm_density(model, f);
+    const double held = exp(inward_held_max(model, f0, f1));
+    const double pt = p > held ? p : held;
+    return (pt > delta) ? delta / pt : 1.0;
+}
+
 /* ------------------------------------------------------------------ any D */
 
 /* fw: f with its angle entries already wrapped into (-pi, pi]. */

@@ -1,6 +1,7 @@
 /*
  * gmm_task_cost.c - the paper's task cost c(f) = delta / max(p(f), delta) (Sect. 4; p the
- * mixture of eq. 1) for many points at once (gmm.h, gmmrrt_gmm_task_cost_batch): the planner's
+ * mixture of eq. 1) and the inward variant (gmm.h) for many points at once
+ * (gmmrrt_gmm_task_cost_batch, gmmrrt_gmm_inward_task_cost_batch): the planner's
  * edge-cost quadrature calls it for every edge it weighs, which made it the hot path of the
  * social first solution (perf: the mixture terms and libm exp were 60 % of it).
  *
@@ -65,15 +66,16 @@ static double task_cost_scalar(const gmmrrt_model_t *model, const double *f, dou
 }
 
 int gmmrrt_gmm_task_cost_batch_lanes(const gmmrrt_model_t *model, const double *f0, const double *f1, int32_t n,
-                                     double delta, double *cost, int lanes)
+                                     double delta, double *cost, int lanes, int inward)
 {
     assert(model != NULL && model->dim == 2 && n >= 0 && (n == 0 || (f0 && f1 && cost)) && delta > 0.0);
     if (lanes != 0 && lanes != 2 && !(lanes == 4 && use_avx2()))
         return 0; /* that width is not available here: nothing written */
+    inward = inward && model->angle_mask == 2u; /* other models: the paper's cost (gmm.h) */
     if (!(delta >= TC_MIN_KERNEL_DELTA)) {
         for (int32_t i = 0; i < n; ++i) {
             const double f[2] = {f0[i], f1[i]};
-            cost[i] = task_cost_scalar(model, f, delta);
+            cost[i] = inward ? gmmrrt_gmm_inward_task_cost(model, f, delta) : task_cost_scalar(model, f, delta);
         }
         return 1;
     }
@@ -97,10 +99,10 @@ int gmmrrt_gmm_task_cost_batch_lanes(const gmmrrt_model_t *model, const double *
         }
 #ifdef GMMRRT_TASK_COST_HAVE_AVX2
         if (wide)
-            kernel_block_w4(model, a, b, delta, out);
+            kernel_block_w4(model, a, b, delta, inward, out);
         else
 #endif
-            kernel_block_w2(model, a, b, delta, out);
+            kernel_block_w2(model, a, b, delta, inward, out);
         for (int32_t q = 0; q < lanes && start + q < n; ++q)
             cost[start + q] = nan_lane[q] ? 1.0 : out[q];
     }
@@ -110,5 +112,19 @@ int gmmrrt_gmm_task_cost_batch_lanes(const gmmrrt_model_t *model, const double *
 void gmmrrt_gmm_task_cost_batch(const gmmrrt_model_t *model, const double *f0, const double *f1, int32_t n,
                                 double delta, double *cost)
 {
-    (void)gmmrrt_gmm_task_cost_batch_lanes(model, f0, f1, n, delta, cost, 0); /* 0: always available */
+    (void)gmmrrt_gmm_task_cost_batch_lanes(model, f0, f1, n, delta, cost, 0, 0); /* 0: always available */
+}
+
+void gmmrrt_gmm_density_batch(const gmmrrt_model_t *model, const double *f0, const double *f1, int32_t n, double *p)
+{
+    const double floor = 1e-280; /* above the kernel's floor (TC_MIN_KERNEL_DELTA): the vector path */
+    (void)gmmrrt_gmm_task_cost_batch_lanes(model, f0, f1, n, floor, p, 0, 0);
+    for (int32_t i = 0; i < n; ++i)
+        p[i] = p[i] < 1.0 ? floor / p[i] : 0.0; /* c = floor / p where p > floor, else 1 */
+}
+
+void gmmrrt_gmm_inward_task_cost_batch(const gmmrrt_model_t *model, const double *f0, const double *f1, int32_t n,
+                                       double delta, double *cost)
+{
+    (void)gmmrrt_gmm_task_cost_batch_lanes(model, f0, f1, n, delta, cost, 0, 1);
 }

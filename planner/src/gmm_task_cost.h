@@ -10,9 +10,9 @@
 #include "gmmrrt/model.h"
 
 /* lanes: 0 the widest this CPU runs (what gmmrrt_gmm_task_cost_batch uses), 2 the baseline
- * kernel, 4 the AVX2 kernel. Returns 0 when that width is not available here (nothing
+ * kernel, 4 the AVX2 kernel. inward: 0 the paper's cost, 1 the inward cost (gmm.h). Returns 0 when that width is not available here (nothing
  * written), 1 otherwise. Contract otherwise that of gmmrrt_gmm_task_cost_batch (gmm.h). */
 int gmmrrt_gmm_task_cost_batch_lanes(const gmmrrt_model_t *model, const double *f0, const double *f1, int32_t n,
-                                     double delta, double *cost, int lanes);
+                                     double delta, double *cost, int lanes, int inward);
 
 #endif /* GMMRRT_GMM_TASK_COST_H */

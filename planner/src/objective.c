@@ -1,11 +1,16 @@
 /*
  * objective.c - the planner's cost (paper Sect. 4): the cost of an edge is
  *     integral over the edge of (w_length + w_task c(f(x))) ds,
- *     c(f) = delta / max(p(f), delta)  (gmm.h, gmmrrt_gmm_task_cost),
- * f the features (d, theta) of x relative to the person the task is about; in AVOID with
- * several people, c is the largest over the people near the start-goal segment. Where no
- * task applies c = 1, the value the cost takes far from any person, so the cost stays a
- * positive multiple of length. Quadrature: composite midpoint rule with
+ * c the task cost of cfg.task_cost (gmm.h): the paper's delta / max(p(f), delta) (the
+ * default) or the inward variant (gmmrrt_gmm_inward_task_cost; docs/planner.md gives the
+ * evidence for both), f the features (d, theta) of x relative to the person the task is about. In
+ * AVOID with several people that is, point by point, the person nearest x among the active
+ * ones (those within person_influence_m of the start-goal segment): the person a walker at x
+ * is passing is the one it is next to, and the demonstrations are of one person at a time.
+ * With one person this is exactly the one-person cost. (The largest cost over the people
+ * charges every point for the farthest person's empty far field and pulled paths into the
+ * crowd's gaps; docs/planner.md.) Where no task applies c = 1, so the cost stays a positive
+ * multiple of length. Quadrature: composite midpoint rule with
  * n = ceil(length / edge_resolution_m) equal sub-intervals (exact for the length term,
  * symmetric in the edge's direction). rrt-star and gmm-rrt use plain length.
  */
@@ -19,21 +24,42 @@
  * the same order, so the chunking does not change the result). */
 #define EDGE_CHUNK 64
 
-/* Task costs of the n points (x[i], y[i]) into c[i]: the largest over the active people.
- * The person's cos/sin of yaw are taken once (set_problem) instead of per point. */
+/* Task costs of the n points (x[i], y[i]) into c[i], each relative to the nearest active
+ * person (the first of equally near ones). The people's cos/sin of yaw are taken once
+ * (set_problem) instead of per point. */
 static void task_costs(const struct gmmrrt_planner *p, const double *x, const double *y, int32_t n, double *c)
 {
-    double d[EDGE_CHUNK], theta[EDGE_CHUNK], ck[EDGE_CHUNK];
-    for (int32_t i = 0; i < n; ++i)
-        c[i] = 0.0;
-    for (int32_t k = 0; k < p->num_active; ++k) {
-        const gmmrrt_pose_t *person = &p->problem.obstacles.people[p->active[k]];
+    double d[EDGE_CHUNK], theta[EDGE_CHUNK];
+    const gmmrrt_pose_t *people = p->problem.obstacles.people;
+    for (int32_t i = 0; i < n; ++i) {
+        int32_t best = 0;
+        if (p->num_active > 1) {
+            double best_d2 = INFINITY;
+            for (int32_t k = 0; k < p->num_active; ++k) {
+                const double dx = x[i] - people[p->active[k]].x, dy = y[i] - people[p->active[k]].y;
+                const double d2 = dx * dx + dy * dy;
+                if (d2 < best_d2) {
+                    best_d2 = d2;
+                    best = k;
+                }
+            }
+        }
+        gmmrrt_features_from_xy_cs(&people[p->active[best]], p->active_cos[best], p->active_sin[best], x[i], y[i],
+                                   &d[i], &theta[i]);
+    }
+    if (p->cfg.task_cost == GMMRRT_TASK_COST_INWARD) {
+        gmmrrt_gmm_inward_task_cost_batch(p->problem.model, d, theta, n, p->delta, c);
+    } else if (p->cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND) {
+        /* The share of the background at x: 0 where only the demonstrations go (people swerve
+         * there), 1 where only the straight lines go (people keep away), 1/2 where both or
+         * neither do (delta, the model's floor, stands for "no evidence"). */
+        double pb[EDGE_CHUNK];
+        gmmrrt_gmm_density_batch(p->problem.model, d, theta, n, c);
+        gmmrrt_gmm_density_batch(p->problem.background_model, d, theta, n, pb);
         for (int32_t i = 0; i < n; ++i)
-            gmmrrt_features_from_xy_cs(person, p->active_cos[k], p->active_sin[k], x[i], y[i], &d[i], &theta[i]);
-        gmmrrt_gmm_task_cost_batch(p->problem.model, d, theta, n, p->delta, ck);
-        for (int32_t i = 0; i < n; ++i)
-            if (ck[i] > c[i])
-                c[i] = ck[i];
+            c[i] = (pb[i] + p->delta) / (c[i] + pb[i] + 2.0 * p->delta);
+    } else {
+        gmmrrt_gmm_task_cost_batch(p->problem.model, d, theta, n, p->delta, c);
     }
 }
 

@@ -81,6 +81,10 @@ struct gmmrrt_planner {
     double active_cos[GMMRRT_MAX_PEOPLE]; /* cos / sin of the active people's yaw (objective.c) */
     double active_sin[GMMRRT_MAX_PEOPLE];
     int32_t focus_person;          /* GMM-RRT: the person whose frame the xy model lives in */
+    /* Preferred side (problem.side): no edge may cross the ray from (side_px, side_py) along
+     * the unit vector (side_ux, side_uy), the middle of the other side's arc (rrtstar.c). */
+    int side_active;
+    double side_px, side_py, side_ux, side_uy;
 
     /* Informed sampling (sampler.c): the ellipse's centre, axis direction and focal distance. */
     double inf_cx, inf_cy, inf_cos, inf_sin, inf_cmin;

@@ -165,6 +165,68 @@ gmmrrt_status_t gmmrrt_planner_model_fits(const gmmrrt_planner_config_t *cfg, co
     return GMMRRT_OK;
 }
 
+/* The preferred side as a ray no edge may cross (rrtstar.h, gmmrrt_side_t). Seen from the
+ * person, the start and goal bearings split the circle into a counterclockwise arc from start
+ * to goal (LEFT) and a clockwise one (RIGHT). A path of one side sweeps its arc and does not
+ * cross a ray through the middle of the other arc; a path of the other side must cross it.
+ * So blocking that ray keeps every path on the preferred side, and leaves every path of that
+ * side that does not wind round the person open. */
+static void prepare_side(struct gmmrrt_planner *p)
+{
+    const gmmrrt_problem_t *pr = &p->problem;
+    const gmmrrt_obstacle_set_t *o = &pr->obstacles;
+    p->side_active = 0;
+    if (pr->side == GMMRRT_SIDE_EITHER || o->num_people == 0)
+        return;
+    int32_t who = pr->side_person;
+    if (who < 0) {
+        double best = INFINITY;
+        for (int32_t i = 0; i < o->num_people; ++i) {
+            const double d = point_segment_distance(o->people[i].x, o->people[i].y, pr->start_x, pr->start_y,
+                                                    pr->goal_x, pr->goal_y);
+            if (d < best) {
+                best = d;
+                who = i;
+            }
+        }
+    }
+    const double px = o->people[who].x, py = o->people[who].y;
+    const double bs = atan2(pr->start_y - py, pr->start_x - px), bg = atan2(pr->goal_y - py, pr->goal_x - px);
+    const double two_pi = 2.0 * M_PI;
+    double ccw = fmod(bg - bs, two_pi); /* length of the counterclockwise arc start -> goal, [0, 2 pi) */
+    if (ccw < 0.0)
+        ccw += two_pi;
+    /* LEFT blocks the middle of the clockwise arc, RIGHT the middle of the counterclockwise one. */
+    const double alpha = pr->side == GMMRRT_SIDE_LEFT ? bs - 0.5 * (two_pi - ccw) : bs + 0.5 * ccw;
+    p->side_px = px;
+    p->side_py = py;
+    p->side_ux = cos(alpha);
+    p->side_uy = sin(alpha);
+    p->side_active = 1;
+}
+
+/* 1 when the segment (x0, y0)-(x1, y1) does not cross the preferred side's ray. */
+static int side_allows(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1)
+{
+    if (!p->side_active)
+        return 1;
+    /* Solve (x0, y0) + s (e) = P + t u with s in [0, 1], t >= 0 (e = segment direction). */
+    const double ex = x1 - x0, ey = y1 - y0;
+    const double wx = p->side_px - x0, wy = p->side_py - y0;
+    const double den = ex * p->side_uy - ey * p->side_ux; /* cross(e, u) */
+    if (den == 0.0)
+        return 1; /* parallel: an edge along the ray would pass through the person, who blocks it */
+    const double s = (wx * p->side_uy - wy * p->side_ux) / den;
+    const double t = (wx * ey - wy * ex) / den;
+    return !(s >= 0.0 && s <= 1.0 && t >= 0.0);
+}
+
+/* An edge the tree may use: collision-free (walkers included) and on the preferred side. */
+static int edge_allowed(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1)
+{
+    return gmmrrt_planner_segment_free(p, x0, y0, x1, y1) && side_allows(p, x0, y0, x1, y1);
+}
+
 gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_problem_t *pr)
 {
     if (!p || !pr)
@@ -181,6 +243,10 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
         return GMMRRT_ERR_INVALID_ARGUMENT;
     if (pr->task == GMMRRT_TASK_APPROACH && (pr->target_person < 0 || pr->target_person >= o->num_people))
         return GMMRRT_ERR_INVALID_ARGUMENT;
+    if (pr->side != GMMRRT_SIDE_EITHER && pr->side != GMMRRT_SIDE_LEFT && pr->side != GMMRRT_SIDE_RIGHT)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    if (pr->side != GMMRRT_SIDE_EITHER && (pr->side_person < -1 || pr->side_person >= o->num_people))
+        return GMMRRT_ERR_INVALID_ARGUMENT;
 
     /* Model kind against planner kind. */
     const gmmrrt_model_t *m = pr->model;
@@ -189,6 +255,10 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
         const gmmrrt_status_t fit = gmmrrt_planner_model_fits(&p->cfg, pr->model);
         if (fit != GMMRRT_OK)
             return fit;
+        const gmmrrt_model_t *bg = pr->background_model;
+        if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT_STAR && p->cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND &&
+            (!bg || bg->kind != GMMRRT_MODEL_KIND_FEATURES || bg->dim != 2 || bg->k < 1 || bg->k > GMMRRT_MAX_K))
+            return GMMRRT_ERR_MODEL_MISMATCH;
     }
 
     /* Walking people are predicted (moving_people.c), not in the world. */
@@ -261,6 +331,7 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
             p->active_sin[k] = sin(yaw);
         }
     }
+    prepare_side(p);
     gmmrrt_sampler_prepare(p);
     reset_tree(p);
     p->has_problem = 1;
@@ -341,7 +412,7 @@ static void consider_goal(struct gmmrrt_planner *p, int32_t i)
     const double d = sqrt(gx * gx + gy * gy); /* plain sqrt: map coordinates */
     if (d > pr->goal_tolerance_m)
         return;
-    if (d > GMMRRT_SAME_POINT_M && !gmmrrt_planner_segment_free(p, n->x, n->y, pr->goal_x, pr->goal_y))
+    if (d > GMMRRT_SAME_POINT_M && !edge_allowed(p, n->x, n->y, pr->goal_x, pr->goal_y))
         return;
     const double edge = d > GMMRRT_SAME_POINT_M ? gmmrrt_edge_cost(p, n->x, n->y, pr->goal_x, pr->goal_y) : 0.0;
     int32_t slot = p->num_goal;
@@ -393,7 +464,7 @@ static int edge_free_cached(struct gmmrrt_planner *p, int32_t k, double x, doubl
 {
     if (p->near_free[k] < 0) {
         const gmmrrt_xy_t *n = &p->pool.xy[p->near_idx[k]];
-        p->near_free[k] = (int8_t)gmmrrt_planner_segment_free(p, n->x, n->y, x, y);
+        p->near_free[k] = (int8_t)edge_allowed(p, n->x, n->y, x, y);
     }
     return p->near_free[k];
 }
@@ -478,7 +549,7 @@ static void iterate(struct gmmrrt_planner *p)
         return;
 
     if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT) {
-        if (!gmmrrt_planner_segment_free(p, nn->x, nn->y, x, y))
+        if (!edge_allowed(p, nn->x, nn->y, x, y))
             return;
         const double c = p->pool.cost[nearest] + gmmrrt_edge_cost(p, nn->x, nn->y, x, y);
         const int32_t i = add_node(p, x, y, nearest, c);
@@ -743,7 +814,7 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
         else if (timed_out && p->iterations == it0)
             st = GMMRRT_TIMEOUT;
         else
-            st = GMMRRT_NO_PATH_YET;
+            st = p->side_active ? GMMRRT_NO_PATH_ON_SIDE : GMMRRT_NO_PATH_YET;
     }
     if (stats) {
         stats->iterations = p->iterations;
@@ -773,7 +844,7 @@ gmmrrt_status_t gmmrrt_planner_seed_path(gmmrrt_planner_t *p, const double *x, c
             continue;
         if (p->num_nodes >= p->cfg.max_nodes)
             return GMMRRT_POOL_FULL;
-        if (!gmmrrt_planner_segment_free(p, pn->x, pn->y, x[i], y[i]))
+        if (!edge_allowed(p, pn->x, pn->y, x[i], y[i]))
             break; /* the rest of the old path starts from a blocked edge */
         const double c = pn_cost + gmmrrt_edge_cost(p, pn->x, pn->y, x[i], y[i]);
         prev = add_node(p, x[i], y[i], prev, c);

@@ -1,12 +1,16 @@
 """Selections of the real demonstrations in ../shared/data/real (README.md there): the UPO avoid
-episodes by split and by encounter. The paper's avoid task (Sect. 2) has the person facing the
-oncoming robot: UPO flags those episodes frontal_encounter in upo_avoid_index.csv.
+episodes by split and by encounter (the paper's avoid task, Sect. 2, has the person facing the
+oncoming robot: UPO flags those episodes frontal_encounter in upo_avoid_index.csv); every standing
+person of an episode's scene (UPO: the recording's people from the index's scene column; UCY: the
+scene's other standing pedestrians from ucy_tracks.csv); the side a path passes its person on; and
+how often two humans in nearly the same situation pass on the same side.
 """
 from __future__ import annotations
 
 import csv
+import math
 import os
-from typing import List
+from typing import Dict, List, Tuple
 
 from .episodes import Episode, EpisodeError, read_episode_csv, read_split_index
 
@@ -34,3 +38,137 @@ def frontal_encounters(index_path: str) -> set:
     if not rows or "frontal_encounter" not in rows[0] or "episode_id" not in rows[0]:
         raise EpisodeError(f"{index_path}: line 1: no episode_id or frontal_encounter column")
     return {r["episode_id"] for r in rows if r["frontal_encounter"] == "True"}
+
+
+# ---------------------------------------------------------------- every person in the scene
+
+def side_of_sweep(xy, person) -> str:
+    """'left' when the bearing from the person to the mover turns counterclockwise from the first
+    to the last point (the person stays on the mover's left), else 'right': the planner's
+    preferred side (rrtstar.h, gmmrrt_side_t), counted as metrics.swept_angle counts it."""
+    from . import metrics
+
+    return "left" if metrics.swept_angle(xy, person) > 0.0 else "right"
+
+
+def _require_person(path: str, episodes) -> None:
+    """Every episode needs a finite standing person: names the file and the episode otherwise."""
+    for e in episodes:
+        if e.person is None or len(e.person) < 3 or not all(math.isfinite(v) for v in e.person):
+            raise EpisodeError(f"{path}: episode {e.episode_id}: no standing person (person_x/y/yaw missing)")
+
+
+def require_split(index_path: str, split: str, episode_ids) -> None:
+    """Raises EpisodeError naming the index file when it has no split column, or no episode of
+    `episode_ids` in `split`."""
+    by_split = read_split_index(index_path)
+    have = {k for k, v in by_split.items() if v == split} & set(episode_ids)
+    if not have:
+        found = sorted(set(by_split.values()))
+        raise EpisodeError(f"{index_path}: no episode in split '{split}' (splits found: {', '.join(found) or 'none'})")
+
+
+def upo_people(index_path: str, episodes) -> Dict[str, List[Tuple[float, float, float]]]:
+    """episode id -> every standing person of its recording: its own person first, then the persons
+    of the other episodes of the same recording (the index's `scene` column; episodes of one
+    recording share the robot's path and each is about one of the people), one per person_track."""
+    with open(index_path, newline="") as f:
+        rows = {r["episode_id"]: r for r in csv.DictReader(f)}
+    if not rows or "scene" not in next(iter(rows.values())):
+        raise EpisodeError(f"{index_path}: line 1: no scene column (the recording of each episode)")
+    by_scene: Dict[str, Dict[str, Tuple[float, float, float]]] = {}
+    for e in episodes:
+        r = rows.get(e.episode_id)
+        if r is None:
+            raise EpisodeError(f"{index_path}: episode {e.episode_id} is not in the index")
+        by_scene.setdefault(r["scene"], {}).setdefault(r.get("person_track", e.episode_id), tuple(e.person))
+    out = {}
+    for e in episodes:
+        r = rows[e.episode_id]
+        own = tuple(e.person)
+        others = [p for t, p in by_scene[r["scene"]].items()
+                  if t != r.get("person_track") and math.hypot(p[0] - own[0], p[1] - own[1]) > 1e-6]
+        out[e.episode_id] = [own] + others
+    return out
+
+
+STANDING_SPAN_M = 0.5  # a track whose positions within the episode stay within this of their mean is standing
+
+
+def ucy_people(tracks_path: str, index_path: str, episodes, all_episodes=()) -> Dict[str, List[Tuple[float, float, float]]]:
+    """episode id -> its standing person first, then every other pedestrian of the scene that stands
+    (all positions within STANDING_SPAN_M of their mean) through the whole episode window
+    t = 0.4 k0 .. 0.4 k1 (ucy_tracks.csv), walker excluded. Their facing: the person_yaw of a UCY
+    episode about that track (the annotated gaze) when there is one, else towards the walker's
+    mean position (the data has no other facing for them; counted in the return's meta)."""
+    import numpy as np
+
+    with open(index_path, newline="") as f:
+        rows = {r["episode_id"]: r for r in csv.DictReader(f)}
+    tracks: Dict[Tuple[str, str], Dict[float, Tuple[float, float]]] = {}
+    try:
+        with open(tracks_path, newline="") as f:
+            for r in csv.DictReader(f):
+                tracks.setdefault((r["scene"], r["track"]), {})[round(float(r["t"]), 1)] = (float(r["x"]), float(r["y"]))
+    except (OSError, KeyError, ValueError) as exc:
+        raise EpisodeError(f"{tracks_path}: cannot read scene,track,t,x,y: {exc}") from None
+    yaw_of: Dict[Tuple[str, str], float] = {}
+    for e in list(all_episodes) + list(episodes):
+        r = rows.get(e.episode_id)
+        if r:
+            yaw_of.setdefault((r["scene"], r["person_track"]), float(e.person[2]))
+    out = {}
+    for e in episodes:
+        r = rows.get(e.episode_id)
+        if r is None:
+            raise EpisodeError(f"{index_path}: episode {e.episode_id} is not in the index")
+        t0, t1 = 0.4 * int(r["k0"]), 0.4 * int(r["k1"])
+        times = [round(0.4 * k, 1) for k in range(int(r["k0"]), int(r["k1"]) + 1)]
+        walker = np.mean(e.xy, axis=0)
+        people = [tuple(e.person)]
+        for (scene, track), pos in tracks.items():
+            if scene != r["scene"] or track in (r["person_track"], r["robot_track"]):
+                continue
+            if not all(t in pos for t in times):
+                continue
+            pts = np.array([pos[t] for t in times])
+            c = pts.mean(axis=0)
+            if np.linalg.norm(pts - c, axis=1).max() > STANDING_SPAN_M:
+                continue
+            yaw = yaw_of.get((scene, track))
+            if yaw is None:
+                yaw = math.atan2(walker[1] - c[1], walker[0] - c[0])
+            people.append((float(c[0]), float(c[1]), float(yaw)))
+        del t0, t1
+        out[e.episode_id] = people
+    return out
+
+
+def human_side_agreement(episodes, group_of) -> Tuple[float, float, int]:
+    """How often two humans in nearly the same situation pass on the same side: for each episode,
+    the episode of another group (recording / standing person, so not the same event) whose start
+    and goal in the person frame are nearest (sum of the two distances); returns (fraction passing
+    on the same side by side_of_sweep, median start+goal distance of the pairs [m], pairs)."""
+    import numpy as np
+    from . import core
+
+    if len(episodes) < 2:
+        return math.nan, math.nan, 0
+    ends = []
+    for e in episodes:
+        s = core.world_to_person(tuple(e.person), *e.xy[0])
+        g = core.world_to_person(tuple(e.person), *e.xy[-1])
+        ends.append((np.array(s), np.array(g), side_of_sweep(e.xy, e.person), group_of(e)))
+    same, dists = [], []
+    for i, (s, g, side, grp) in enumerate(ends):
+        best, bd = None, math.inf
+        for j, (s2, g2, _, grp2) in enumerate(ends):
+            if j == i or grp2 == grp:
+                continue
+            d = float(np.linalg.norm(s - s2) + np.linalg.norm(g - g2))
+            if d < bd:
+                best, bd = j, d
+        if best is not None:
+            same.append(side == ends[best][2])
+            dists.append(bd)
+    return (float(np.mean(same)) if same else math.nan, float(np.median(dists)) if dists else math.nan, len(same))

@@ -22,6 +22,19 @@ typedef enum {
     GMMRRT_PLANNER_GMM_RRT = 3       /* baseline (Claassens 2010): RRT sampling the xy mixture */
 } gmmrrt_planner_kind_t;
 
+/* Which task cost c(f) GMM-RRT* integrates (docs/planner.md, "Task cost"). */
+typedef enum {
+    GMMRRT_TASK_COST_PAPER = 1,  /* c = delta / max(p, delta) (paper Sect. 4) */
+    GMMRRT_TASK_COST_INWARD = 2, /* the same with each component's density held at its value on
+                                    its ridge for points farther from the person than the ridge
+                                    (gmm.h, gmmrrt_gmm_inward_task_cost): only the fall-off
+                                    towards the person, where people keep away, is charged */
+    GMMRRT_TASK_COST_BACKGROUND = 3 /* c = (p_bg + delta) / (p + p_bg + 2 delta), p_bg the density of
+                                    problem.background_model (where the walkers would have been
+                                    without the person): the share of "would be here anyway";
+                                    1/2 where neither model has data (objective.c) */
+} gmmrrt_task_cost_kind_t;
+
 typedef struct {
     int32_t planner;           /* gmmrrt_planner_kind_t */
     uint64_t seed;             /* RNG seed; same seed, same problem -> same tree */
@@ -54,6 +67,8 @@ typedef struct {
                                   0: off */
     double w_length;           /* >= 0, weight of length in the edge cost */
     double w_task;             /* >= 0, weight of the task cost c(f) (paper Sect. 4) */
+    int32_t task_cost;         /* gmmrrt_task_cost_kind_t (default PAPER; a model that is not over
+                                  (d, theta) gets the paper's cost either way) */
     double delta;              /* > 0 overrides the model's delta; 0 uses the model's */
     double person_influence_m; /* > 0, avoid model applies to people within this distance of the segment start-goal */
     double waypoint_spacing_m; /* > 0, spacing of the output path */

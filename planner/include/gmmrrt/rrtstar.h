@@ -8,9 +8,9 @@
  * allocated: set_problem, run and best_path only use the block.
  *
  * Cost of an edge (paper Sect. 4): integral over the edge of (w_length + w_task c(f(x))) ds,
- * c(f) = delta / max(p(f), delta), f the features of x relative to the person the task is
- * about; with several people in avoid, c is the largest over the people within
- * person_influence_m. Quadrature: docs/planner.md.
+ * c(f) the task cost of cfg.task_cost (gmm.h), f the features of x relative to the person the
+ * task is about; with several people in avoid, relative to the one nearest x among those
+ * within person_influence_m of the segment start-goal. Quadrature: docs/planner.md.
  */
 #ifndef GMMRRT_RRTSTAR_H
 #define GMMRRT_RRTSTAR_H
@@ -41,6 +41,16 @@ typedef struct gmmrrt_planner gmmrrt_planner_t;
 /* Room the search keeps between the robot's and a walker's discs (m): a walker cannot stop
  * for the robot the way a standing person can step aside, and the prediction is only a guess. */
 #define GMMRRT_WALKER_COMFORT_M 0.2
+/* Which way round a person the path goes (problem.side). Counted by the bearing from the
+ * person to the robot, as metrics.same_homotopy counts it: LEFT = the bearing turns
+ * counterclockwise from start to goal (the person stays on the robot's left; for a person
+ * facing the oncoming robot that is the person's left, the data's `left` homotopy), RIGHT =
+ * clockwise. EITHER = no preference: the cheapest path, whichever side. */
+typedef enum {
+    GMMRRT_SIDE_EITHER = 0,
+    GMMRRT_SIDE_LEFT = 1,
+    GMMRRT_SIDE_RIGHT = 2
+} gmmrrt_side_t;
 
 /* One planning problem. Models are borrowed (not copied) and must outlive the run. */
 typedef struct {
@@ -57,6 +67,15 @@ typedef struct {
     double nominal_speed_m_s;     /* robot speed that times the path against walkers, (0, 10];
                                      0: GMMRRT_DEFAULT_NOMINAL_SPEED_M_S */
     double prediction_horizon_s;  /* constant-velocity prediction horizon, (0, 60]; 0: default */
+    int32_t side;                 /* gmmrrt_side_t: every edge keeps off the ray from side_person
+                                     through the middle of the other side's arc (0: EITHER, so a
+                                     zeroed problem has no preference); ignored without people */
+    int32_t side_person;          /* index into obstacles.people the side is about; -1: the person
+                                     nearest the segment start-goal */
+    const gmmrrt_model_t *background_model; /* FEATURES model for cfg.task_cost BACKGROUND (else
+                                     unused, may be NULL): where walkers would be without the
+                                     person, e.g. fitted to the straight lines start-goal of the
+                                     task model's episodes */
 } gmmrrt_problem_t;
 
 /* Budget of one run: stops at whichever comes first. */
@@ -129,7 +148,9 @@ gmmrrt_status_t gmmrrt_planner_seed_path(gmmrrt_planner_t *p, const double *x, c
  * the nodes with the largest such bound go) and the search goes on in the same memory; the best
  * path stays. Returns GMMRRT_OK when a path to the goal exists,
  * GMMRRT_NO_PATH_YET when not, GMMRRT_POOL_FULL when the pool ran out and pruning could not
- * free at least 1/64 of it (the best path so far is kept). Fills *stats when non-NULL. */
+ * free at least 1/64 of it (the best path so far is kept). When problem.side asked for a side and no
+ * path exists on it, GMMRRT_NO_PATH_ON_SIDE instead of GMMRRT_NO_PATH_YET (the caller may re-plan
+ * with EITHER). Fills *stats when non-NULL. */
 gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *budget,
                                    gmmrrt_plan_stats_t *stats);
 

@@ -48,6 +48,8 @@ typedef enum {
     GMMRRT_TIMEOUT = 42,                 /* deadline reached before any work could be done */
     GMMRRT_ESCAPE = 43,                  /* start in collision: the plan first leaves along the shortest
                                             way out that increases clearance, then goes to the goal */
+    GMMRRT_NO_PATH_ON_SIDE = 44,         /* budget spent, no path on the preferred side (yet); re-plan
+                                            with GMMRRT_SIDE_EITHER to take the other side */
 
     /* 50 and above are not the library's: gmmrrtd's stop codes (planner/daemon/stop.h). */
 } gmmrrt_status_t;

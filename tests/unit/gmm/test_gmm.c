@@ -347,21 +347,98 @@ static void masked_fixture(gmmrrt_model_t *m, uint32_t mask)
 static void test_task_cost_vector_widths_give_the_same_bits(void **state)
 {
     (void)state;
+    for (int inward = 0; inward < 2; ++inward)
     for (uint32_t mask = 0; mask < 4; ++mask) { /* the unrolled (d, theta) branch and the generic one */
         gmmrrt_model_t m;
         masked_fixture(&m, mask);
         double f0[300], f1[300], w2[300], w4[300], wide[300];
         const int n = batch_points(f0, f1, 300, 99 + mask);
-        assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w2, 2), 1);
-        assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, wide, 0), 1);
+        assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w2, 2, inward), 1);
+        assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, wide, 0, inward), 1);
         assert_memory_equal(w2, wide, sizeof(double) * (size_t)n);
-        assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w2, 3), 0); /* no such width */
-        assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, 1e-300, w2, 3), 0); /* scalar path too */
-        if (gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w4, 4) == 1) {
+        assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w2, 3, inward), 0); /* no such width */
+        assert_int_equal(gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, 1e-300, w2, 3, inward), 0); /* scalar path too */
+        if (gmmrrt_gmm_task_cost_batch_lanes(&m, f0, f1, n, m.delta, w4, 4, inward) == 1) {
             assert_memory_equal(w2, w4, sizeof(double) * (size_t)n);
         } else if (mask == 0) {
             print_message("this CPU has no AVX2: the 4-lane kernel was not compared (the 2-lane one was)\n");
         }
+    }
+}
+
+/* The inward cost (gmm.h): the batch agrees with the one-point call; it never exceeds the
+ * paper's cost; it equals it at points inside every component's ridge; beyond the data, far
+ * from the person at a bearing the data covers, it is below 1 where the paper's cost is 1, and
+ * constant along d, and no cheaper than a component's own best point. Models other than
+ * (d, theta) get the paper's cost. */
+static void test_inward_task_cost_charges_only_the_fall_off_towards_the_person(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    masked_fixture(&m, 2u);
+    double f0[200], f1[200], batch[200];
+    const int n = batch_points(f0, f1, 200, 31);
+    gmmrrt_gmm_inward_task_cost_batch(&m, f0, f1, n, m.delta, batch);
+    int equal = 0, lower = 0;
+    for (int i = 0; i < n; ++i) {
+        const double f[2] = {f0[i], f1[i]};
+        const double one = gmmrrt_gmm_inward_task_cost(&m, f, m.delta);
+        if (!(fabs(one - batch[i]) <= 1e-13 * one))
+            fail_msg("point (%g, %g): inward batch %.17g, one-point call %.17g", f[0], f[1], batch[i], one);
+        const double paper = gmmrrt_gmm_task_cost(&m, f, m.delta);
+        assert_true(one <= paper * (1.0 + 1e-13));
+        int inside = 1; /* at or inside every component's ridge, for every image */
+        for (int k = 0; k < m.k && isfinite(f[0]) && isfinite(f[1]); ++k) {
+            const double *inv = m.inv_chol[k];
+            const double ridge = -(inv[1] * inv[2]) / (inv[0] * inv[0] + inv[1] * inv[1]);
+            const double y1 = remainder(gmmrrt_wrap_angle(f[1]) - m.mean[k][1], 2.0 * M_PI);
+            for (int img = -1; img <= 1; ++img)
+                inside &= f[0] - m.mean[k][0] <= ridge * (y1 + 2.0 * M_PI * img);
+        }
+        if (inside && isfinite(f[0]) && isfinite(f[1])) {
+            assert_rel(one, paper, 1e-13, "inside every ridge the inward cost is the paper's");
+            ++equal;
+        }
+        lower += one < paper * (1.0 - 1e-6);
+    }
+    assert_true(equal > 0 && lower > 0);
+    /* Far out at the bearing of a component: the paper's cost is 1, the inward cost is not. */
+    const double far[2] = {m.mean[0][0] + 50.0, m.mean[0][1]};
+    assert_true(gmmrrt_gmm_task_cost(&m, far, m.delta) == 1.0);
+    assert_true(gmmrrt_gmm_inward_task_cost(&m, far, m.delta) < 1.0);
+    /* Far out along d at a fixed bearing, past every ridge and the mixture's own tail: the
+     * cost no longer changes with d (the held terms do not depend on it). */
+    for (double theta = -3.0; theta <= 3.0; theta += 0.5) {
+        const double f10[2] = {10.0, theta};
+        const double c10 = gmmrrt_gmm_inward_task_cost(&m, f10, m.delta);
+        for (double d = 10.0; d <= 30.0; d += 0.5) {
+            const double f[2] = {d, theta};
+            assert_true(gmmrrt_gmm_inward_task_cost(&m, f, m.delta) == c10);
+        }
+    }
+    /* Never below the cost at the best distance of the single strongest component at that
+     * bearing: at a component's mean, far out costs at least what the mean costs. */
+    for (int k = 0; k < m.k; ++k) {
+        const double at[2] = {m.mean[k][0], m.mean[k][1]}, out[2] = {m.mean[k][0] + 40.0, m.mean[k][1]};
+        assert_true(gmmrrt_gmm_inward_task_cost(&m, out, m.delta) >= gmmrrt_gmm_inward_task_cost(&m, at, m.delta));
+    }
+    /* The density batch (the background cost's p) agrees with the scalar density. */
+    double dens[200];
+    gmmrrt_gmm_density_batch(&m, f0, f1, n, dens);
+    for (int i = 0; i < n; ++i) {
+        const double f[2] = {f0[i], f1[i]};
+        const double p = gmmrrt_gmm_density(&m, f);
+        if (!isfinite(f[0]) || !isfinite(f[1]) || !(p > 1e-270))
+            continue;
+        assert_rel(dens[i], p, 1e-13, "density batch vs gmmrrt_gmm_density");
+    }
+    /* A generic model gets the paper's cost. */
+    gmmrrt_model_t g;
+    masked_fixture(&g, 0u);
+    for (int i = 0; i < n; ++i) {
+        const double f[2] = {f0[i], f1[i]};
+        const double a = gmmrrt_gmm_inward_task_cost(&g, f, g.delta), b = gmmrrt_gmm_task_cost(&g, f, g.delta);
+        assert_true(a == b || (isnan(a) && isnan(b)));
     }
 }
 
@@ -388,7 +465,7 @@ static void test_task_cost_early_exit_needs_every_term(void **state)
         const double delta = 0.9 * p; /* above every term, below p */
         double c[4], fd[4] = {f[0], f[0], f[0], f[0]}, ft[4] = {f[1], f[1], f[1], f[1]};
         for (int lanes = 2; lanes <= 4; lanes += 2) {
-            if (gmmrrt_gmm_task_cost_batch_lanes(&m, fd, ft, 4, delta, c, lanes) == 0)
+            if (gmmrrt_gmm_task_cost_batch_lanes(&m, fd, ft, 4, delta, c, lanes, 0) == 0)
                 continue; /* no AVX2 here */
             for (int q = 0; q < 4; ++q)
                 assert_rel(c[q], 0.9, 1e-12, "cost where every term is below delta but p is not");
@@ -675,6 +752,7 @@ int main(void)
         cmocka_unit_test(test_shared_vectors_features_seam),
         cmocka_unit_test(test_shared_vectors_xy),
         cmocka_unit_test(test_shared_vectors_generic_d4),
+        cmocka_unit_test(test_inward_task_cost_charges_only_the_fall_off_towards_the_person),
         cmocka_unit_test(test_component_samples_match_mean_and_covariance),
         cmocka_unit_test(test_seam_samples_are_wrapped_with_circular_moments),
         cmocka_unit_test(test_mixture_samples_pick_components_by_weight),

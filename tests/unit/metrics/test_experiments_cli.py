@@ -90,21 +90,49 @@ def test_real_data_harness_scores_what_the_planner_returns(tmp_path):
     assert proc.returncode == 0, proc.stderr[-3000:]
     out = tmp_path / "out"
     md = (out / "real_upo_avoid-quick.md").read_text()
-    assert "| GMM-RRT* |" in md and "| RRT* |" in md and "| straight line |" in md
-    assert "tools/experiments.py real --quick" in md
+    for row in ("| GMM-RRT* (paper cost) |", "| GMM-RRT* (inward cost) |", "| RRT* |", "| human (reference) |",
+                "| GMM-RRT* (background cost) |",
+                "| GMM-RRT* (paper cost, human's side) |", "| GMM-RRT* (paper cost, own person only) |"):
+        assert row in md
+    assert "tools/experiments.py real --quick" in md and "two humans in nearly the same situation" in md
     data = json.loads((out / "real_upo_avoid-quick.json").read_text())
     runs = data["runs"]
-    assert len(runs) == 4  # 2 episodes x 2 planners
+    assert len(runs) == 14  # 2 episodes x 7 planners
     assert sorted({r["seed"] for r in runs}) == [7, 8]
     assert all("--seed" in r["argv"] and "--json" in r["argv"] for r in runs)
-    gmm_runs = [r for r in runs if r["planner"] == "GMM-RRT*"]
-    assert all("--model" in r["argv"] and "--bias 0.95" in r["argv"] for r in gmm_runs)
+    gmm_runs = [r for r in runs if r["planner"].startswith("GMM-RRT*")]
+    assert all("--model" in r["argv"] and "--bias 0.95" in r["argv"] and "--cost " in r["argv"] for r in gmm_runs)
     assert all("--model" not in r["argv"] for r in runs if r["planner"] == "RRT*")
+    # every standing person of the recording, except in the one-person row; the sides as asked
+    for r in runs:
+        n = r["argv"].count("--person ")
+        assert n == (1 if "own person only" in r["planner"] else r["people"]) and n >= 1
+        assert ("--side " in r["argv"]) == ("side)" in r["planner"])
     # the learner was asked for the train split only
     model_args = (tmp_path / "work" / "models" / "upo_avoid_train_all.gmm").read_text()
     assert "--split train" in model_args and "--task avoid" in model_args
+    bg_args = (tmp_path / "work" / "models" / "upo_avoid_straight_train.gmm").read_text()
+    assert "--split train" in bg_args and "upo_avoid_straight.csv" in bg_args
+    assert all("--background-model" in r["argv"] for r in runs if "background" in r["planner"])
+    ucy_args = (tmp_path / "work" / "models" / "ucy_avoid_train_all.gmm").read_text()
+    assert "--split train" in ucy_args and "ucy_index.csv" in ucy_args
     assert (out / "real_upo_avoid-quick.png").stat().st_size > 1000
-    assert (out / "real_ucy_approach-quick.md").is_file()
+    episodes = (out / "real_upo_avoid_episodes-quick.md").read_text()
+    assert sum(line.startswith("| avoid_upo_") for line in episodes.splitlines()) == 2
+    for name in ("real_ucy_avoid-quick.md", "real_ucy_approach-quick.md", "real_ucy_avoid_episodes-quick.md"):
+        assert (out / name).is_file()
+
+
+def test_real_data_without_the_split_is_named(tmp_path):
+    if not (REAL / "upo_avoid_episodes.csv").is_file():
+        pytest.skip(f"real data not found at {REAL} (set GMMRRT_REAL_DATA)")
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    _tool(bin_dir, "gmmrrt-plan", FAKE_PLAN)
+    _tool(bin_dir, "gmmrrt-learn", FAKE_LEARN)
+    proc = _run(["real", "--quick", "--split", "validation"], bin_dir, tmp_path)
+    assert proc.returncode == 1
+    assert "upo_avoid_index.csv: no episode in split 'validation'" in proc.stderr
 
 
 FAKE_PLAN_HISTORY = FAKE_PLAN.replace(

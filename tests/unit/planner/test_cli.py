@@ -45,7 +45,8 @@ def test_help_lists_every_option():
     for opt in ["--model", "--start", "--goal", "--person", "--obstacle", "--planner", "--bias",
                 "--budget-ms", "--iterations", "--seed", "--robot-radius", "--bounds", "--json", "--delta",
                 "--w-task", "--rewire-k", "--informed", "--map", "cost_history", "setup_ms",
-                "--goal-yaw-tolerance", "--min-turn-radius", "--nominal-speed", "--raw-path", "--approach-models"]:
+                "--goal-yaw-tolerance", "--min-turn-radius", "--nominal-speed", "--raw-path", "--approach-models",
+                "--side", "--side-person", "--cost", "--background-model"]:
         assert opt in r.stdout
 
 
@@ -148,6 +149,12 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0", "--goal", "1,1", "--max-nodes", "1"], "--max-nodes '1': expected an integer in 2.."),
     (["--start", "0,0", "--goal", "1,1", "--max-nodes", "99999999"], "--max-nodes"),
     (["--start", "0,0", "--goal", "1,1", "--max-nodes", "1e4"], "--max-nodes"),
+    (["--start", "0,0", "--goal", "1,1", "--side", "up"], "--side"),
+    (["--start", "0,0", "--goal", "1,1", "--side-person", "-1"], "--side-person"),
+    (["--start", "0,0", "--goal", "3,3", "--person", "1,1,0", "--side-person", "1"], "--side-person"),
+    (["--start", "0,0", "--goal", "1,1", "--cost", "max"], "--cost"),
+    (["--start", "0,0", "--goal", "1,1", "--cost", "background"], "needs --background-model"),
+    (["--start", "0,0", "--goal", "1,1", "--background-model", "/nonexistent/bg.gmm"], "/nonexistent/bg.gmm"),
 ])
 def test_bad_input_is_refused_with_a_clear_error(args, message):
     r = run(*args)
@@ -339,3 +346,48 @@ def test_search_flags_take_effect():
         hist[name] = out["stats"]["cost_history"]
     assert hist["default"] != hist["plain"]
     assert hist["default"] != hist["radius"]
+
+
+def test_side_is_kept_and_either_reports_both_sides(tmp_path):
+    """The left-only model prefers world y < 0 (the person faces -x); --side right still passes at
+    y > 0; --side either plans both and answers with the cheaper (the model's side), both costed;
+    a wall on the preferred side gives the side status and exit 3."""
+    model = write_features_model(tmp_path / "left.gmm", [math.pi * i / 6 for i in range(1, 6)])
+    base = ["--model", str(model), "--start", "-4,0", "--goal", "4,0", "--person", "0,0,3.141592653589793",
+            "--iterations", "4000", "--json"]
+
+    def crossing(path):
+        return [y for (x0, y), (x1, _) in zip(path, path[1:]) if x0 < 0 <= x1][0]
+
+    r = run(*base, "--side", "right")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert out["side"] == "right" and crossing(out["path"]) > 0.5
+    # The sides are the tree's paths: compare the chosen one with --raw-path's answer.
+    r = run(*base, "--side", "either", "--raw-path")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    sides = out["sides"]
+    assert crossing(sides["left"]["path"]) < -0.5 and crossing(sides["right"]["path"]) > 0.5
+    assert sides["left"]["cost"] < sides["right"]["cost"]
+    assert out["side"] == "left" and out["path"] == sides["left"]["path"]
+    wall = ["--obstacle", "box:0,-3,0.4,4.4,0", "--bounds", "-6,-5,6,5"]
+    r = run(*base, *wall, "--side", "left")
+    assert r.returncode == 3
+    out = json.loads(r.stdout)
+    assert out["status"] == "no path on the preferred side" and out["path"] == []
+
+
+def test_cost_choice_changes_the_plan(tmp_path):
+    """Start and goal 2.5 m to the side of the person, the model's support at 1.2 m: the paper's cost
+    bends the path in, the inward cost does not; the default is the paper's."""
+    model = write_features_model(tmp_path / "both.gmm", [math.pi * i / 6 for i in range(-5, 6) if i])
+    base = ["--model", str(model), "--start", "-4,2.5", "--goal", "4,2.5", "--person", "0,0,3.141592653589793",
+            "--iterations", "6000", "--bias", "0.5", "--bounds", "-6,-4,6,5", "--json"]
+    closest = {}
+    for cost in ("paper", "inward", None):
+        r = run(*base, *(["--cost", cost] if cost else []))
+        assert r.returncode == 0, r.stderr
+        closest[cost] = min(math.hypot(x, y) for x, y in json.loads(r.stdout)["path"])
+    assert closest["paper"] < 2.0 < 2.3 < closest["inward"]
+    assert closest[None] == closest["paper"]

@@ -3,7 +3,10 @@
  * Sect. 4): a 'left' avoid model makes the path pass on the person's left (theta > 0) and
  * keep clear of them; a two-side model with an obstacle blocking one side takes the other
  * side (the paper's Fig. 5); the task cost alone (gmm_bias = 0) still picks the model's
- * side; a larger delta pulls the path towards the model's distance.
+ * side; a larger delta pulls the path towards the model's distance. Several people: each point
+ * is costed by its nearest person, bit for bit the one-person cost with one person. The inward
+ * cost leaves a wide pass straight where the paper's bends it in. A preferred side is kept
+ * whatever the cost prefers, and is a status when it is blocked.
  * Tests with models learned from logs/demos/: test_learned.py (planner.learned_*).
  *
  * Scene: the person stands at the origin facing the robot's start (yaw = pi), the robot
@@ -18,6 +21,7 @@
 #include <cmocka.h>
 
 #include "gmmrrt/features.h"
+#include "gmmrrt/gmm.h"
 #include "planner_fixtures.h"
 
 static const gmmrrt_pose_t person = {0.0, 0.0, M_PI};
@@ -212,6 +216,249 @@ static void test_only_people_near_the_path_count(void **state)
     assert_true(paths[2].cost != paths[0].cost);
 }
 
+/* ---------------------------------------------------------------- several people */
+
+/* The edge cost by definition (objective.c's contract), point by point: midpoint rule with
+ * n = ceil(len / res), each point costed through a one-point batch (lanes never mix, so a
+ * point gets the same bits alone as in a chunk) relative to the nearest of people[0..np). */
+static double oracle_edge_cost(const gmmrrt_planner_config_t *cfg, const gmmrrt_model_t *m, const gmmrrt_model_t *bg,
+                               double delta, const gmmrrt_pose_t *people, int np, double x0, double y0, double x1,
+                               double y1)
+{
+    const double dx = x1 - x0, dy = y1 - y0;
+    const double len = sqrt(dx * dx + dy * dy);
+    double n = ceil(len / cfg->edge_resolution_m);
+    if (n < 1.0)
+        n = 1.0;
+    const double h = len / n;
+    double sum = 0.0;
+    for (int32_t i = 0; i < (int32_t)n; ++i) {
+        const double t = ((double)i + 0.5) / n;
+        const double x = x0 + t * (x1 - x0), y = y0 + t * (y1 - y0);
+        int best = 0;
+        for (int k = 1; k < np; ++k)
+            if (hypot(x - people[k].x, y - people[k].y) < hypot(x - people[best].x, y - people[best].y))
+                best = k;
+        double d, theta, c;
+        gmmrrt_features_from_xy_cs(&people[best], cos(people[best].yaw), sin(people[best].yaw), x, y, &d, &theta);
+        if (cfg->task_cost == GMMRRT_TASK_COST_INWARD) {
+            gmmrrt_gmm_inward_task_cost_batch(m, &d, &theta, 1, delta, &c);
+        } else if (cfg->task_cost == GMMRRT_TASK_COST_BACKGROUND) {
+            double p, pb;
+            gmmrrt_gmm_density_batch(m, &d, &theta, 1, &p);
+            gmmrrt_gmm_density_batch(bg, &d, &theta, 1, &pb);
+            c = (pb + delta) / (p + pb + 2.0 * delta);
+        } else
+            gmmrrt_gmm_task_cost_batch(m, &d, &theta, 1, delta, &c);
+        sum += c;
+    }
+    return cfg->w_length * len + cfg->w_task * h * sum;
+}
+
+/* The cost of the edge start -> (x, y) as the planner charges it: node 1 of a tree seeded
+ * with that one point (the root costs 0). */
+static double planner_edge_cost(const gmmrrt_planner_config_t *cfg, const gmmrrt_problem_t *pr, double x, double y)
+{
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, cfg), GMMRRT_OK);
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, pr), GMMRRT_OK);
+    assert_int_equal(gmmrrt_planner_seed_path(t.p, &x, &y, 1), GMMRRT_OK);
+    assert_int_equal(gmmrrt_planner_node_count(t.p), 2);
+    double c;
+    assert_int_equal(gmmrrt_planner_node(t.p, 1, NULL, NULL, NULL, &c), GMMRRT_OK);
+    test_planner_free(&t);
+    return c;
+}
+
+/* One person: the cost is the one-person cost, bit for bit. Two people: every point is costed
+ * by its nearest person (so an edge that stays nearer the first one costs exactly what it
+ * costs with the first one alone), and the edge past the second one is charged by it. Both
+ * task costs. */
+static void test_each_point_is_costed_by_its_nearest_person(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m, bg;
+    two_side_model(&m);
+    left_model(&bg); /* any features model will do as the background here */
+    const gmmrrt_pose_t people[2] = {person, {1.5, 2.2, -M_PI / 2}};
+    const double ends[4][2] = {{-1.0, -1.5}, {0.0, 1.2}, {1.0, 3.2}, {2.8, 2.0}};
+    for (int kind = GMMRRT_TASK_COST_PAPER; kind <= GMMRRT_TASK_COST_BACKGROUND; ++kind) {
+        gmmrrt_planner_config_t cfg;
+        gmmrrt_planner_config_default(&cfg);
+        cfg.task_cost = kind;
+        cfg.max_nodes = 100;
+        gmmrrt_problem_t pr = empty_problem(-3.0, -0.3, 4.0, 0.0);
+        pr.task = GMMRRT_TASK_AVOID;
+        pr.model = &m;
+        pr.background_model = &bg;
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = people[0];
+        int changed = 0;
+        for (int e = 0; e < 4; ++e) {
+            pr.obstacles.num_people = 1;
+            const double alone = planner_edge_cost(&cfg, &pr, ends[e][0], ends[e][1]);
+            assert_true(alone == oracle_edge_cost(&cfg, &m, &bg, m.delta, people, 1, -3.0, -0.3, ends[e][0], ends[e][1]));
+            pr.obstacles.num_people = 2;
+            pr.obstacles.people[1] = people[1];
+            const double both = planner_edge_cost(&cfg, &pr, ends[e][0], ends[e][1]);
+            assert_true(both == oracle_edge_cost(&cfg, &m, &bg, m.delta, people, 2, -3.0, -0.3, ends[e][0], ends[e][1]));
+            /* the first edge never comes nearer the second person than the first */
+            if (e == 0)
+                assert_true(both == alone);
+            changed += both != alone;
+        }
+        assert_true(changed >= 2);
+    }
+    /* The background cost without a background model is a model mismatch. */
+    gmmrrt_planner_config_t cfg;
+    gmmrrt_planner_config_default(&cfg);
+    cfg.task_cost = GMMRRT_TASK_COST_BACKGROUND;
+    cfg.max_nodes = 100;
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = empty_problem(-3.0, -0.3, 4.0, 0.0);
+    pr.task = GMMRRT_TASK_AVOID;
+    pr.model = &m;
+    pr.obstacles.num_people = 1;
+    pr.obstacles.people[0] = person;
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ERR_MODEL_MISMATCH);
+    pr.background_model = &bg;
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    test_planner_free(&t);
+}
+
+/* ---------------------------------------------------------------- the inward cost */
+
+/* Start and goal 2.5 m to the side of the person, the model's support at 1.2 m: a walker this
+ * far out does not swerve. The paper's cost charges the straight line the most (it lies
+ * beyond the support) and bends the path in towards the person; the inward cost leaves it
+ * (nearly) straight. */
+static void test_inward_cost_leaves_a_wide_pass_straight(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    two_side_model(&m);
+    double closest[2] = {0.0, 0.0}, length[2] = {0.0, 0.0};
+    for (int kind = GMMRRT_TASK_COST_PAPER; kind <= GMMRRT_TASK_COST_INWARD; ++kind) {
+        gmmrrt_planner_config_t cfg;
+        gmmrrt_planner_config_default(&cfg);
+        cfg.task_cost = kind;
+        cfg.max_nodes = 20000;
+        cfg.seed = 5;
+        cfg.gmm_bias = 0.5; /* the mixture's samples lie on the support: leave room for the straight line */
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(-4.0, 2.5, 4.0, 2.5);
+        pr.goal_tolerance_m = 0.1;
+        pr.task = GMMRRT_TASK_AVOID;
+        pr.model = &m;
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = person;
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        gmmrrt_budget_t b = {0.0, 8000, 0.0, 0};
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+        gmmrrt_path_t path;
+        assert_int_equal(gmmrrt_planner_best_path(t.p, &path), GMMRRT_OK);
+        test_planner_free(&t);
+        double dmin = INFINITY;
+        for (int32_t i = 0; i < path.num_points; ++i)
+            dmin = fmin(dmin, hypot(path.x[i], path.y[i]));
+        closest[kind - 1] = dmin;
+        length[kind - 1] = path.length_m;
+        printf("wide pass, %s cost: closest %.2f m, length %.2f m (straight 8.00)\n",
+               kind == GMMRRT_TASK_COST_PAPER ? "paper" : "inward", dmin, path.length_m);
+    }
+    assert_true(closest[0] < 2.0);                        /* the paper's cost bends the path in */
+    assert_true(closest[1] > 2.3 && length[1] < 8.2);     /* the inward cost does not */
+}
+
+/* ---------------------------------------------------------------- the preferred side */
+
+static gmmrrt_status_t plan_side(const gmmrrt_model_t *m, int side, int block_left, gmmrrt_path_t *path)
+{
+    gmmrrt_planner_config_t cfg;
+    gmmrrt_planner_config_default(&cfg);
+    cfg.max_nodes = 10000;
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
+    pr.goal_tolerance_m = 0.1;
+    pr.task = GMMRRT_TASK_AVOID;
+    pr.model = m;
+    pr.obstacles.num_people = 1;
+    pr.obstacles.people[0] = person;
+    pr.side = side;
+    pr.side_person = -1;
+    if (block_left) {
+        pr.obstacles.num_boxes = 1;
+        pr.obstacles.boxes[0] = (gmmrrt_box_t){0.0, -2.9, 0.4, 4.2, 0.0};
+    }
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    gmmrrt_budget_t b = {0.0, 6000, 0.0, 0};
+    const gmmrrt_status_t s = gmmrrt_planner_run(t.p, &b, NULL);
+    path->num_points = 0;
+    gmmrrt_planner_best_path(t.p, path);
+    test_planner_free(&t);
+    return s;
+}
+
+/* The robot goes +x past the person at the origin: LEFT (counterclockwise seen from the
+ * person, the person on the robot's left) is world y < 0, RIGHT y > 0. Each side is kept with
+ * a model of the other side, and with a model of both. */
+static void test_preferred_side_is_kept_against_the_cost(void **state)
+{
+    (void)state;
+    gmmrrt_model_t left, both;
+    left_model(&left); /* prefers world y < 0 */
+    two_side_model(&both);
+    const gmmrrt_model_t *models[2] = {&left, &both};
+    for (int mi = 0; mi < 2; ++mi) {
+        for (int side = GMMRRT_SIDE_LEFT; side <= GMMRRT_SIDE_RIGHT; ++side) {
+            gmmrrt_path_t path;
+            assert_int_equal(plan_side(models[mi], side, 0, &path), GMMRRT_OK);
+            double cross, dmin;
+            path_side(&path, &cross, &dmin);
+            printf("model %d, side %s: crosses x = 0 at y = %.2f\n", mi, side == GMMRRT_SIDE_LEFT ? "left" : "right",
+                   cross);
+            assert_true(side == GMMRRT_SIDE_LEFT ? cross < -0.55 : cross > 0.55);
+            assert_true(dmin > 0.55);
+        }
+    }
+}
+
+/* A wall closes the y < 0 side: LEFT has no path (a status, not an error), RIGHT has one,
+ * and an invalid side or side person is refused. */
+static void test_blocked_preferred_side_is_a_status(void **state)
+{
+    (void)state;
+    gmmrrt_model_t m;
+    two_side_model(&m);
+    gmmrrt_path_t path;
+    assert_int_equal(plan_side(&m, GMMRRT_SIDE_LEFT, 1, &path), GMMRRT_NO_PATH_ON_SIDE);
+    assert_int_equal(path.num_points, 0);
+    assert_int_equal(plan_side(&m, GMMRRT_SIDE_RIGHT, 1, &path), GMMRRT_OK);
+    assert_string_equal(gmmrrt_status_str(GMMRRT_NO_PATH_ON_SIDE), "no path on the preferred side");
+
+    gmmrrt_planner_config_t cfg;
+    gmmrrt_planner_config_default(&cfg);
+    cfg.max_nodes = 100;
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
+    pr.task = GMMRRT_TASK_AVOID;
+    pr.model = &m;
+    pr.obstacles.num_people = 1;
+    pr.obstacles.people[0] = person;
+    pr.side = 3;
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ERR_INVALID_ARGUMENT);
+    pr.side = GMMRRT_SIDE_LEFT;
+    pr.side_person = 1;
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ERR_INVALID_ARGUMENT);
+    pr.side_person = 0;
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    test_planner_free(&t);
+}
+
 /* GMM-RRT (the baseline) with an xy model of a pass on the person's left. */
 static void test_gmm_rrt_follows_its_xy_model(void **state)
 {
@@ -334,6 +581,10 @@ int main(void)
         cmocka_unit_test(test_mirrored_model_passes_on_the_right),
         cmocka_unit_test(test_two_side_model_takes_the_free_side_when_one_is_blocked),
         cmocka_unit_test(test_only_people_near_the_path_count),
+        cmocka_unit_test(test_each_point_is_costed_by_its_nearest_person),
+        cmocka_unit_test(test_inward_cost_leaves_a_wide_pass_straight),
+        cmocka_unit_test(test_preferred_side_is_kept_against_the_cost),
+        cmocka_unit_test(test_blocked_preferred_side_is_a_status),
         cmocka_unit_test(test_gmm_rrt_follows_its_xy_model),
         cmocka_unit_test(test_approach_arrives_along_the_model),
     };

@@ -1,0 +1,90 @@
+"""metrics.realdata: the selections of tools/gmmrrt_tools/realdata.py on small hand-made data (every
+standing person of a UPO recording, the UCY scene's standing pedestrians, the side of a sweep, how often
+two humans agree) and the named errors for a data set without a split or an episode without a person."""
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[3]
+sys.path.insert(0, str(ROOT / "tools"))
+
+from gmmrrt_tools import realdata as RD  # noqa: E402
+from gmmrrt_tools.episodes import EpisodeError  # noqa: E402
+from gmmrrt_tools.scenes import Episode  # noqa: E402
+
+
+def ep(eid, person, xy, split="test", meta=None):
+    return Episode(eid, "avoid", "left", tuple(person), np.asarray(xy, dtype=float), split, meta)
+
+
+def test_side_of_sweep_is_counterclockwise_left():
+    # the person at the origin; passing below it going +x turns the bearing counterclockwise
+    assert RD.side_of_sweep([(-3, 0.1), (0, -1), (3, 0.1)], (0, 0, 0)) == "left"
+    assert RD.side_of_sweep([(-3, -0.1), (0, 1), (3, -0.1)], (0, 0, 0)) == "right"
+    assert RD.side_of_sweep([(3, 0.1), (0, 1), (-3, 0.1)], (0, 0, 0)) == "left"
+
+
+def test_upo_people_are_the_recordings_persons_own_first(tmp_path):
+    idx = tmp_path / "index.csv"
+    idx.write_text("episode_id,scene,person_track,split\n"
+                   "a,rec1,1,test\nb,rec1,2,test\nc,rec2,1,train\nd,rec1,2,train\n")
+    eps = [ep("a", (0, 0, 0), [(0, 1)]), ep("b", (5, 0, 1), [(0, 1)]), ep("c", (9, 9, 0), [(0, 1)]),
+           ep("d", (5, 0, 1), [(0, 1)])]
+    people = RD.upo_people(str(idx), eps)
+    assert people["a"] == [(0, 0, 0), (5, 0, 1)]
+    assert people["b"] == [(5, 0, 1), (0, 0, 0)]
+    assert people["c"] == [(9, 9, 0)]
+    assert people["d"] == [(5, 0, 1), (0, 0, 0)]  # one entry per person track
+    idx.write_text("episode_id,person_track,split\na,1,test\n")
+    with pytest.raises(EpisodeError, match="no scene column"):
+        RD.upo_people(str(idx), eps[:1])
+
+
+def test_ucy_people_are_the_standing_pedestrians_of_the_window(tmp_path):
+    idx = tmp_path / "ucy_index.csv"
+    idx.write_text("episode_id,scene,person_track,robot_track,k0,k1,split\ne1,z,1,2,1,3,test\ne2,z,3,2,1,3,train\n")
+    tracks = tmp_path / "tracks.csv"
+    rows = ["scene,track,t,x,y"]
+    for k in (1, 2, 3):
+        t = round(0.4 * k, 1)
+        rows += [f"z,1,{t},0,0", f"z,2,{t},{k},5",            # the person, the walker
+                 f"z,3,{t},4,{0.1 * k}",                      # stands (with an annotated facing: episode e2)
+                 f"z,4,{t},{-4},{2}",                         # stands, no facing: towards the walker
+                 f"z,5,{t},{3 * k},-3",                       # walks: not standing
+                 f"q,6,{t},1,1"]                              # another scene
+    rows += ["z,7,0.4,8,8", "z,7,0.8,8,8"]                    # leaves before the window ends
+    tracks.write_text("\n".join(rows) + "\n")
+    e1 = ep("e1", (0, 0, 0.5), [(1, 5), (2, 5), (3, 5)])
+    e2 = ep("e2", (4, 0.2, 2.0), [(1, 5)], split="train")
+    people = RD.ucy_people(str(tracks), str(idx), [e1], [e1, e2])["e1"]
+    assert people[0] == (0, 0, 0.5)
+    assert len(people) == 3
+    assert people[1][:2] == pytest.approx((4, 0.2)) and people[1][2] == 2.0
+    assert people[2][:2] == pytest.approx((-4, 2)) and people[2][2] == pytest.approx(math.atan2(3, 6))
+
+
+def test_human_agreement_pairs_nearest_situations_of_other_groups():
+    person = (0, 0, 0)
+    left = [(-3, 0.1), (0, -1), (3, 0.1)]
+    right = [(-3, 0.1), (0, 1), (3, 0.1)]
+    eps = [ep("a", person, left, meta={"g": "1"}), ep("b", person, left, meta={"g": "2"}),
+           ep("c", person, right, meta={"g": "3"}), ep("d", person, [(-3, 2), (3, 2)], meta={"g": "3"})]
+    frac, dist, pairs = RD.human_side_agreement(eps, lambda e: e.meta["g"])
+    assert pairs == 4
+    # a<->b agree; c pairs with a (same ends, other group) and disagrees; d's nearest is a or b: right vs left
+    assert frac == pytest.approx(0.5)
+    assert dist == pytest.approx(0.0, abs=1e-12)  # three pairs share their ends exactly; d's is 3.8 m off
+
+
+def test_missing_split_and_missing_person_are_named(tmp_path):
+    idx = tmp_path / "idx.csv"
+    idx.write_text("episode_id,split\na,train\n")
+    with pytest.raises(EpisodeError, match=r"idx\.csv: no episode in split 'test' \(splits found: train\)"):
+        RD.require_split(str(idx), "test", ["a"])
+    bad = ep("x7", (0, 0, 0), [(1, 1)])
+    bad.person = (0.0, float("nan"), 0.0)
+    with pytest.raises(EpisodeError, match="eps.csv: episode x7: no standing person"):
+        RD._require_person("eps.csv", [bad])

@@ -1,0 +1,1 @@
+"""The studies of tools/experiments.py, one module each (common: what they share)."""
