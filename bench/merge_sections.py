@@ -5,7 +5,7 @@
 Sections present in the partial run (and its date, host, loads and command) replace the old ones;
 sections it did not run are kept from the previous full run and listed under "carried_over" with
 that run's date and commit, which the report then states. Used when only the planner changed, so
-the learner and daemon figures need not be measured again (issue 8; see docs/benchmarks.md).
+the learner and daemon figures need not be measured again (see docs/benchmarks.md).
 
     .venv/bin/python bench/merge_sections.py build/bench-pp.json
 """

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""gmmrrt benchmarks (issue 8): planner against OMPL RRT*, social tasks, memory, learner against
+"""gmmrrt benchmarks: planner against OMPL RRT*, social tasks, memory, learner against
 scikit-learn, plus the mixture/planner micro-benchmarks and the daemon latency script when they
 are built. Every figure is a median over interleaved runs and, where there is a peer, a ratio
 against the peer measured in the same run (the machine is shared: absolute times are context).

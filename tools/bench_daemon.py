@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Latency benchmark of gmmrrtd (issue 6, "Must show"): from a pose message to the plan it caused.
+"""Latency benchmark of gmmrrtd: from a pose message to the plan it caused.
 
 Starts gmmrrtd (live clock) on a private UDP multicast port with ttl=0, sends one avoid
 scenario (a goal 8 m ahead, a person in the way, a circle obstacle) and robot poses at

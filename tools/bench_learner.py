@@ -1,4 +1,4 @@
-"""Learner against scikit-learn (issue 8): EM fit time and log-likelihood at N = 200 000,
+"""Learner against scikit-learn: EM fit time and log-likelihood at N = 200 000,
 D = 2, K = 19, full covariances; and BIC sweeps over K = 1..30: on a mixture of known K
 (well separated), and, as extra cases, on overlapping components of known K and on real
 features (UPO avoid demonstrations, train split, person frame x', y').
@@ -241,7 +241,7 @@ def upo_avoid_train_points(real: Path) -> np.ndarray:
 
 def run_extra_sweeps(exe: Path, work: Path, quick: bool, k_max: int, seed: int,
                      real: Optional[Path]) -> Dict[str, dict]:
-    """Issue 8 says scikit-learn's single-init sweep picks the edge of the range; the target's
+    """The benchmark targets say scikit-learn's single-init sweep picks the edge of the range; the target's
     well-separated data does not show it. Two more honest cases, reported whatever they show:
     overlapping components of known K (make_mixture_points, means closer together), and the real
     UPO avoid features (no true K; what each sweep picks, and its BIC)."""

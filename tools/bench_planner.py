@@ -1,4 +1,4 @@
-"""Planner benchmarks of issue 8, run through the C++ benchmark programs and summarised here.
+"""Planner benchmarks (docs/benchmarks.md), run through the C++ benchmark programs and summarised here.
 
 - OMPL comparison (gmmrrt-bench-ompl): our RRT* and OMPL's RRTstar on the disc problem, runs
   interleaved inside the program; medians, and ratios against OMPL measured in the same run.

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Best cost against time, ours and OMPL's RRTstar, from gmmrrt-bench-ompl's trial records
-(issue 8): the median over trials and the range, one panel per objective.
+"""Best cost against time, ours and OMPL's RRTstar, from gmmrrt-bench-ompl's trial
+records: the median over trials and the range, one panel per objective.
 
     .venv/bin/python tools/bench_plot.py build/bench-raw/ompl_length.jsonl \\
         build/bench-raw/ompl_task.jsonl -o docs/img/benchmarks-ompl-cost.png

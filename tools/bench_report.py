@@ -1,4 +1,4 @@
-"""Targets of issue 8 judged from a benchmark result, and docs/benchmarks.md written from it.
+"""The benchmark targets judged from a benchmark result, and docs/benchmarks.md written from it.
 
 Targets are reported, never asserted: each is "met", "not met" or "not run" (section missing
 or failed), with the measured value.
@@ -120,10 +120,10 @@ def observations(res: dict) -> List[str]:
         hi = sw.get("k_range", [1, 30])[1]
         if k_s == hi:
             notes.append(f"scikit-learn's single-init BIC sweep picked K = {k_s}, the edge of the range "
-                         f"(true K = {k_t}), as issue 8 says it does.")
+                         f"(true K = {k_t}), as the benchmark targets say it does.")
         else:
             notes.append(f"scikit-learn's single-init BIC sweep picked K = {k_s} (true K = {k_t}) on this data: the "
-                         "edge-of-range pick that issue 8 mentions did not show here (well-separated Gaussian "
+                         "edge-of-range pick that the benchmark targets mention did not show here (well-separated Gaussian "
                          "components).")
         for name, ex in (_get(res, "learner", "sweep_extra") or {}).items():
             if not isinstance(ex, dict) or "error" in ex:
@@ -147,7 +147,7 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
     h = res.get("host", {})
     L += ["# Benchmarks",
           "",
-          f"Written by `tools/bench.py` (issue 8) from `{results_path}`; do not edit by hand: rerun "
+          f"Written by `tools/bench.py` from `{results_path}`; do not edit by hand: rerun "
           "`tools/run bench`.",
           "",
           "Every figure is a median over runs; where there is a peer (OMPL, scikit-learn) the peer ran in the "
@@ -367,7 +367,7 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
             L += ["", "</details>", ""]
         extra = le.get("sweep_extra") or {}
         if extra:
-            L += ["Extra BIC sweeps K = 1..30 (not targets: issue 8 says scikit-learn's single-init sweep picks the "
+            L += ["Extra BIC sweeps K = 1..30 (not targets: the targets say scikit-learn's single-init sweep picks the "
                   "edge of the range, which the data above does not show; these cases are reported whatever they "
                   "show, same settings, one run each):", "",
                   "| data | true K | gmmrrt: K, its BIC, CPU time | scikit-learn: K, its BIC, CPU time | CPU speed-up |",

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""demo_stats.py - statistics of demonstrations, synthetic against real (issue 3; paper Sect. 5.1 uses
+"""demo_stats.py - statistics of demonstrations, synthetic against real (paper Sect. 5.1 uses
 9 demonstrations per homotopy): per episode the minimum distance to the person, the mean speed
 (path length / duration) and the path length over the straight start-goal distance; per set the
 mean, std and 5/25/50/75/95 % quantiles, and the two-sample Kolmogorov-Smirnov distance between

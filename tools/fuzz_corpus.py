@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the seed corpora of the libFuzzer targets into tests/fuzz/corpus/<target>/ (issue 9).
+"""Writes the seed corpora of the libFuzzer targets into tests/fuzz/corpus/<target>/.
 
 Seeds are real inputs, small: model files (the scenario models and the shared test
 vectors), encoded LCM messages taken from logs/scenarios/ (one of each type per scenario,

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Learner speed, before and after (issue 8): interleaved CPU-time runs of two gmmrrt-learn
+"""Learner speed, before and after: interleaved CPU-time runs of two gmmrrt-learn
 binaries and of single-threaded scikit-learn on one CSV of 2-D points, medians.
 
 Times are CPU seconds of each run (user + sys of the child, or process_time for scikit-learn),

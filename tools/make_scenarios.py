@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the scenario logs of logs/scenarios/ for gmmrrtd's replay tests (issue 6).
+"""Writes the scenario logs of logs/scenarios/ for gmmrrtd's replay tests.
 
 Each scenario is a small LCM log (lcm.EventLog) of the daemon's inputs: ROBOT_POSE at 10 Hz,
 PEOPLE at 5 Hz, OBSTACLES and NAV_GOAL re-sent at 1 Hz, event timestamps equal to the messages'

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Soak test of gmmrrtd (issue 9): the scenario logs replayed at ten times real speed, in a
+"""Soak test of gmmrrtd: the scenario logs replayed at ten times real speed, in a
 loop, into a live daemon for --minutes (default 10); its RSS and its pose-to-plan latency are
 sampled all along and must stay flat.
 

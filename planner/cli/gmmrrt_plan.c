@@ -1,7 +1,7 @@
 /*
  * gmmrrt_plan.c - gmmrrt-plan: plans one path with the gmmrrt core (rrtstar.h) from the
- * command line and prints it as x,y CSV or, with --json, one JSON object (issue 5,
- * "Output and CLI"; docs/planner.md). The model is read with gmmrrt_model_load_file.
+ * command line and prints it as x,y CSV or, with --json, one JSON object
+ * (docs/planner.md). The model is read with gmmrrt_model_load_file.
  *
  * Exit status: 0 a path was found; 1 bad arguments, unreadable model or a problem the
  * planner refuses (start/goal in collision, model mismatch, ...); 3 no path within the

@@ -1,5 +1,5 @@
 /*
- * daemon.h - gmmrrtd's state and the three jobs of its shell (STYLE.md 10, issue 6):
+ * daemon.h - gmmrrtd's state and the three jobs of its shell (STYLE.md 10):
  * inputs.c takes LCM messages in (decode, validate, time checks, counters), cycle.c makes
  * one planning cycle (problem from the latest inputs, library call, plan and status out),
  * main.c runs the loop (poll, ticks, signals, reload, systemd).

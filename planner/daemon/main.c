@@ -1,5 +1,5 @@
 /*
- * main.c - gmmrrtd's main loop, like Redis's (STYLE.md 10; issue 6): poll() on the LCM file
+ * main.c - gmmrrtd's main loop, like Redis's (STYLE.md 10): poll() on the LCM file
  * descriptor with a timeout to the next tick, a fixed cycle rate with a planning budget
  * inside each period, signal handlers that only set flags (SIGINT/SIGTERM: exit cleanly;
  * SIGHUP: reload config and models), systemd readiness and watchdog via sd_notify when

@@ -2,7 +2,7 @@
  * settings.h - everything gmmrrtd can be told: defaults, the INI file (read with inih) and
  * the command line (getopt_long), one table of keys shared by both so that a flag and its
  * INI key can never drift apart. Flags override the file. Every bad value is an error that
- * names file:line or the flag (issue 6, "CLI"). The reference is docs/daemon.md.
+ * names file:line or the flag. The reference is docs/daemon.md.
  */
 #ifndef GMMRRTD_SETTINGS_H
 #define GMMRRTD_SETTINGS_H

@@ -1,4 +1,4 @@
-"""Shared by the tests that drive gmmrrtd (tests/replay, issue 6; tests/fault, issue 9): where the
+"""Shared by the tests that drive gmmrrtd (tests/replay; tests/fault): where the
 daemon is, the scenario test models, the sanitizer-aware environment and exit check, and one
 deterministic replay (file:// in and out, speed=0, log clock, iteration budget; docs/daemon.md,
 "Deterministic replays").

@@ -1,4 +1,4 @@
-"""Fixtures of the fault-injection replays (issue 9): gmmrrtd and the test models, from the
+"""Fixtures of the fault-injection replays: gmmrrtd and the test models, from the
 helpers shared with tests/replay (tests/common/daemon_fixture.py, which also holds the
 run-and-check step every fault test uses: run_log_clock, daemon_env, assert_clean).
 

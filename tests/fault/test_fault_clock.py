@@ -1,4 +1,4 @@
-"""fault.clock_*: gmmrrtd's time guard (docs/daemon.md, "Clock steps"; issue 6, "timestamps").
+"""fault.clock_*: gmmrrtd's time guard (docs/daemon.md, "Clock steps").
 
 Each test plants a timing fault in the avoid traffic of test_fault_replays.base(), replays it
 through the daemon deterministically (file:// in and out, log clock, iteration budget), and

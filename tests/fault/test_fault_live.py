@@ -1,5 +1,5 @@
 """fault.model_reload and fault.flood_live: gmmrrtd live (UDP multicast on a private port,
-ttl=0, live clock) fed by this test at 10 Hz while faults are injected (issue 9):
+ttl=0, live clock) fed by this test at 10 Hz while faults are injected:
 
   * model_reload: the avoid model file is replaced by garbage, by a truncated copy, by an empty
     file, by a model for the other task and by one with a broken checksum, each followed by

@@ -1,4 +1,4 @@
-"""fault.*: fault-injection replays of gmmrrtd (issue 9). Each test builds an input log with
+"""fault.*: fault-injection replays of gmmrrtd. Each test builds an input log with
 planted faults (on top of the scenario tooling of tools/make_scenarios.py), replays it through
 the daemon deterministically (file:// in and out, log clock, iteration budget) and checks with
 tools/gmmrrt_tools/replay_check.py that

@@ -1,4 +1,4 @@
-"""Fixtures of the replay tests (issue 6): gmmrrtd and the test models, from the helpers shared
+"""Fixtures of the replay tests: gmmrrtd and the test models, from the helpers shared
 with tests/fault (tests/common/daemon_fixture.py: where gmmrrtd and the scenarios are, the
 replay radii, run_log_clock); GOLDEN is this folder's own."""
 import os

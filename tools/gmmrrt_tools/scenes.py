@@ -136,13 +136,13 @@ def load_demo_logs(demos_dir: str) -> List[Episode]:
     d = Path(demos_dir)
     logs = sorted(d.glob("*.lcmlog"))
     if not logs:
-        raise RuntimeError(f"no demonstration logs (*.lcmlog) in {d}: they come with the demos branch "
-                           f"(issue 3)")
+        raise RuntimeError(f"no demonstration logs (*.lcmlog) in {d} "
+                           f"(logs/README.md says how they are recorded or synthesized)")
     try:
         from gmmrrt_tools import demolog  # type: ignore
     except ImportError as exc:
         raise RuntimeError(f"the demonstration log reader gmmrrt_tools.demolog is missing ({exc}): "
-                           f"it comes with the demos branch (issue 3)") from None
+                           f"is this an incomplete checkout?") from None
     out: List[Episode] = []
     for log in logs:
         eps, warnings = demolog.read_demo_log(str(log))

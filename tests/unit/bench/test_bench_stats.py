@@ -1,4 +1,4 @@
-"""bench.stats: the benchmark harness's arithmetic on hand-made trial records (issue 8).
+"""bench.stats: the benchmark harness's arithmetic on hand-made trial records.
 
 Oracles are computed by hand in each test from the records it builds: medians that keep
 "never" as infinity, best cost read off a curve, time to a cost, paired ratios, the social

@@ -1,6 +1,6 @@
 /*
  * test_timeguard.c - unit tests of gmmrrtd's time guard (planner/daemon/inputs.c,
- * docs/daemon.md "Clock steps"; issue 6, "timestamps going backwards"): the bounded-future
+ * docs/daemon.md "Clock steps"): the bounded-future
  * rule (REJECT_TIME_FUTURE) and the resynchronisation after time_resync_count consecutive
  * messages of one channel off the clock in the same direction (REJECT_CLOCK_RESYNC), driven
  * through gmmrrtd_inputs_handle with encoded pose2d_t / people_t messages. No goal is ever
