@@ -32,6 +32,7 @@ from typing import List, Optional, Tuple
 import numpy as np
 from scipy.interpolate import CubicSpline
 
+from gmmrrt_tools import core
 from gmmrrt_tools.demolog import DEFAULT_START_UTIME, MAX_PERSON_AGE_S, write_demo_log
 from gmmrrt_tools.episodes import Episode
 
@@ -77,8 +78,9 @@ SETS = [("avoid", "left"), ("avoid", "right"), ("approach", "frontal"), ("approa
         ("approach", "right")]
 
 
-def wrap(a: float) -> float:
-    return (a + math.pi) % (2 * math.pi) - math.pi
+# Angle wrapping and the features (d, theta) are the C core's (planner/src/features.c, through
+# gmmrrt_tools.core): the demonstrations are made with the planner's own conventions.
+wrap = core.wrap_angle
 
 
 def truncnorm(rng: np.random.Generator, mean: float, std: float, lo: float, hi: float) -> float:
@@ -96,17 +98,14 @@ def from_deciles(rng: np.random.Generator, deciles) -> float:
 
 
 def from_person(person: Tuple[float, float, float], d: float, theta: float) -> np.ndarray:
-    """World point at distance d, bearing theta in the person's frame (README convention)."""
-    px, py, yaw = person
-    return np.array([px + d * math.cos(yaw + theta), py + d * math.sin(yaw + theta)])
+    """World point at distance d, bearing theta in the person's frame (gmmrrt_features_to_xy)."""
+    return np.array(core.features_to_xy(person, d, theta))
 
 
 def features(person, x, y) -> Tuple[np.ndarray, np.ndarray]:
-    px, py, yaw = person
-    dx, dy = np.asarray(x) - px, np.asarray(y) - py
-    xp = dx * math.cos(yaw) + dy * math.sin(yaw)
-    yp = -dx * math.sin(yaw) + dy * math.cos(yaw)
-    return np.hypot(xp, yp), np.arctan2(yp, xp)
+    """(d, theta) of each point (x[i], y[i]) (gmmrrt_features_from_xy)."""
+    f = np.array([core.features_from_xy(person, xi, yi) for xi, yi in zip(np.ravel(x), np.ravel(y))])
+    return f[:, 0], f[:, 1]
 
 
 # ---------------------------------------------------------------- reference path and tracking

@@ -188,13 +188,14 @@ def smoothness(path) -> float:
         return 0.0
     h = np.arctan2(d[:, 1], d[:, 0])
     dh = np.diff(h)
-    dh = (dh + np.pi) % (2.0 * np.pi) - np.pi
-    return float(np.sum(np.abs(dh)))
+    return float(np.sum(np.abs([wrap(a) for a in dh])))
 
 
 def wrap(a: float) -> float:
-    """Angle wrapped to [-pi, pi) (for differences only; features come from gmmrrt_tools.core)."""
-    return (a + math.pi) % (2.0 * math.pi) - math.pi
+    """Angle wrapped to (-pi, pi] by the C core (gmmrrt_wrap_angle): the one convention."""
+    from gmmrrt_tools import core
+
+    return core.wrap_angle(a)
 
 
 @dataclass

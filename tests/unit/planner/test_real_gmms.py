@@ -12,13 +12,13 @@ Skipped, saying why, when the real data is not there.
 import json
 import math
 import os
-import struct
 import subprocess
-import zlib
 from pathlib import Path
 
 import numpy as np
 import pytest
+
+from gmmrrt_tools import core
 
 BIN = Path(os.environ.get("GMMRRT_BIN_DIR", "build/bin")) / "gmmrrt-plan"
 REAL = Path(os.environ.get("GMMRRT_REAL_DATA", "../shared/data/real"))
@@ -32,29 +32,21 @@ def load_sets():
     return json.loads(GMMS.read_text())["sets"]
 
 
-def wrap(a):
-    return (np.asarray(a) + math.pi) % (2 * math.pi) - math.pi
-
-
 def to_model(task):
     comps = task["components"]
     w = np.array([c["weight"] for c in comps], dtype=float)
     w = w / w.sum()
-    means = np.array([[c["mean"][0], float(wrap(c["mean"][1]))] for c in comps])
+    means = np.array([[c["mean"][0], core.wrap_angle(c["mean"][1])] for c in comps])
     covs = np.array([c["cov"] for c in comps], dtype=float)
     return w, means, covs
 
 
 def write_model(path, w, means, covs):
-    k = len(w)
-    head = b"GMMRRTMD" + struct.pack("<HHBBBBHHId", 1, 0xFEFF, 1, 2, 0, 2, k, 0, 0x2, DELTA)
-    body = b"".join(struct.pack("<d", x) for x in w)
-    body += b"".join(struct.pack("<dd", *m) for m in means)
+    chols = []
     for c in covs:
         L = np.linalg.cholesky(c)
-        body += struct.pack("<ddd", L[0, 0], L[1, 0], L[1, 1])
-    data = head + body
-    path.write_bytes(data + struct.pack("<I", zlib.crc32(data) & 0xFFFFFFFF))
+        chols.append((L[0, 0], L[1, 0], L[1, 1]))
+    core.save_model(str(path), core.model_from_arrays(1, 2, 0, list(w), [tuple(m) for m in means], chols, 0x2, DELTA))
 
 
 def density(w, means, covs, d, th):
@@ -64,7 +56,7 @@ def density(w, means, covs, d, th):
         inv = np.linalg.inv(c)
         norm = wi / (2 * math.pi * math.sqrt(np.linalg.det(c)))
         for n in (-1, 0, 1):
-            v = np.array([d - m[0], float(wrap(th - m[1])) + 2 * math.pi * n])
+            v = np.array([d - m[0], core.wrap_angle(th - m[1]) + 2 * math.pi * n])
             p += norm * math.exp(-0.5 * v @ inv @ v)
     return p
 
