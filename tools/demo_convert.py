@@ -17,23 +17,21 @@ from __future__ import annotations
 import argparse
 import sys
 
-from gmmrrt_tools.demolog import read_demo_log, write_demo_log
-from gmmrrt_tools.episodes import (HOMOTOPIES, TASKS, EpisodeError, read_episode_csv, read_split_index,
-                                   write_episode_csv)
+from gmmrrt_tools.demolog import write_demo_log
+from gmmrrt_tools.episodes import HOMOTOPIES, TASKS, EpisodeError, read_episodes, write_episode_csv
 
 
 def csv2log(args) -> int:
-    episodes = read_episode_csv(args.input)
     if args.split and not args.index:
         raise EpisodeError("--split needs --index (the index CSV with episode_id and split columns)")
+    episodes, _ = read_episodes(args.input, index=args.index)
     if args.index:
-        split = read_split_index(args.index)
-        missing = [e.id for e in episodes if e.id not in split]
+        missing = [e.id for e in episodes if not e.split]
         if missing:
             raise EpisodeError(f"{args.index}: no split for episode '{missing[0]}' of {args.input} "
                                f"({len(missing)} episodes missing)")
         if args.split:
-            episodes = [e for e in episodes if split[e.id] == args.split]
+            episodes = [e for e in episodes if e.split == args.split]
     if args.task:
         episodes = [e for e in episodes if e.task == args.task]
     if args.homotopy:
@@ -53,7 +51,7 @@ def csv2log(args) -> int:
 
 
 def log2csv(args) -> int:
-    episodes, warnings = read_demo_log(args.input)
+    episodes, warnings = read_episodes(args.input)
     for w in warnings:
         print(f"warning: {w}", file=sys.stderr)
     write_episode_csv(args.output, episodes)

@@ -26,8 +26,8 @@ import numpy as np
 from scipy.stats import ks_2samp
 
 from gmmrrt_tools import core
-from gmmrrt_tools.demolog import read_demo_log
-from gmmrrt_tools.episodes import Episode, EpisodeError, read_episode_csv
+from gmmrrt_tools.episodes import Episode, EpisodeError, read_episodes
+from gmmrrt_tools.runner import MissingTool
 from gmmrrt_tools.realdata import select_upo
 
 QUANTILES = (5, 25, 50, 75, 95)
@@ -87,12 +87,9 @@ def read_logs(pattern: str) -> List[Episode]:
     files = sorted(glob.glob(pattern))
     if not files:
         raise EpisodeError(f"no demonstration log matches {pattern}")
-    eps: List[Episode] = []
-    for f in files:
-        e, warnings = read_demo_log(f)
-        for w in warnings:
-            print(f"warning: {w}", file=sys.stderr)
-        eps += e
+    eps, warnings = read_episodes(files)
+    for w in warnings:
+        print(f"warning: {w}", file=sys.stderr)
     return eps
 
 
@@ -116,8 +113,8 @@ def main(argv=None) -> int:
         s_avoid = read_logs(os.path.join(args.demos, "avoid_*.lcmlog"))
         s_appr = read_logs(os.path.join(args.demos, "approach_*.lcmlog"))
         upo = select_upo(args.real_data, args.split, args.encounter)
-        ucy = read_episode_csv(os.path.join(args.real_data, "ucy_approach_episodes.csv"))
-    except (EpisodeError, core.CoreNotBuilt) as e:
+        ucy, _ = read_episodes(os.path.join(args.real_data, "ucy_approach_episodes.csv"))
+    except (EpisodeError, core.CoreNotBuilt, MissingTool) as e:
         print(f"demo_stats: error: {e}", file=sys.stderr)
         return 1
     what = f"{args.split}, {'frontal encounters' if args.encounter == 'frontal' else 'all encounters'}"

@@ -24,8 +24,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from gmmrrt_tools import core  # noqa: E402
-from gmmrrt_tools.demolog import read_demo_log  # noqa: E402
-from gmmrrt_tools.episodes import EpisodeError, read_episode_csv  # noqa: E402
+from gmmrrt_tools.episodes import EpisodeError, read_episodes  # noqa: E402
+from gmmrrt_tools.runner import MissingTool  # noqa: E402
 from gmmrrt_tools.realdata import select_upo  # noqa: E402
 
 COLORS = {"left": "tab:blue", "right": "tab:orange", "frontal": "tab:green"}
@@ -89,10 +89,10 @@ def main(argv=None) -> int:
             files = sorted(glob.glob(os.path.join(args.demos, f"{task}_*.lcmlog")))
             if not files:
                 raise EpisodeError(f"no {task}_*.lcmlog in {args.demos}: run tools/synth_demos.py")
-            synth[task] = [e for f in files for e in read_demo_log(f)[0]]
+            synth[task] = read_episodes(files)[0]
         upo = select_upo(args.real_data, "all", "frontal")
-        ucy = read_episode_csv(os.path.join(args.real_data, "ucy_approach_episodes.csv"))
-    except (EpisodeError, core.CoreNotBuilt) as e:
+        ucy, _ = read_episodes(os.path.join(args.real_data, "ucy_approach_episodes.csv"))
+    except (EpisodeError, core.CoreNotBuilt, MissingTool) as e:
         print(f"plot_demos: error: {e}", file=sys.stderr)
         return 1
     rng = np.random.default_rng(args.seed)

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from gmmrrt_tools import core
-from gmmrrt_tools.demolog import read_demo_log
+from gmmrrt_tools.episodes import read_episodes
 
 REPO = Path(__file__).resolve().parents[3]
 SYNTH = REPO / "tools" / "synth_demos.py"
@@ -62,7 +62,7 @@ def person_frame(ep):
 @pytest.mark.parametrize("name", sorted(FILES))
 def test_demonstrations_have_the_asked_shape(seed1, name):
     task, homotopy = FILES[name]
-    eps, warnings = read_demo_log(str(seed1 / f"{name}.lcmlog"))
+    eps, warnings = read_episodes(str(seed1 / f"{name}.lcmlog"))
     assert warnings == []
     assert len(eps) == 9
     for ep in eps:
@@ -103,7 +103,7 @@ def test_from_behind_approaches_straddle_the_seam(seed1):
     """Some from-behind approaches start across theta = +-pi from the side they curve round, so the
     learner's wrapped model sees data on both sides of the seam (docs/demonstrations.md)."""
     for name, sign in (("approach_left", 1.0), ("approach_right", -1.0)):
-        eps, _ = read_demo_log(str(seed1 / f"{name}.lcmlog"))
+        eps, _ = read_episodes(str(seed1 / f"{name}.lcmlog"))
         starts = [person_frame(e)[1][0] for e in eps]
         assert any(sign * t < 0 for t in starts), f"{name}: no start across the seam"
         assert any(sign * t > 0 for t in starts), f"{name}: every start across the seam"
