@@ -30,8 +30,6 @@ from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
 ROOT = Path(__file__).resolve().parents[1]
 
 from gmmrrt_tools import metrics as M  # noqa: E402

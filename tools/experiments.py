@@ -31,8 +31,6 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
 from gmmrrt_tools import metrics as M  # noqa: E402
 from gmmrrt_tools import runner as R  # noqa: E402
 from gmmrrt_tools import scenes as S  # noqa: E402

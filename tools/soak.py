@@ -42,11 +42,6 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, ".."))
-sys.path.insert(0, HERE)
-try:
-    import gmmrrt  # noqa: F401
-except ImportError:
-    sys.path.insert(0, os.path.join(ROOT, "build", "python"))
 import lcm  # noqa: E402
 from gmmrrt import nav_goal_t, obstacles_t, people_t, planner_status_t, pose2d_t, waypoints_t  # noqa: E402
 from gmmrrt_tools.scenario_models import write_models  # noqa: E402

@@ -22,7 +22,7 @@ import time
 
 import lcm
 import pytest
-from daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, assert_clean, daemon_env
+from tests.common.daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, assert_clean, daemon_env
 
 from gmmrrt import nav_goal_t, obstacles_t, people_t, person_t, planner_status_t, pose2d_t, waypoints_t
 

@@ -17,11 +17,11 @@ import random
 import struct
 
 import pytest
-from daemon_fixture import run_log_clock
+from tests.common.daemon_fixture import run_log_clock
 
 from gmmrrt import planner_status_t
 from gmmrrt_tools import replay_check
-import make_scenarios as ms
+from gmmrrt_tools import scenario_logs as ms
 
 R = planner_status_t
 AVOID, APPROACH = ms.AVOID, ms.APPROACH

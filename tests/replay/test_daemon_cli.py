@@ -10,7 +10,7 @@ import subprocess
 import time
 
 import lcm
-from daemon_fixture import ROOT, SCENARIOS, venv_bin
+from tests.common.daemon_fixture import ROOT, SCENARIOS, venv_bin
 from test_replay_udpm import private_url, wait_for_line
 
 from gmmrrt import planner_status_t, waypoints_t

@@ -9,9 +9,9 @@ import math
 
 import pytest
 
-from bench_planner import summarize_ompl, summarize_social
-from bench_report import evaluate_targets
-from bench_stats import INF, clean, cost_at, median, quantile, ratio, time_to_cost
+from gmmrrt_tools.bench.planner import summarize_ompl, summarize_social
+from gmmrrt_tools.bench.report import evaluate_targets
+from gmmrrt_tools.bench.stats import INF, clean, cost_at, median, quantile, ratio, time_to_cost
 
 CURVE = [[0.5, 10, 20.0], [2.0, 40, 15.0], [9.0, 200, 12.0], [50.0, 900, 11.0]]
 

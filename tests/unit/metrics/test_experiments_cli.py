@@ -52,7 +52,6 @@ def _run(args, bin_dir, tmp_path):
 
 
 def test_missing_tool_is_named(tmp_path):
-    sys.path.insert(0, str(ROOT / "tools"))
     from gmmrrt_tools import runner
     with pytest.raises(runner.MissingTool, match="gmmrrt-nosuchtool not found in .*tools/run build"):
         runner.find_tool("gmmrrt-nosuchtool", str(tmp_path))

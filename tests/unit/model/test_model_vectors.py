@@ -16,8 +16,7 @@ import numpy as np
 import pytest
 
 REPO = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(REPO / "tools"))
-import gen_model_vectors as gmv  # noqa: E402
+from gmmrrt_tools import model_vectors as gmv  # noqa: E402  (the independent oracle)
 
 VECTORS = REPO / "tests" / "data" / "model_vectors"
 MODEL_BYTES = 1 << 20  # more than sizeof(gmmrrt_model_t) for any limits.h

@@ -9,7 +9,7 @@ import math
 from pathlib import Path
 from typing import List, Optional
 
-from bench_stats import fmt
+from gmmrrt_tools.bench.stats import fmt
 
 LL_EQUAL_TOLERANCE = 1e-3  # nats per point: "equal" log-likelihood within this
 
@@ -346,7 +346,7 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
         L += ["", f"- speed-up (defaults against scikit-learn), CPU time: **{fmt(fit.get('speedup_cpu'), 2, 'x')}**; "
               f"wall time: {fmt(fit.get('speedup'), 2, 'x')}; log-likelihood gap (ours - scikit-learn): "
               f"{fmt(fit.get('log_likelihood_gap'), 5)} nats per point",
-              f"- our command (data written by tools/bench_learner.py): `{fit.get('command_example')}`", ""]
+              f"- our command (data written by gmmrrt_tools.bench.learner): `{fit.get('command_example')}`", ""]
         sw = le.get("sweep", {})
         L += [f"BIC sweep K = 1..30 on N = {sw.get('n'):,} points of {sw.get('k_true')} well-separated Gaussians "
               "(same settings; one run each, ours then scikit-learn):", "",
@@ -414,8 +414,8 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
           "Programs: `tests/bench/ompl/` (gmmrrt-bench-ompl: both planners, interleaved trials, optional OMPL "
           "log), `tests/bench/social/` (gmmrrt-bench-social), `tests/bench/memory/` (gmmrrt-bench-memory), "
           "`tests/bench/learner/` (gmmrrt-bench-learner: times our EM or BIC sweep on a CSV of points); "
-          "`tools/bench.py` runs them with `tools/bench_planner.py`, `tools/bench_learner.py` (the scikit-learn "
-          "peer), `tools/bench_report.py` (targets, this page) and `tools/bench_stats.py`. Each program prints "
+          "`tools/bench.py` runs them with `gmmrrt_tools.bench.planner`, `gmmrrt_tools.bench.learner` (the scikit-learn "
+          "peer), `gmmrrt_tools.bench.report` (targets, this page) and `gmmrrt_tools.bench.stats`. Each program prints "
           "one JSON object per trial; raw records land in `build/bench-raw/`.", "",
           "```", "GMMRRT_REAL_DATA=/path/to/data/real tools/run bench          # full run, this page",
           "tools/run bench --quick                                      # smoke run (build/bench-results-quick.json)",

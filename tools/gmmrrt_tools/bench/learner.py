@@ -35,8 +35,8 @@ import numpy as np  # noqa: E402
 from sklearn.mixture import GaussianMixture  # noqa: E402
 from threadpoolctl import threadpool_info, threadpool_limits  # noqa: E402
 
-from bench_planner import BenchError  # noqa: E402
-from bench_stats import median, ratio  # noqa: E402
+from gmmrrt_tools.bench.planner import BenchError  # noqa: E402
+from gmmrrt_tools.bench.stats import median, ratio  # noqa: E402
 
 SKLEARN_TOL = 1e-3
 SKLEARN_MAX_ITER = 100
@@ -251,7 +251,7 @@ def run_extra_sweeps(exe: Path, work: Path, quick: bool, k_max: int, seed: int,
                       work / f"sweep_overlap_{n}_{k_true}.csv", k_max, seed)
     ov["k_true"] = k_true
     ov["data"] = (f"{n:,} points of a random {k_true}-component mixture with means in a square of side 7 "
-                  "(tools/bench_learner.py make_mixture_points, separation 0.35): components overlap")
+                  "(gmmrrt_tools.bench.learner make_mixture_points, separation 0.35): components overlap")
     out["overlap"] = ov
     if real is not None and (real / "upo_avoid_episodes.csv").is_file():
         pts = upo_avoid_train_points(real)

@@ -17,7 +17,7 @@ import subprocess
 from pathlib import Path
 from typing import Dict, List, Optional
 
-from bench_stats import INF, cost_at, median, quantile, ratio, time_to_cost
+from gmmrrt_tools.bench.stats import INF, cost_at, median, quantile, ratio, time_to_cost
 
 CHECKPOINTS_MS = (10.0, 100.0, 1000.0)
 
