@@ -102,12 +102,14 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0"], "--goal"),
     (["--start"], "needs a value"),
     (["--start", "0,0", "--goal", "1,1", "--frobnicate"], "unknown option"),
-    (["--start", "0,0", "--goal", "1,1", "--delta", "0"], "--delta"),
+    (["--start", "0,0", "--goal", "1,1", "--delta", "-1"], "--delta '-1': config.delta must be finite and >= 0"),
     (["--start", "0,0", "--goal", "1,1", "--delta", "nan"], "--delta"),
     (["--start", "0,0", "--goal", "1,1", "--w-task", "-1"], "--w-task"),
     (["--start", "0,0", "--goal", "1,1", "--rewire-k", "-1"], "--rewire-k"),
     (["--start", "0,0", "--goal", "1,1", "--rewire-k", "x"], "--rewire-k"),
     (["--start", "0,0", "--goal", "1,1", "--informed", "2"], "--informed"),
+    (["--start", "0,0", "--goal", "1,1", "--bias", "1.5"], "--bias '1.5': config.gmm_bias must be in [0, 1]"),
+    (["--start", "0,0", "--goal", "1,1", "--robot-radius", "-0.1"], "--robot-radius '-0.1': config.robot_radius_m"),
 ])
 def test_bad_input_is_refused_with_a_clear_error(args, message):
     r = run(*args)
