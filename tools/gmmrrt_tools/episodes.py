@@ -4,7 +4,7 @@ demonstrations of each task and homotopy).
 Episodes are read only by the learner's C++ reader (learner/src/demo_io.cpp), for demonstration
 logs and episode CSVs alike: read_episodes runs `gmmrrt-learn dump --json`, so the reading rules
 (pairing, skipped events, CSV checks, headings estimated from the motion) exist once. Python writes
-episodes: write_episode_csv here, write_demo_log in demolog.py.
+episodes: write_episode_csv here, write_demo_log in demonstration_log.py.
 
 The CSV format is the one of ../shared/data/real/README.md:
     episode_id,task,homotopy,t,robot_x,robot_y,person_x,person_y,person_yaw

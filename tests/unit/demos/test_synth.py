@@ -1,4 +1,4 @@
-"""tools/synth_demos.py: deterministic from the seed (and logs/demos/ is what the documented command
+"""tools/synth_demonstrations.py: deterministic from the seed (and logs/demos/ is what the documented command
 makes), 9 demonstrations per task and homotopy with the asked homotopy, bounded speed, passing and
 final distances inside the documented ranges. Features come from the C core (gmmrrt_tools.core)."""
 import math
@@ -14,7 +14,7 @@ from gmmrrt_tools import core
 from gmmrrt_tools.episodes import read_episodes
 
 REPO = Path(__file__).resolve().parents[3]
-SYNTH = REPO / "tools" / "synth_demos.py"
+SYNTH = REPO / "tools" / "synth_demonstrations.py"
 FILES = {"avoid_left": ("avoid", "left"), "avoid_right": ("avoid", "right"),
          "approach_frontal": ("approach", "frontal"), "approach_left": ("approach", "left"),
          "approach_right": ("approach", "right")}
@@ -39,7 +39,7 @@ def test_same_seed_same_bytes_and_repo_logs_are_that_output(seed1, tmp_path):
         a = (seed1 / f"{name}.lcmlog").read_bytes()
         assert a == (tmp_path / f"{name}.lcmlog").read_bytes(), name
         assert a == (REPO / "logs" / "demos" / f"{name}.lcmlog").read_bytes(), \
-            f"logs/demos/{name}.lcmlog is not what `synth_demos.py --seed 1` makes: regenerate it"
+            f"logs/demos/{name}.lcmlog is not what `synth_demonstrations.py --seed 1` makes: regenerate it"
     total = sum(p.stat().st_size for p in (REPO / "logs" / "demos").glob("*"))
     assert total < 700_000, f"logs/demos/ holds {total} bytes"
 

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""demo_convert.py - episode CSV <-> demonstration log (paper Sect. 2 / 5.1 demonstrations; layout in
+"""convert_demonstrations.py - episode CSV <-> demonstration log (paper Sect. 2 / 5.1 demonstrations; layout in
 docs/demonstrations.md).
 
-  demo_convert.py csv2log IN.csv OUT.lcmlog [--index INDEX.csv --split train] [--task avoid]
+  convert_demonstrations.py csv2log IN.csv OUT.lcmlog [--index INDEX.csv --split train] [--task avoid]
                                             [--homotopy left] [--max-episodes N]
-  demo_convert.py log2csv IN.lcmlog OUT.csv
+  convert_demonstrations.py log2csv IN.lcmlog OUT.csv
 
 Labels (task, homotopy) are kept both ways. A CSV with many episodes becomes one log with one
 DEMO_INFO per episode (episode numbers 0, 1, ... in CSV order); csv2log prints the mapping from
@@ -17,7 +17,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from gmmrrt_tools.demolog import write_demo_log
+from gmmrrt_tools.demonstration_log import write_demo_log
 from gmmrrt_tools.episodes import HOMOTOPIES, TASKS, EpisodeError, read_episodes, write_episode_csv
 
 
@@ -88,7 +88,7 @@ def main(argv=None) -> int:
     try:
         return args.func(args)
     except EpisodeError as e:
-        print(f"demo_convert: error: {e}", file=sys.stderr)
+        print(f"convert_demonstrations: error: {e}", file=sys.stderr)
         return 1
 
 

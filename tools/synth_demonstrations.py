@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""synth_demos.py - synthetic demonstrations of the paper's social tasks, shaped like a careful
+"""synth_demonstrations.py - synthetic demonstrations of the paper's social tasks, shaped like a careful
 human teleoperator, written as demonstration logs (paper Sect. 2 tasks; Sect. 5.1: 9 demonstrations per task
 and homotopy; layout in docs/demonstrations.md).
 
@@ -18,7 +18,7 @@ passing distance and of the final approach distance are those of the real data
 (../shared/data/real: UPO frontal-encounter avoid d_min and facing, UCY approach d_end; numbers
 below and in docs/demonstrations.md). Deterministic: the same --seed gives byte-identical logs.
 
-  synth_demos.py --seed 1 --out-dir logs/demos
+  synth_demonstrations.py --seed 1 --out-dir logs/demos
 """
 from __future__ import annotations
 
@@ -33,7 +33,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from gmmrrt_tools import core
-from gmmrrt_tools.demolog import DEFAULT_START_UTIME, MAX_PERSON_AGE_S, write_demo_log
+from gmmrrt_tools.demonstration_log import DEFAULT_START_UTIME, MAX_PERSON_AGE_S, write_demo_log
 from gmmrrt_tools.episodes import Episode
 
 # ---------------------------------------------------------------- distributions (from the real data)
@@ -321,7 +321,7 @@ def main(argv=None) -> int:
     try:
         os.makedirs(args.out_dir, exist_ok=True)
     except OSError as e:
-        print(f"synth_demos: error: cannot create {args.out_dir}: {e.strerror}", file=sys.stderr)
+        print(f"synth_demonstrations: error: cannot create {args.out_dir}: {e.strerror}", file=sys.stderr)
         return 1
     for k, (task, homotopy) in enumerate(SETS):
         # One stream per set, derived from the seed: each file is reproducible on its own.

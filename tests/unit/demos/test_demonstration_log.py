@@ -1,4 +1,4 @@
-"""Python demonstration I/O (tools/gmmrrt_tools/{episodes,demolog}.py, tools/demo_convert.py): the
+"""Python demonstration I/O (tools/gmmrrt_tools/{episodes,demonstration_log}.py, tools/convert_demonstrations.py): the
 Python writers against the one reader, the learner's (read through `gmmrrt-learn dump --json`).
 CSV -> log -> CSV round trip (values to 1e-9, labels kept), the writer's refusals, the reader's
 errors and warnings reaching Python with file and place, sparse PEOPLE within the pairing age.
@@ -14,13 +14,13 @@ import numpy as np
 import pytest
 
 from gmmrrt import demo_info_t, people_t, pose2d_t
-from gmmrrt_tools.demolog import MAX_PERSON_AGE_S, write_demo_log
+from gmmrrt_tools.demonstration_log import MAX_PERSON_AGE_S, write_demo_log
 from gmmrrt_tools.episodes import Episode, EpisodeError, read_episodes
 
 import lcm
 
 REPO = Path(__file__).resolve().parents[3]
-CONVERT = REPO / "tools" / "demo_convert.py"
+CONVERT = REPO / "tools" / "convert_demonstrations.py"
 HEADER = "episode_id,task,homotopy,t,robot_x,robot_y,person_x,person_y,person_yaw\n"
 
 
