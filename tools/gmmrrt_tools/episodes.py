@@ -12,6 +12,7 @@ The CSV format is the one of ../shared/data/real/README.md:
 """
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import subprocess
@@ -124,6 +125,37 @@ def read_episodes(paths, index: Optional[str] = None, bin_dir: Optional[str] = N
     return episodes, list(out["warnings"])
 
 
+@contextlib.contextmanager
+def atomic_output(path: str, suffix: str):
+    """Yields a temporary file name in path's folder; when the block ends without an exception the
+    file is renamed over path, otherwise removed: the file appears whole or not at all. An OSError
+    becomes EpisodeError naming path."""
+    directory = os.path.dirname(os.path.abspath(path))
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=suffix, dir=directory)
+    except OSError as e:
+        raise EpisodeError(f"{path}: cannot write: {e.strerror}") from None
+    os.close(fd)
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    except BaseException as exc:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        if isinstance(exc, OSError):
+            raise EpisodeError(f"{path}: cannot write: {exc.strerror or exc}") from None
+        raise
+
+
+def check_labels(path: str, episodes: List[Episode]) -> None:
+    """The writers' check: every episode has a known task and homotopy and at least one sample."""
+    for ep in episodes:
+        if ep.task not in TASKS or ep.homotopy not in HOMOTOPIES:
+            raise EpisodeError(f"{path}: episode '{ep.id}': unknown task/homotopy {ep.task}/{ep.homotopy}")
+        if len(ep) == 0:
+            raise EpisodeError(f"{path}: episode '{ep.id}' has no samples")
+
+
 def _fmt(v: float) -> str:
     return repr(float(v))
 
@@ -132,25 +164,14 @@ def write_episode_csv(path: str, episodes: List[Episode]) -> None:
     """Writes episodes as an episode CSV (robot_yaw is not part of the format and is dropped).
     Numbers are written with repr(), so they read back exactly. The file appears whole or not at
     all (written to a temporary file, then renamed). Raises EpisodeError."""
+    check_labels(path, episodes)
     for ep in episodes:
-        if ep.task not in TASKS or ep.homotopy not in HOMOTOPIES:
-            raise EpisodeError(f"{path}: episode '{ep.id}': unknown task/homotopy {ep.task}/{ep.homotopy}")
         if "," in ep.id or not ep.id:
             raise EpisodeError(f"{path}: episode id '{ep.id}' is empty or contains a comma")
-    directory = os.path.dirname(os.path.abspath(path))
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".csv", dir=directory)
-    except OSError as e:
-        raise EpisodeError(f"{path}: cannot write: {e.strerror}") from None
-    try:
-        with os.fdopen(fd, "w", newline="") as f:
-            f.write(",".join(CSV_COLUMNS) + "\n")
-            for ep in episodes:
-                for i in range(len(ep)):
-                    f.write(",".join([ep.id, ep.task, ep.homotopy, _fmt(ep.t[i]), _fmt(ep.robot_x[i]),
-                                      _fmt(ep.robot_y[i]), _fmt(ep.person_x[i]), _fmt(ep.person_y[i]),
-                                      _fmt(ep.person_yaw[i])]) + "\n")
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
+    with atomic_output(path, ".csv") as tmp, open(tmp, "w", newline="") as f:
+        f.write(",".join(CSV_COLUMNS) + "\n")
+        for ep in episodes:
+            for i in range(len(ep)):
+                f.write(",".join([ep.id, ep.task, ep.homotopy, _fmt(ep.t[i]), _fmt(ep.robot_x[i]),
+                                  _fmt(ep.robot_y[i]), _fmt(ep.person_x[i]), _fmt(ep.person_y[i]),
+                                  _fmt(ep.person_yaw[i])]) + "\n")

@@ -36,9 +36,7 @@ def find_tool(name: str, bin_dir: Optional[str] = None) -> str:
     if found:
         return found
     raise MissingTool(f"{name} not found in {', '.join(d for d in dirs if d)} or PATH: "
-                      f"build it with `tools/run build` (it comes with the "
-                      f"{'planner' if 'plan' in name else 'learner' if 'learn' in name else 'daemon'}"
-                      f" branch)")
+                      f"build it with `tools/run build`")
 
 
 @dataclass
