@@ -344,7 +344,7 @@ def swept_angle(path, person: Sequence[float]) -> float:
     differ by less than pi (otherwise by about 2 pi): see same_homotopy."""
     p = as_path(path) - np.asarray(person[:2], dtype=float)
     b = np.arctan2(p[:, 1], p[:, 0])
-    db = (np.diff(b) + np.pi) % (2.0 * np.pi) - np.pi
+    db = np.array([wrap(a) for a in np.diff(b)])
     return float(np.sum(db))
 
 
