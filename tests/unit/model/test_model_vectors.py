@@ -1,7 +1,8 @@
 """planner.model_vectors: the shared test vectors are current, and the Python encoder/oracle
 of tools/gen_model_vectors.py agrees with the C core (build/lib/libgmmrrt.so via ctypes).
 
-- `gen_model_vectors.py --check`: the checked-in files are exactly what the script makes.
+- `gen_model_vectors.py --check`: the checked-in files are what the script makes, within the
+  tolerances stated in gmmrrt_tools.model_vectors (numpy/BLAS last bits differ across machines).
 - Every vector file decodes in C and re-encodes to the same bytes (both byte layouts agree).
 - Random models for every D in 1..8 with random angle dimensions (up to 3^A images),
   encoded in Python: the C log-density matches the numpy/scipy oracle.
