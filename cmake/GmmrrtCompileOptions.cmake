@@ -18,3 +18,14 @@ if(GMMRRT_SANITIZE)
                       -fno-sanitize-recover=undefined,float-cast-overflow)
   add_link_options(-fsanitize=address,undefined,float-cast-overflow)
 endif()
+
+# gmmrrt_ctypes_library(target): a shared library that the Python tools load with ctypes into
+# the venv's interpreter, which is not built with the sanitizers: such a library is compiled
+# and linked without them in every build, so a sanitizer build's tests can still load it.
+function(gmmrrt_ctypes_library target)
+  gmmrrt_target_defaults(${target})
+  if(GMMRRT_SANITIZE)
+    target_compile_options(${target} PRIVATE -fno-sanitize=all)
+    target_link_options(${target} PRIVATE -fno-sanitize=all)
+  endif()
+endfunction()

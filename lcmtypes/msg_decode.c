@@ -7,19 +7,18 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
-#include <stdio.h>
+
+#include "gmmrrt/detail/reason_text.h"
 
 static gmmrrt_msg_result_t reject(gmmrrt_msg_result_t r, char *err, size_t errcap, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 
 static gmmrrt_msg_result_t reject(gmmrrt_msg_result_t r, char *err, size_t errcap, const char *fmt, ...)
 {
-    if (err != NULL && errcap > 0) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(err, errcap, fmt, ap);
-        va_end(ap);
-    }
+    va_list ap;
+    va_start(ap, fmt);
+    gmmrrt_vformat_reason(err, errcap, fmt, ap);
+    va_end(ap);
     return r;
 }
 

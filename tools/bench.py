@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""gmmrrt benchmarks (issue 8): planner against OMPL RRT*, social tasks, memory, learner against
+"""gmmrrt benchmarks: planner against OMPL RRT*, social tasks, memory, learner against
 scikit-learn, plus the mixture/planner micro-benchmarks and the daemon latency script when they
 are built. Every figure is a median over interleaved runs and, where there is a peer, a ratio
 against the peer measured in the same run (the machine is shared: absolute times are context).
@@ -31,13 +31,11 @@ import time  # noqa: E402
 import traceback  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-HERE = Path(__file__).resolve().parent
-ROOT = HERE.parent
-sys.path.insert(0, str(HERE))
+ROOT = Path(__file__).resolve().parent.parent
 
-import bench_planner as bp  # noqa: E402
-from bench_report import evaluate_targets, write_markdown  # noqa: E402
-from bench_stats import clean  # noqa: E402
+from gmmrrt_tools.bench import planner as bp  # noqa: E402
+from gmmrrt_tools.bench.report import evaluate_targets, write_markdown  # noqa: E402
+from gmmrrt_tools.bench.stats import clean  # noqa: E402
 
 SECTIONS = ("memory", "ompl", "planners", "social", "learner", "micro", "daemon")
 
@@ -86,14 +84,11 @@ def run_micro(build_dir: Path, quick: bool) -> dict:
 
 
 def run_daemon(quick: bool, raw: Path) -> dict:
-    script = HERE / "bench_daemon.py"
-    if not script.is_file():
-        return {"error": "tools/bench_daemon.py is not in this tree (daemon branch)"}
     js = raw / "daemon.json"
-    cmd = [sys.executable, str(script), "--seconds", "3" if quick else "20", "--json", str(js)]
+    cmd = [sys.executable, "-m", "gmmrrt_tools.bench.daemon", "--seconds", "3" if quick else "20", "--json", str(js)]
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     if proc.returncode != 0 or not js.is_file():
-        return {"error": f"bench_daemon.py exited {proc.returncode}: {proc.stderr.strip()[-500:]}",
+        return {"error": f"gmmrrt_tools.bench.daemon exited {proc.returncode}: {proc.stderr.strip()[-500:]}",
                 "command": " ".join(cmd)}
     return {"command": " ".join(cmd), "results": json.loads(js.read_text()), "text": proc.stdout.strip()}
 
@@ -201,7 +196,7 @@ def main(argv=None) -> int:
         fig = doc_path.parent / "img" / "benchmarks-ompl-cost.png"
         recs = [raw / "ompl_length.jsonl"] + ([raw / "ompl_task.jsonl"] if "error" not in res["ompl"].get("task", {})
                                               else [])
-        cmd = [sys.executable, str(HERE / "bench_plot.py")] + [str(r) for r in recs] + ["-o", str(fig)]
+        cmd = [sys.executable, "-m", "gmmrrt_tools.bench.plot"] + [str(r) for r in recs] + ["-o", str(fig)]
         proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
         if proc.returncode == 0:
             res["ompl"]["figure"] = str(fig.relative_to(doc_path.parent))
@@ -226,7 +221,7 @@ def main(argv=None) -> int:
     section("social", social)
 
     def learner():
-        import bench_learner  # numpy/scikit-learn only when needed
+        from gmmrrt_tools.bench import learner as bench_learner  # numpy/scikit-learn only when needed
         return bench_learner.run_learner(bin_dir, build / "bench-data", args.quick, args.seed,
                                          Path(args.real_data) if args.real_data else None)
     section("learner", learner)

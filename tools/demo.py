@@ -30,8 +30,6 @@ from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
 ROOT = Path(__file__).resolve().parents[1]
 
 from gmmrrt_tools import metrics as M  # noqa: E402
@@ -71,7 +69,7 @@ def pick_scenarios(args: Optional[List[str]]) -> List[Path]:
     d = ROOT / "logs" / "scenarios"
     logs = sorted(d.glob("*.lcmlog"))
     if not logs:
-        raise DemoError(f"no scenario logs in {d}: they come with the daemon branch (issue 6)")
+        raise DemoError(f"no scenario logs in {d}: tools/make_scenarios.py writes them")
     chosen = [d / f"{n}.lcmlog" for n in DEFAULT_SCENARIOS if (d / f"{n}.lcmlog").is_file()]
     if chosen:
         return chosen
@@ -125,7 +123,7 @@ def multicast_works(url: str) -> bool:
 def learn_models(out: Path, bin_dir: Optional[str], seed: int) -> Dict[str, Path]:
     logs = sorted(str(p) for p in (ROOT / "logs" / "demos").glob("*.lcmlog"))
     if not logs:
-        raise DemoError(f"no demonstration logs in {ROOT / 'logs' / 'demos'}: they come with the demos branch (issue 3)")
+        raise DemoError(f"no demonstration logs in {ROOT / 'logs' / 'demos'}: logs/README.md says how they are made")
     models = {}
     for task in ("avoid", "approach"):
         path = out / "models" / f"{task}.gmm"

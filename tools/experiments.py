@@ -25,8 +25,7 @@ import time
 from pathlib import Path
 from typing import Callable, Dict, Optional, Sequence
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
+from gmmrrt_tools import metrics as M  # noqa: E402
 from gmmrrt_tools import runner as R  # noqa: E402
 from gmmrrt_tools.experiments.common import ROOT, Ctx  # noqa: E402
 from gmmrrt_tools.experiments.delta import exp_delta  # noqa: E402

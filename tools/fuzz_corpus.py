@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the seed corpora of the libFuzzer targets into tests/fuzz/corpus/<target>/ (issue 9).
+"""Writes the seed corpora of the libFuzzer targets into tests/fuzz/corpus/<target>/.
 
 Seeds are real inputs, small: model files (the scenario models and the shared test
 vectors), encoded LCM messages taken from logs/scenarios/ (one of each type per scenario,
@@ -21,11 +21,6 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, ".."))
-try:
-    import gmmrrt  # noqa: F401
-except ImportError:
-    sys.path.insert(0, os.path.join(ROOT, "build", "python"))
-sys.path.insert(0, HERE)
 import lcm  # noqa: E402
 from gmmrrt import demo_info_t, planner_status_t, waypoints_t  # noqa: E402
 from gmmrrt_tools.scenario_models import APPROACH, AVOID, TASK_APPROACH, TASK_AVOID, encode_features_model  # noqa: E402

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Soak test of gmmrrtd (issue 9): the scenario logs replayed at ten times real speed, in a
+"""Soak test of gmmrrtd: the scenario logs replayed at ten times real speed, in a
 loop, into a live daemon for --minutes (default 10); its RSS and its pose-to-plan latency are
 sampled all along and must stay flat.
 
@@ -44,11 +44,6 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, ".."))
-sys.path.insert(0, HERE)
-try:
-    import gmmrrt  # noqa: F401
-except ImportError:
-    sys.path.insert(0, os.path.join(ROOT, "build", "python"))
 import lcm  # noqa: E402
 from gmmrrt import nav_goal_t, obstacles_t, people_t, planner_status_t, pose2d_t, waypoints_t  # noqa: E402
 from gmmrrt_tools.scenario_models import write_models  # noqa: E402

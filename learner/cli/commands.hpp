@@ -1,4 +1,4 @@
-// commands.hpp - the gmmrrt-learn subcommands (learner issue): each parses its own options with
+// commands.hpp - the gmmrrt-learn subcommands: each parses its own options with
 // getopt_long (argv[0] is the subcommand name) and returns the process exit status.
 #ifndef GMMRRT_LEARN_COMMANDS_HPP
 #define GMMRRT_LEARN_COMMANDS_HPP
@@ -11,6 +11,7 @@ int RunFit(int argc, char** argv);
 int RunScore(int argc, char** argv);
 int RunInspect(int argc, char** argv);
 int RunImport(int argc, char** argv);
+int RunDump(int argc, char** argv);
 
 }  // namespace cli
 }  // namespace learn

@@ -1,5 +1,5 @@
-// main.cpp - gmmrrt-learn, the offline model export tool of the design (learner issue):
-// fit / score / inspect / import. Each subcommand lives in its own cmd_*.cpp.
+// main.cpp - gmmrrt-learn, the offline model export tool:
+// fit / score / inspect / import / dump. Each subcommand lives in its own cmd_*.cpp.
 #include <cstdio>
 #include <cstring>
 
@@ -13,6 +13,7 @@ const char kHelp[] =
     "  score    mean log-likelihood per point of data under a MODEL\n"
     "  inspect  validate and print a MODEL\n"
     "  import   convert a JSON mixture (priors, means, covariances) -> MODEL\n"
+    "  dump     print the episodes of demonstration logs / episode CSVs as JSON\n"
     "\n"
     "Model format: docs/model-format.md. Guide: docs/learner.md.\n";
 }  // namespace
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
   if (!std::strcmp(cmd, "score")) return RunScore(argc - 1, argv + 1);
   if (!std::strcmp(cmd, "inspect")) return RunInspect(argc - 1, argv + 1);
   if (!std::strcmp(cmd, "import")) return RunImport(argc - 1, argv + 1);
+  if (!std::strcmp(cmd, "dump")) return RunDump(argc - 1, argv + 1);
   std::fprintf(stderr, "gmmrrt-learn: unknown command '%s'\n\n%s", cmd, kHelp);
   return 2;
 }

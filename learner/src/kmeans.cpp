@@ -10,7 +10,6 @@
 
 #include "gmmrrt/features.h"
 #include "gmmrrt_learner/mixture.hpp"
-#include "wrap_difference.hpp"
 
 namespace gmmrrt {
 namespace learn {
@@ -28,7 +27,8 @@ double Uniform01(std::mt19937_64* rng) {
 
 namespace {
 
-inline double Wrap(double v) { return detail::WrapDifference(v); }
+// One angle difference per point, centre and iteration: the core's wrap, inline (features.h).
+inline double Wrap(double v) { return gmmrrt_wrap_angle_inline(v); }
 
 }  // namespace
 

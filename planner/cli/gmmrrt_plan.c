@@ -1,7 +1,7 @@
 /*
  * gmmrrt_plan.c - gmmrrt-plan: plans one path with the gmmrrt core (rrtstar.h) from the
- * command line and prints it as x,y CSV or, with --json, one JSON object (issue 5,
- * "Output and CLI"; docs/planner.md). The model is read with gmmrrt_model_load_file.
+ * command line and prints it as x,y CSV or, with --json, one JSON object
+ * (docs/planner.md). The model is read with gmmrrt_model_load_file.
  *
  * Exit status: 0 a path was found; 1 bad arguments, unreadable model or a problem the
  * planner refuses (start/goal in collision, model mismatch, ...); 3 no path within the
@@ -10,6 +10,7 @@
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -146,6 +147,19 @@ static int fail(const char *fmt, const char *a, const char *b)
     return EXIT_BAD_INPUT;
 }
 
+/* The ranges of the planner's settings live in config.c (gmmrrt_planner_config_validate), not
+ * here: a flag that sets a field of cfg is parsed here for its syntax, stored, and the whole
+ * configuration validated at once. The configuration was valid before the flag, so a failure is
+ * this flag's, and the message names it and the rule that config.c states. */
+static int check_config_flag(const gmmrrt_planner_config_t *cfg, const char *flag, const char *value)
+{
+    char reason[256];
+    if (gmmrrt_planner_config_validate(cfg, reason, sizeof reason) == GMMRRT_OK)
+        return 0;
+    fprintf(stderr, "%s: error: %s '%s': %s\n", prog, flag, value, reason);
+    return EXIT_BAD_INPUT;
+}
+
 /* Parses exactly n comma-separated finite numbers. */
 static int parse_numbers(const char *s, double *out, int n)
 {
@@ -248,6 +262,7 @@ int main(int argc, char **argv)
     static gmmrrt_problem_t pr; /* large (obstacle arrays): static, zeroed */
     gmmrrt_planner_config_t cfg;
     gmmrrt_planner_config_default(&cfg);
+    int rc;
     const char *model_path = NULL, *set_dir = NULL, *map_path = NULL, *bg_path = NULL;
     int have_start = 0, have_goal = 0, have_bounds = 0, json = 0, planner = 0, task = 0, raw = 0, have_yaw = 0;
     gmmrrt_drive_options_t drive;
@@ -351,9 +366,11 @@ int main(int argc, char **argv)
                 return fail("--planner '%s': unknown planner (gmm-rrt-star, rrt-star or gmm-rrt)%s", optarg, "");
             break;
         case OPT_BIAS:
-            if (!parse_numbers(optarg, v, 1) || v[0] < 0.0 || v[0] > 1.0)
-                return fail("--bias '%s': expected a number in [0, 1]%s", optarg, "");
+            if (!parse_numbers(optarg, v, 1))
+                return fail("--bias '%s': expected a number%s", optarg, "");
             cfg.gmm_bias = v[0];
+            if ((rc = check_config_flag(&cfg, "--bias", optarg)) != 0)
+                return rc;
             break;
         case OPT_BUDGET:
             if (!parse_numbers(optarg, v, 1) || v[0] <= 0.0)
@@ -366,14 +383,16 @@ int main(int argc, char **argv)
             iterations = n;
             break;
         case OPT_SEED:
-            if (!parse_int64(optarg, &n) || n < 0)
+            if (!parse_int64(optarg, &n) || n < 0) /* syntax: config.seed is any uint64 */
                 return fail("--seed '%s': expected an integer >= 0%s", optarg, "");
             cfg.seed = (uint64_t)n;
             break;
         case OPT_RADIUS:
-            if (!parse_numbers(optarg, v, 1) || v[0] < 0.0)
-                return fail("--robot-radius '%s': expected metres >= 0%s", optarg, "");
+            if (!parse_numbers(optarg, v, 1))
+                return fail("--robot-radius '%s': expected a number of metres%s", optarg, "");
             cfg.robot_radius_m = v[0];
+            if ((rc = check_config_flag(&cfg, "--robot-radius", optarg)) != 0)
+                return rc;
             break;
         case OPT_BOUNDS:
             if (!parse_numbers(optarg, v, 4) || v[0] >= v[2] || v[1] >= v[3])
@@ -404,27 +423,35 @@ int main(int argc, char **argv)
             json = 1;
             break;
         case OPT_DELTA:
-            if (!parse_numbers(optarg, v, 1) || v[0] <= 0.0)
-                return fail("--delta '%s': expected a density floor > 0%s", optarg, "");
+            if (!parse_numbers(optarg, v, 1))
+                return fail("--delta '%s': expected a number%s", optarg, "");
             cfg.delta = v[0];
+            if ((rc = check_config_flag(&cfg, "--delta", optarg)) != 0)
+                return rc;
             break;
         case OPT_WTASK:
-            if (!parse_numbers(optarg, v, 1) || v[0] < 0.0)
-                return fail("--w-task '%s': expected a weight >= 0%s", optarg, "");
+            if (!parse_numbers(optarg, v, 1))
+                return fail("--w-task '%s': expected a number%s", optarg, "");
             cfg.w_task = v[0];
+            if ((rc = check_config_flag(&cfg, "--w-task", optarg)) != 0)
+                return rc;
             break;
         case OPT_REWIRE_K:
-            if (!parse_numbers(optarg, v, 1) || v[0] < 0.0 || v[0] > 64.0)
-                return fail("--rewire-k '%s': expected a factor in [0, 64] (0: radius rewiring)%s", optarg, "");
+            if (!parse_numbers(optarg, v, 1))
+                return fail("--rewire-k '%s': expected a number%s", optarg, "");
             cfg.rewire_k_factor = v[0];
+            if ((rc = check_config_flag(&cfg, "--rewire-k", optarg)) != 0)
+                return rc;
             break;
         case OPT_MAP:
             map_path = optarg;
             break;
         case OPT_INFORMED:
-            if (strcmp(optarg, "0") != 0 && strcmp(optarg, "1") != 0)
-                return fail("--informed '%s': expected 0 or 1%s", optarg, "");
-            cfg.informed_sampling = optarg[0] == '1';
+            if (!parse_int64(optarg, &n) || n < INT32_MIN || n > INT32_MAX)
+                return fail("--informed '%s': expected an integer%s", optarg, "");
+            cfg.informed_sampling = (int32_t)n;
+            if ((rc = check_config_flag(&cfg, "--informed", optarg)) != 0)
+                return rc;
             break;
         case OPT_MAX_NODES:
             if (!parse_int64(optarg, &n) || n < 2 || n > GMMRRT_MAX_NODES_CEILING) {

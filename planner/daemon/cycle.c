@@ -1,5 +1,6 @@
 /*
- * cycle.c - one gmmrrtd planning cycle: from the latest inputs to a plan. Picks the model by the goal's task (avoid / approach, paper Sect. 4-5), plans from
+ * cycle.c - one gmmrrtd planning cycle: from the latest inputs to a
+ * plan. Picks the model by the goal's task (avoid / approach, paper Sect. 4-5), plans from
  * the latest robot pose with gmmrrt_planner_set_problem + run, warm-starts from the last
  * published path when the situation has not changed much, and publishes PLAN and
  * PLANNER_STATUS. A stale pose or obstacle list, a missing model or target, an unusable goal

@@ -1,7 +1,6 @@
 /*
  * log.h - gmmrrtd's levelled logging to stderr, with a rate limiter so that a flood of bad
- * input gives one line per reason per interval, not one per message (a flood must not
- * flood the journal, docs/daemon.md "Bad and missing input").
+ * input gives one line per reason per interval, not one per message: bad input is logged without flooding the log.
  */
 #ifndef GMMRRTD_LOG_H
 #define GMMRRTD_LOG_H

@@ -5,15 +5,17 @@
  * (config.c) and model files on disk (planner/io/model_file.c, which includes this directory
  * privately: the core does not depend on io/, io/ depends on the core). Not a public header.
  *
- * Static inline so that it adds no symbol to libgmmrrt and needs no link-time sharing.
+ * Static inline so that it adds no symbol to libgmmrrt and needs no link-time sharing. The text
+ * itself is written by gmmrrt_vformat_reason (gmmrrt/detail/reason_text.h), the formatter the
+ * message decoders and the daemon use too.
  */
 #ifndef GMMRRT_ERROR_TEXT_H
 #define GMMRRT_ERROR_TEXT_H
 
 #include <stdarg.h>
 #include <stddef.h>
-#include <stdio.h>
 
+#include "gmmrrt/detail/reason_text.h"
 #include "gmmrrt/status.h"
 
 /* Empties err[errcap] when it is usable (err may be NULL or errcap 0: nothing is written). */
@@ -36,12 +38,10 @@ static inline gmmrrt_status_t gmmrrt_set_error(gmmrrt_status_t status, char *err
 static inline gmmrrt_status_t gmmrrt_set_error(gmmrrt_status_t status, char *err, size_t errcap,
                                                const char *fmt, ...)
 {
-    if (err != NULL && errcap > 0) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(err, errcap, fmt, ap);
-        va_end(ap);
-    }
+    va_list ap;
+    va_start(ap, fmt);
+    gmmrrt_vformat_reason(err, errcap, fmt, ap);
+    va_end(ap);
     return status;
 }
 

@@ -8,9 +8,9 @@
 
 double gmmrrt_wrap_angle(double angle_rad)
 {
-    if (angle_rad > -M_PI && angle_rad <= M_PI)
-        return angle_rad;
-    double a = fmod(angle_rad + M_PI, 2.0 * M_PI); /* (-2pi, 2pi) */
+    if (angle_rad > -2.0 * M_PI && angle_rad < 2.0 * M_PI)
+        return gmmrrt_wrap_angle_inline(angle_rad);
+    double a = fmod(angle_rad + M_PI, 2.0 * M_PI); /* (-2pi, 2pi); NaN stays NaN */
     if (a <= 0.0)
         a += 2.0 * M_PI; /* (0, 2pi] */
     return a - M_PI;     /* (-pi, pi] */

@@ -1,11 +1,11 @@
-"""Shared by the tests that drive gmmrrtd (tests/replay, issue 6; tests/fault, issue 9): where the
+"""Shared by the tests that drive gmmrrtd (tests/replay; tests/fault): where the
 daemon is, the scenario test models, the sanitizer-aware environment and exit check, and one
 deterministic replay (file:// in and out, speed=0, log clock, iteration budget; docs/daemon.md,
 "Deterministic replays").
 
-Each folder's conftest.py puts tests/common on sys.path and imports the fixtures `gmmrrtd` and
-`models` from here, so pytest finds them; the test modules import the helpers by name
-(`from daemon_fixture import run_log_clock`). The daemon under test is the one in
+Each folder's conftest.py imports the fixtures `gmmrrtd` and `models` from here, so pytest finds
+them; the test modules import the helpers (`from tests.common.daemon_fixture import
+run_log_clock`): `tests` is a namespace package of the repository root, where pytest runs. The daemon under test is the one in
 $GMMRRT_BIN_DIR (set by CTest: build/bin, or build-asan/bin in the sanitizer pass), else
 build/bin of this checkout.
 """
@@ -17,8 +17,6 @@ import sys
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-if os.path.join(ROOT, "tools") not in sys.path:
-    sys.path.insert(0, os.path.join(ROOT, "tools"))  # gmmrrt_tools when pytest runs without CTest's PYTHONPATH
 SCENARIOS = os.path.join(ROOT, "logs", "scenarios")
 
 # Radii every replay uses, m (the golden summaries of tests/replay were made with them).

@@ -1,4 +1,4 @@
-"""Fixtures of the fault-injection replays (issue 9): gmmrrtd and the test models, from the
+"""Fixtures of the fault-injection replays: gmmrrtd and the test models, from the
 helpers shared with tests/replay (tests/common/daemon_fixture.py, which also holds the
 run-and-check step every fault test uses: run_log_clock, daemon_env, assert_clean).
 
@@ -8,9 +8,4 @@ build-asan/ (label `fault`, not `python`: only the daemon is instrumented, the v
 just launches it). Every run asserts a clean exit and no sanitizer report, so in build-asan a
 leak or memory error anywhere in the daemon fails the test (LeakSanitizer runs at exit).
 """
-import os
-import sys
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-
-from daemon_fixture import gmmrrtd, models  # noqa: E402,F401  (pytest finds fixtures by name here)
+from tests.common.daemon_fixture import gmmrrtd, models  # noqa: F401  (pytest finds fixtures by name here)

@@ -20,12 +20,12 @@ Run: ctest --test-dir build -R '^fault\\.clock' --output-on-failure
 """
 import struct
 
-from daemon_fixture import run_log_clock
+from tests.common.daemon_fixture import run_log_clock
 from test_fault_replays import base
 
 from gmmrrt import planner_status_t
 from gmmrrt_tools import replay_check
-import make_scenarios as ms
+from gmmrrt_tools import scenario_logs as ms
 
 R = planner_status_t
 HOUR_US = 3600 * 10**6

@@ -1,5 +1,5 @@
 """fault.model_reload and fault.flood_live: gmmrrtd live (UDP multicast on a private port,
-ttl=0, live clock) fed by this test at 10 Hz while faults are injected (issue 9):
+ttl=0, live clock) fed by this test at 10 Hz while faults are injected:
 
   * model_reload: the avoid model file is replaced by garbage, by a truncated copy, by an empty
     file, by a model for the other task and by one with a broken checksum, each followed by
@@ -22,7 +22,7 @@ import time
 
 import lcm
 import pytest
-from daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, assert_clean, daemon_env
+from tests.common.daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, assert_clean, daemon_env
 
 from gmmrrt import nav_goal_t, obstacles_t, people_t, person_t, planner_status_t, pose2d_t, waypoints_t
 

@@ -1,4 +1,4 @@
-"""fault.*: fault-injection replays of gmmrrtd (issue 9). Each test builds an input log with
+"""fault.*: fault-injection replays of gmmrrtd. Each test builds an input log with
 planted faults (on top of the scenario tooling of tools/make_scenarios.py), replays it through
 the daemon deterministically (file:// in and out, log clock, iteration budget) and checks with
 tools/gmmrrt_tools/replay_check.py that
@@ -17,11 +17,11 @@ import random
 import struct
 
 import pytest
-from daemon_fixture import run_log_clock
+from tests.common.daemon_fixture import run_log_clock
 
 from gmmrrt import planner_status_t
 from gmmrrt_tools import replay_check
-import make_scenarios as ms
+from gmmrrt_tools import scenario_logs as ms
 
 R = planner_status_t
 AVOID, APPROACH = ms.AVOID, ms.APPROACH

@@ -1,6 +1,6 @@
 /*
- * fuzz_daemon_inputs.c - libFuzzer target for gmmrrtd's message handling (issue 6, "Bad
- * and missing input"; issue 9): the bytes of a sequence of LCM messages go through
+ * fuzz_daemon_inputs.c - libFuzzer target for gmmrrtd's message handling (bad and
+ * missing input): the bytes of a sequence of LCM messages go through
  * gmmrrtd_handle_message, the function behind the daemon's four LCM handlers (decode and
  * validate, time checks, counters, state update, and in log-clock mode the planning
  * cycles that fall due), so the fuzzer drives the whole daemon from its inputs: the

@@ -1,6 +1,6 @@
 /*
  * fuzz_msg_decode.c - libFuzzer target for every decoder of lcmtypes/include/gmmrrt/msg_decode.h:
- * the first line of defence of the daemon (issue 6, "Bad and missing input") and of the
+ * the first line of defence of the daemon and of the
  * learner's log reader. Each input goes to all seven decoders; the LCM fingerprint in the
  * first 8 bytes decides which one gets past the wire format, so the seed corpus (real
  * encoded messages of each type, tools/fuzz_corpus.py) keeps every decoder busy.

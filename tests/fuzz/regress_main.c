@@ -1,7 +1,7 @@
 /*
  * regress_main.c - runs a fuzz target's LLVMFuzzerTestOneInput over files, without libFuzzer,
  * so every build (Release and the gcc ASan + UBSan pass of tools/run test) replays the seed
- * corpus and the saved findings of tests/fuzz/regressions/<target>/ (issue 9). Arguments are
+ * corpus and the saved findings of tests/fuzz/regressions/<target>/. Arguments are
  * files or folders (their regular files, in name order). Exit 0 when every input ran; a
  * finding aborts (the harness's checks, or the sanitizers in the ASan build).
  */

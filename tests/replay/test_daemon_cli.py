@@ -1,4 +1,4 @@
-"""replay.daemon_cli: gmmrrtd's command line, INI file and signals (issue 6, "Behaviour").
+"""replay.daemon_cli: gmmrrtd's command line, INI file and signals.
 --help/--version; bad flags and bad INI lines are errors naming the flag or file:line; flags
 override the file; a missing model at start-up is fatal; SIGHUP with a corrupted model file
 keeps the old model (planning goes on) and counts REJECT_MODEL_RELOAD; SIGINT exits 0.
@@ -10,7 +10,7 @@ import subprocess
 import time
 
 import lcm
-from daemon_fixture import ROOT, SCENARIOS, venv_bin
+from tests.common.daemon_fixture import ROOT, SCENARIOS, venv_bin
 from test_replay_udpm import private_url, wait_for_line
 
 from gmmrrt import planner_status_t, waypoints_t

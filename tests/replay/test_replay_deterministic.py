@@ -12,9 +12,9 @@ import json
 import os
 
 import pytest
-import daemon_fixture
+from tests.common import daemon_fixture
 from conftest import GOLDEN
-from daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, ROOT, SCENARIOS
+from tests.common.daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, ROOT, SCENARIOS
 
 from gmmrrt_tools import replay_check
 

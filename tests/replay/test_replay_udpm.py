@@ -16,7 +16,7 @@ import signal
 import subprocess
 import time
 
-from daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, SCENARIOS, venv_bin
+from tests.common.daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, SCENARIOS, venv_bin
 
 from gmmrrt import waypoints_t
 from gmmrrt_tools import replay_check

@@ -1,6 +1,12 @@
-"""ctypes binding to the gmmrrt C core (build/lib/libgmmrrt.so): one definition of the features.
+"""ctypes binding to the gmmrrt C libraries: one definition of each rule, in C.
 
-The library is looked up in $GMMRRT_BUILD_DIR/lib, then <repo>/build/lib. Build it with `tools/run build`.
+- build/lib/libgmmrrt.so (planner/src + planner/io): the features (d, theta), angle wrapping,
+  the mixture, the model file format (gmmrrt_model_encode/decode, atomic gmmrrt_model_save_file);
+- build/lib/libgmmrrt_msg.so (lcmtypes/msg_decode.c): the validating message decoders that gmmrrtd
+  uses, so a Python check judges a message exactly as the daemon does.
+
+The libraries are looked up in $GMMRRT_BUILD_DIR/lib, then <repo>/build/lib. Build them with
+`tools/run build`.
 """
 from __future__ import annotations
 
@@ -23,28 +29,31 @@ class Pose(ctypes.Structure):
     _fields_ = [("x", ctypes.c_double), ("y", ctypes.c_double), ("yaw", ctypes.c_double)]
 
 
-def _candidates():
+def _candidates(name: str):
     env = os.environ.get("GMMRRT_BUILD_DIR")
     if env:
-        yield Path(env) / "lib" / "libgmmrrt.so"
-    yield _REPO / "build" / "lib" / "libgmmrrt.so"
+        yield Path(env) / "lib" / name
+    yield _REPO / "build" / "lib" / name
+
+
+def _load(name: str) -> ctypes.CDLL:
+    for path in _candidates(name):
+        if path.is_file():
+            return ctypes.CDLL(str(path))
+    raise CoreNotBuilt(
+        name + " not found in " + ", ".join(str(p) for p in _candidates(name))
+        + ": run `tools/run build` (or set GMMRRT_BUILD_DIR)")
 
 
 _lib = None
+_msg_lib = None
 
 
 def lib() -> ctypes.CDLL:
     """The loaded core library (loaded once)."""
     global _lib
     if _lib is None:
-        for path in _candidates():
-            if path.is_file():
-                _lib = ctypes.CDLL(str(path))
-                break
-        else:
-            raise CoreNotBuilt(
-                "libgmmrrt.so not found in " + ", ".join(str(p) for p in _candidates())
-                + ": run `tools/run build` (or set GMMRRT_BUILD_DIR)")
+        _lib = _load("libgmmrrt.so")
         d = ctypes.c_double
         pd = ctypes.POINTER(ctypes.c_double)
         pp = ctypes.POINTER(Pose)
@@ -58,7 +67,39 @@ def lib() -> ctypes.CDLL:
         _lib.gmmrrt_world_to_person.restype = None
         _lib.gmmrrt_person_to_world.argtypes = [pp, d, d, pd, pd]
         _lib.gmmrrt_person_to_world.restype = None
+        _lib.gmmrrt_status_str.argtypes = [ctypes.c_int]
+        _lib.gmmrrt_status_str.restype = ctypes.c_char_p
+        _lib.gmmrrt_model_sizeof.argtypes = []
+        _lib.gmmrrt_model_sizeof.restype = ctypes.c_size_t
+        _lib.gmmrrt_model_from_arrays.argtypes = [ctypes.c_int32] * 5 + [ctypes.c_uint32, d, pd, pd, pd,
+                                                                         ctypes.c_void_p, ctypes.c_char_p,
+                                                                         ctypes.c_size_t]
+        _lib.gmmrrt_model_from_arrays.restype = ctypes.c_int
+        _lib.gmmrrt_model_to_arrays.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_int32), pd, pd, pd, pd]
+        _lib.gmmrrt_model_to_arrays.restype = None
+        _lib.gmmrrt_model_max_encoded_size.argtypes = []
+        _lib.gmmrrt_model_max_encoded_size.restype = ctypes.c_size_t
+        _lib.gmmrrt_model_encode.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_size_t,
+                                             ctypes.POINTER(ctypes.c_size_t), ctypes.c_char_p, ctypes.c_size_t]
+        _lib.gmmrrt_model_encode.restype = ctypes.c_int
+        _lib.gmmrrt_model_decode.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_void_p, ctypes.c_char_p,
+                                             ctypes.c_size_t]
+        _lib.gmmrrt_model_decode.restype = ctypes.c_int
+        _lib.gmmrrt_model_save_file.argtypes = [ctypes.c_char_p, ctypes.c_void_p, ctypes.c_char_p, ctypes.c_size_t]
+        _lib.gmmrrt_model_save_file.restype = ctypes.c_int
     return _lib
+
+
+def msg_lib() -> ctypes.CDLL:
+    """The loaded message decoders (libgmmrrt_msg.so, loaded once)."""
+    global _msg_lib
+    if _msg_lib is None:
+        _msg_lib = _load("libgmmrrt_msg.so")
+        for t in MESSAGE_TYPES:
+            fn = getattr(_msg_lib, "gmmrrt_msg_decode_" + t)
+            fn.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_void_p, ctypes.c_char_p, ctypes.c_size_t]
+            fn.restype = ctypes.c_int
+    return _msg_lib
 
 
 def _pair(fn, person: Tuple[float, float, float], a: float, b: float) -> Tuple[float, float]:
@@ -93,5 +134,113 @@ def person_to_world(person: Tuple[float, float, float], xp: float, yp: float) ->
     return _pair(lib().gmmrrt_person_to_world, person, xp, yp)
 
 
-__all__ = ["CoreNotBuilt", "Pose", "lib", "wrap_angle", "features_from_xy", "features_to_xy",
-           "world_to_person", "person_to_world"]
+# ------------------------------------------------------------------ messages (msg_decode.h)
+
+# The message types of lcmtypes/ that msg_decode.h validates, by their gmmrrt_msg_decode_<name>.
+MESSAGE_TYPES = ("pose2d", "people", "nav_goal", "obstacles", "waypoints", "planner_status", "demo_info")
+# A decoded message is written here; larger than any generated gmmrrt_*_t struct (fixed-capacity
+# arrays of a few hundred doubles), so Python does not mirror the structs' layouts.
+_MSG_SCRATCH_BYTES = 1 << 20
+_msg_scratch = None
+
+
+def validate_message(type_name: str, data: bytes) -> Tuple[int, str]:
+    """(result, reason) of gmmrrt_msg_decode_<type_name> on the encoded message `data`: result 0 is
+    GMMRRT_MSG_OK, else the gmmrrt_msg_result_t the daemon would count (decode failed, count over
+    bound, not finite, bad value) and a reason naming the type and field."""
+    global _msg_scratch
+    if type_name not in MESSAGE_TYPES:
+        raise ValueError(f"no validating decoder for message type {type_name!r}; known: {', '.join(MESSAGE_TYPES)}")
+    fn = getattr(msg_lib(), "gmmrrt_msg_decode_" + type_name)
+    if _msg_scratch is None:
+        _msg_scratch = ctypes.create_string_buffer(_MSG_SCRATCH_BYTES)
+    err = ctypes.create_string_buffer(256)
+    r = fn(bytes(data), len(data), _msg_scratch, err, len(err))
+    return int(r), err.value.decode(errors="replace")
+
+
+# ------------------------------------------------------------------ model files (model.h)
+
+class ModelError(ValueError):
+    """A model the C core rejects; the message is the core's status and reason."""
+
+
+def _status_text(st: int, err) -> str:
+    return f"{lib().gmmrrt_status_str(st).decode()}: {err.value.decode(errors='replace')}"
+
+
+def _darray(values):
+    vals = [float(v) for v in values]
+    return (ctypes.c_double * max(len(vals), 1))(*vals)
+
+
+def model_from_arrays(kind: int, task: int, homotopy: int, weights, means, chols, angle_mask: int = 0,
+                      delta: float = 0.001) -> ctypes.Array:
+    """A prepared gmmrrt_model_t (as a ctypes buffer) from K weights, K means of D values and K
+    packed lower-triangular Cholesky factors (L00, L10, L11, ...), validated by the core
+    (gmmrrt_model_from_arrays). Raises ModelError with the core's reason."""
+    core = lib()
+    k = len(weights)
+    dim = len(means[0]) if k else 0
+    buf = ctypes.create_string_buffer(core.gmmrrt_model_sizeof())
+    err = ctypes.create_string_buffer(256)
+    st = core.gmmrrt_model_from_arrays(kind, task, homotopy, dim, k, angle_mask, float(delta), _darray(weights),
+                                       _darray([v for m in means for v in m]),
+                                       _darray([v for c in chols for v in c]), buf, err, len(err))
+    if st != 0:
+        raise ModelError("model rejected by the core (" + _status_text(st, err) + ")")
+    return buf
+
+
+def encode_model(model: ctypes.Array) -> bytes:
+    """The file bytes of a prepared model (gmmrrt_model_encode; docs/model-format.md)."""
+    core = lib()
+    cap = core.gmmrrt_model_max_encoded_size()
+    out = ctypes.create_string_buffer(cap)
+    n = ctypes.c_size_t()
+    err = ctypes.create_string_buffer(256)
+    st = core.gmmrrt_model_encode(model, out, cap, ctypes.byref(n), err, len(err))
+    if st != 0:
+        raise ModelError("cannot encode the model (" + _status_text(st, err) + ")")
+    return out.raw[:n.value]
+
+
+def save_model(path: str, model: ctypes.Array) -> None:
+    """Writes a prepared model to `path` atomically (gmmrrt_model_save_file: never a partial file)."""
+    err = ctypes.create_string_buffer(512)
+    st = lib().gmmrrt_model_save_file(os.fsencode(path), model, err, len(err))
+    if st != 0:
+        raise ModelError(_status_text(st, err))
+
+
+def decode_model(data: bytes) -> ctypes.Array:
+    """A model file's bytes decoded and validated by the core (gmmrrt_model_decode)."""
+    core = lib()
+    buf = ctypes.create_string_buffer(core.gmmrrt_model_sizeof())
+    err = ctypes.create_string_buffer(256)
+    st = core.gmmrrt_model_decode(bytes(data), len(data), buf, err, len(err))
+    if st != 0:
+        raise ModelError("not a valid model (" + _status_text(st, err) + ")")
+    return buf
+
+
+def model_fields(model: ctypes.Array) -> dict:
+    """The stored fields of a decoded or prepared model (gmmrrt_model_to_arrays): kind, task,
+    homotopy, dim, k, angle_mask, delta, weights [K], means [K][D], chols [K][D(D+1)/2]."""
+    core = lib()
+    head = (ctypes.c_int32 * 6)()
+    delta = ctypes.c_double()
+    # The sizes of the largest model limits.h may allow (D <= 16, K <= 1024).
+    w, m, c = (ctypes.c_double * 1024)(), (ctypes.c_double * (1024 * 16))(), (ctypes.c_double * (1024 * 136))()
+    core.gmmrrt_model_to_arrays(model, head, ctypes.byref(delta), w, m, c)
+    kind, task, homotopy, dim, k, mask = (int(v) for v in head)
+    tri = dim * (dim + 1) // 2
+    return {"kind": kind, "task": task, "homotopy": homotopy, "dim": dim, "k": k, "angle_mask": mask & 0xFFFFFFFF,
+            "delta": delta.value, "weights": list(w[:k]),
+            "means": [list(m[i * dim:(i + 1) * dim]) for i in range(k)],
+            "chols": [list(c[i * tri:(i + 1) * tri]) for i in range(k)]}
+
+
+__all__ = ["CoreNotBuilt", "Pose", "lib", "msg_lib", "wrap_angle", "features_from_xy", "features_to_xy",
+           "world_to_person", "person_to_world", "MESSAGE_TYPES", "validate_message", "ModelError",
+           "model_from_arrays", "encode_model", "save_model", "decode_model", "model_fields"]

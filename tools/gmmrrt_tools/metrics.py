@@ -188,8 +188,7 @@ def smoothness(path) -> float:
         return 0.0
     h = np.arctan2(d[:, 1], d[:, 0])
     dh = np.diff(h)
-    dh = (dh + np.pi) % (2.0 * np.pi) - np.pi
-    return float(np.sum(np.abs(dh)))
+    return float(np.sum(np.abs([wrap(a) for a in dh])))
 
 
 def resample_by_arc_length(path, step_m: float) -> np.ndarray:
@@ -267,8 +266,10 @@ def min_distance_to_predicted_people(path, people, velocities, speed_m_s: float,
 
 
 def wrap(a: float) -> float:
-    """Angle wrapped to [-pi, pi) (for differences only; features come from gmmrrt_tools.core)."""
-    return (a + math.pi) % (2.0 * math.pi) - math.pi
+    """Angle wrapped to (-pi, pi] by the C core (gmmrrt_wrap_angle): the one convention."""
+    from gmmrrt_tools import core
+
+    return core.wrap_angle(a)
 
 
 @dataclass
@@ -417,7 +418,7 @@ def swept_angle(path, person: Sequence[float]) -> float:
     differ by less than pi (otherwise by about 2 pi): see same_homotopy."""
     p = as_path(path) - np.asarray(person[:2], dtype=float)
     b = np.arctan2(p[:, 1], p[:, 0])
-    db = (np.diff(b) + np.pi) % (2.0 * np.pi) - np.pi
+    db = np.array([wrap(a) for a in np.diff(b)])
     return float(np.sum(db))
 
 

@@ -12,17 +12,16 @@ import math
 import os
 from typing import Dict, List, Tuple
 
-from .episodes import Episode, EpisodeError, read_episode_csv, read_split_index
+from .episodes import Episode, EpisodeError, read_episodes
 
 
 def select_upo(real_data: str, split: str, encounter: str) -> List[Episode]:
     """UPO avoid episodes of a split (all|train|test) and encounter (frontal|all)."""
-    upo = read_episode_csv(os.path.join(real_data, "upo_avoid_episodes.csv"))
     index = os.path.join(real_data, "upo_avoid_index.csv")
+    upo, _ = read_episodes(os.path.join(real_data, "upo_avoid_episodes.csv"), index=index)
     keep = {e.id for e in upo}
     if split != "all":
-        by_split = read_split_index(index)
-        keep &= {k for k, v in by_split.items() if v == split}
+        keep &= {e.id for e in upo if e.split == split}
     if encounter == "frontal":
         keep &= frontal_encounters(index)
     return [e for e in upo if e.id in keep]

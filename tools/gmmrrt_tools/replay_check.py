@@ -1,4 +1,4 @@
-"""Checks gmmrrtd's output against the input it was given (issue 6, "Replay tests").
+"""Checks gmmrrtd's output against the input it was given.
 
 Reads an input log (a scenario of logs/scenarios/) and the daemon's output log (PLAN and
 PLANNER_STATUS, written by gmmrrtd's file:// output or recorded by lcm-logger), rebuilds what
@@ -27,11 +27,12 @@ import bisect
 import json
 import math
 import statistics
-import struct
 import sys
 
 import lcm
 from gmmrrt import nav_goal_t, obstacles_t, people_t, planner_status_t, pose2d_t, waypoints_t
+
+from gmmrrt_tools import core
 
 REASONS = {getattr(planner_status_t, n): n for n in dir(planner_status_t) if n.startswith("REJECT_")}
 # Rounding between this Python and the planner's C, m; not a safety margin (module comment).
@@ -46,43 +47,21 @@ def read_events(path):
     return out
 
 
-def _finite(*v):
-    return all(math.isfinite(x) for x in v)
+MAX_UTIME = 1 << 53  # gmmrrtd takes utimes in 0..2^53 us only (GMMRRTD_MAX_UTIME, planner/daemon/daemon.h)
 
-
-MAX_UTIME = 1 << 53  # gmmrrtd takes utimes in 0..2^53 us only (GMMRRTD_MAX_UTIME)
+# Input channel -> (validating decoder of lcmtypes/msg_decode.c, generated Python decoder).
+INPUTS = {"ROBOT_POSE": ("pose2d", pose2d_t), "PEOPLE": ("people", people_t),
+          "NAV_GOAL": ("nav_goal", nav_goal_t), "OBSTACLES": ("obstacles", obstacles_t)}
 
 
 def _valid(channel, data):
-    """The message decoded when gmmrrtd would accept it on its own (msg_decode.c rules), else None."""
-    m = _valid_content(channel, data)
-    return m if m is not None and 0 <= m.utime <= MAX_UTIME else None
-
-
-def _valid_content(channel, data):
-    try:
-        if channel == "ROBOT_POSE":
-            m = pose2d_t.decode(data)
-            return m if _finite(m.x, m.y, m.yaw) else None
-        if channel == "PEOPLE":
-            m = people_t.decode(data)
-            if not 0 <= m.num_people <= people_t.MAX_PEOPLE:
-                return None
-            ok = all(_finite(p.x, p.y, p.yaw, p.vx, p.vy) and p.id >= 0 for p in m.people[:m.num_people])
-            return m if ok else None
-        if channel == "NAV_GOAL":
-            m = nav_goal_t.decode(data)
-            return m if _finite(m.x, m.y, m.tolerance_m) and m.tolerance_m > 0 and 0 <= m.task <= 2 else None
-        if channel == "OBSTACLES":
-            m = obstacles_t.decode(data)
-            if not (0 <= m.num_circles <= 64 and 0 <= m.num_boxes <= 64):
-                return None
-            ok = all(m.circle_radius[i] > 0 for i in range(m.num_circles)) and all(
-                m.box_width[i] > 0 and m.box_height[i] > 0 for i in range(m.num_boxes))
-            return m if ok else None
-    except (ValueError, struct.error):
+    """The message decoded when gmmrrtd would accept it on its own, else None. The message rules are
+    the daemon's own (gmmrrt_msg_decode_* through gmmrrt_tools.core), never a copy of them."""
+    kind = INPUTS.get(channel)
+    if kind is None or core.validate_message(kind[0], data)[0] != 0:
         return None
-    return None
+    m = kind[1].decode(data)
+    return m if 0 <= m.utime <= MAX_UTIME else None
 
 
 class Timeline:

@@ -1,4 +1,4 @@
-"""Drives the project's executables from Python: gmmrrt-plan (issue 5) and gmmrrt-learn (issue 4).
+"""Drives the project's executables from Python: gmmrrt-plan and gmmrrt-learn.
 
 No planning or learning happens here: every number comes from the C/C++ programs, called with the
 command lines their --help documents. Executables are looked up in $GMMRRT_BIN_DIR, then
@@ -36,9 +36,7 @@ def find_tool(name: str, bin_dir: Optional[str] = None) -> str:
     if found:
         return found
     raise MissingTool(f"{name} not found in {', '.join(d for d in dirs if d)} or PATH: "
-                      f"build it with `tools/run build` (it comes with the "
-                      f"{'planner (issue 5)' if 'plan' in name else 'learner (issue 4)' if 'learn' in name else 'daemon (issue 6)'}"
-                      f" branch)")
+                      f"build it with `tools/run build`")
 
 
 @dataclass
@@ -69,7 +67,7 @@ def plan_argv(scene: Scene, planner: str, seed: int, model: Optional[str] = None
               iterations: Optional[int] = None, budget_ms: Optional[int] = None,
               bias: Optional[float] = None, robot_radius_m: Optional[float] = None,
               extra: Sequence[str] = (), bin_dir: Optional[str] = None) -> List[str]:
-    """The gmmrrt-plan command line for one run (issue 5's CLI)."""
+    """The gmmrrt-plan command line for one run (docs/planner.md)."""
     argv = [find_tool("gmmrrt-plan", bin_dir)]
     if model:
         argv += ["--model", str(model)]

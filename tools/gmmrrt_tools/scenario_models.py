@@ -1,34 +1,37 @@
-"""Small hand-made mixture models for gmmrrtd's scenario and replay tests (issue 6).
+"""Small hand-made mixture models for gmmrrtd's scenario and replay tests.
 
-They stand in for learned models until the learner's exist: a features-kind model
-(D = 2: d [m], theta [rad, wrapped]) per task, written in the format of
-docs/model-format.md with struct + zlib.crc32 (the same layout tools/gen_model_vectors.py
-writes). The avoid model puts its mass beside the person (theta = +-pi/2, d ~ 1.2 m: pass
+They are fixed so that the replays do not depend on a learner run: a features-kind model
+(D = 2: d [m], theta [rad, wrapped]) per task, built, validated, encoded and written
+atomically by the C core (gmmrrt_tools.core: gmmrrt_model_from_arrays, gmmrrt_model_encode,
+gmmrrt_model_save_file), the one implementation of docs/model-format.md. The avoid model puts its mass beside the person (theta = +-pi/2, d ~ 1.2 m: pass
 on either side); the approach model in front of the person (theta ~ 0, d ~ 1.0 m).
 
     python -m gmmrrt_tools.scenario_models OUT_DIR     # writes avoid.gmm and approach.gmm
 """
 import math
 import os
-import struct
 import sys
-import zlib
 
-MAGIC = b"GMMRRTMD"
-HEADER = struct.Struct("<8sHHBBBBHHId")  # 32 bytes: docs/model-format.md
+from gmmrrt_tools import core
+
+# model.h: gmmrrt_model_kind_t and gmmrrt_task_t (= nav_goal_t.TASK_* on the wire).
 KIND_FEATURES, TASK_AVOID, TASK_APPROACH = 1, 1, 2
+THETA_IS_ANGLE = 0b10  # angle_mask: dimension 1 (theta) is a wrapped angle
+
+
+def features_model(task, components, delta=0.001):
+    """A prepared (d, theta) model from components (weight, mean_d, mean_theta, sigma_d, sigma_theta),
+    uncorrelated; the weights are normalised to sum to 1."""
+    total = sum(c[0] for c in components)
+    return core.model_from_arrays(KIND_FEATURES, task, 0, [c[0] / total for c in components],
+                                  [(c[1], c[2]) for c in components],
+                                  # L = diag(sigma_d, sigma_theta), packed L00, L10, L11
+                                  [(c[3], 0.0, c[4]) for c in components], THETA_IS_ANGLE, delta)
 
 
 def encode_features_model(task, components, delta=0.001):
-    """components: (weight, mean_d, mean_theta, sigma_d, sigma_theta), uncorrelated; weights sum to 1."""
-    k = len(components)
-    total = sum(c[0] for c in components)
-    body = HEADER.pack(MAGIC, 1, 0xFEFF, KIND_FEATURES, task, 0, 2, k, 0, 0b10, delta)
-    body += struct.pack("<%dd" % k, *[c[0] / total for c in components])
-    body += struct.pack("<%dd" % (2 * k), *[v for c in components for v in (c[1], c[2])])
-    # packed row-major lower triangle of L = diag(sigma_d, sigma_theta): L00, L10, L11
-    body += struct.pack("<%dd" % (3 * k), *[v for c in components for v in (c[3], 0.0, c[4])])
-    return body + struct.pack("<I", zlib.crc32(body))
+    """The model file bytes of features_model(task, components, delta)."""
+    return core.encode_model(features_model(task, components, delta))
 
 
 AVOID = [(0.5, 1.2, math.pi / 2, 0.3, 0.35), (0.5, 1.2, -math.pi / 2, 0.3, 0.35)]
@@ -41,9 +44,7 @@ def write_models(out_dir):
     paths = {}
     for name, task, comps in (("avoid", TASK_AVOID, AVOID), ("approach", TASK_APPROACH, APPROACH)):
         path = os.path.join(out_dir, name + ".gmm")
-        with open(path + ".tmp", "wb") as f:
-            f.write(encode_features_model(task, comps))
-        os.replace(path + ".tmp", path)
+        core.save_model(path, features_model(task, comps))
         paths[name] = path
     return paths
 

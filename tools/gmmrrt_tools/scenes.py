@@ -1,9 +1,8 @@
 """Episodes (one mover passing or approaching one standing person) and the planning scenes made from them.
 
-Reads the episode CSV format of ../shared/data/real/README.md
-(`episode_id,task,homotopy,t,robot_x,robot_y,person_x,person_y,person_yaw`) and its index files
-(`split` column). The synthetic demonstrations of logs/demos/ are read with the demos branch's
-reader (gmmrrt_tools.demolog / episodes) and land in the same Episode type.
+Episodes (gmmrrt_tools.episodes.Episode, the one episode type) come from the learner's reader,
+for the episode CSVs of ../shared/data/real/README.md and the demonstration logs of logs/demos/
+alike; index files add each episode's split and metadata columns.
 
 Canonical frame: the person's frame of the paper's features (person at the origin facing +x, +y on
 the person's left), computed with the C core (gmmrrt_tools.core.world_to_person). Demonstrations
@@ -13,33 +12,20 @@ recorded with different person poses are compared and planned in this frame, so 
 from __future__ import annotations
 
 import csv
-import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from gmmrrt_tools import episodes
+from gmmrrt_tools.episodes import Episode
 from gmmrrt_tools.runner import Scene
 
 
-@dataclass
-class Episode:
-    episode_id: str
-    task: str                      # avoid | approach
-    homotopy: str                  # left | right | frontal
-    person: Tuple[float, float, float]   # x, y [m], yaw [rad] (constant within an episode)
-    xy: np.ndarray                 # (N, 2) mover positions [m]
-    split: str = ""                # train | test | "" (unknown)
-    meta: Optional[Dict[str, str]] = None
-
-
-EPISODE_COLUMNS = ["episode_id", "task", "homotopy", "t", "robot_x", "robot_y", "person_x", "person_y",
-                   "person_yaw"]
-
-
 def read_index(path: str) -> Dict[str, Dict[str, str]]:
-    """episode_id -> the index row (all columns as strings)."""
+    """episode_id -> the index row (all columns as strings): the metadata columns of an index file
+    (e.g. upo_task). The split column is read with the episodes, by the learner's reader."""
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     if not rows or "episode_id" not in rows[0]:
@@ -49,35 +35,19 @@ def read_index(path: str) -> Dict[str, Dict[str, str]]:
 
 def read_episodes(path: str, index: Optional[str] = None, split: Optional[str] = None,
                   task: Optional[str] = None) -> List[Episode]:
-    """Episodes of an episode CSV, in file order; with `index`, each gets its split and index row and
-    `split` filters. Raises ValueError naming the file and line on a malformed row."""
+    """Episodes of an episode CSV (or demonstration log), in file order, read by the learner's reader
+    (gmmrrt_tools.episodes.read_episodes); with `index`, each gets its split and index row and `split`
+    filters. Raises EpisodeError (a ValueError) naming the file and line on a malformed row."""
+    eps, _ = episodes.read_episodes(path, index=index)
     idx = read_index(index) if index else {}
-    eps: Dict[str, dict] = {}
-    with open(path, newline="") as f:
-        reader = csv.DictReader(f)
-        if reader.fieldnames is None or any(c not in reader.fieldnames for c in EPISODE_COLUMNS):
-            raise ValueError(f"{path}: expected columns {','.join(EPISODE_COLUMNS)}")
-        for line, row in enumerate(reader, start=2):
-            try:
-                x, y = float(row["robot_x"]), float(row["robot_y"])
-                person = (float(row["person_x"]), float(row["person_y"]), float(row["person_yaw"]))
-            except (TypeError, ValueError) as exc:
-                raise ValueError(f"{path}:{line}: bad number ({exc})") from None
-            if not all(math.isfinite(v) for v in (x, y, *person)):
-                raise ValueError(f"{path}:{line}: NaN or Inf")
-            e = eps.setdefault(row["episode_id"], {"task": row["task"], "homotopy": row["homotopy"],
-                                                    "person": person, "xy": []})
-            e["xy"].append((x, y))
     out = []
-    for eid, e in eps.items():
-        meta = idx.get(eid)
-        sp = meta.get("split", "") if meta else ""
-        if split and sp != split:
+    for e in eps:
+        if split and e.split != split:
             continue
-        if task and e["task"] != task:
+        if task and e.task != task:
             continue
-        out.append(Episode(eid, e["task"], e["homotopy"], e["person"], np.asarray(e["xy"], dtype=float), sp,
-                           meta))
+        e.meta = idx.get(e.id)
+        out.append(e)
     return out
 
 
@@ -85,8 +55,12 @@ def to_person_frame(ep: Episode) -> Episode:
     """The episode in its person's frame (person at (0, 0) facing +x): see module doc."""
     from gmmrrt_tools import core
 
-    pts = np.array([core.world_to_person(ep.person, x, y) for x, y in ep.xy])
-    return replace(ep, person=(0.0, 0.0, 0.0), xy=pts)
+    person = ep.person
+    pts = np.array([core.world_to_person(person, x, y) for x, y in ep.xy])
+    zero = np.zeros(len(ep))
+    return replace(ep, robot_x=pts[:, 0], robot_y=pts[:, 1],
+                   robot_yaw=np.array([core.wrap_angle(a - person[2]) for a in ep.robot_yaw]),
+                   person_x=zero, person_y=zero.copy(), person_yaw=zero.copy())
 
 
 def bounds_of(points: Iterable[Sequence[float]], margin_m: float) -> Tuple[float, float, float, float]:
@@ -131,28 +105,16 @@ def episode_scene(ep: Episode, margin_m: float = 1.5, clearance_m: float = 0.0) 
 
 
 def load_demo_logs(demos_dir: str) -> List[Episode]:
-    """The synthetic demonstrations of logs/demos/ as Episodes, through the demos branch's reader.
-    Raises RuntimeError naming what is missing when the reader or the logs are not there."""
+    """The demonstrations of logs/demos/ as Episodes (read by the learner's reader). Raises
+    RuntimeError naming what is missing when the logs are not there."""
     d = Path(demos_dir)
     logs = sorted(d.glob("*.lcmlog"))
     if not logs:
-        raise RuntimeError(f"no demonstration logs (*.lcmlog) in {d}: they come with the demos branch "
-                           f"(issue 3)")
-    try:
-        from gmmrrt_tools import demolog  # type: ignore
-    except ImportError as exc:
-        raise RuntimeError(f"the demonstration log reader gmmrrt_tools.demolog is missing ({exc}): "
-                           f"it comes with the demos branch (issue 3)") from None
-    out: List[Episode] = []
-    for log in logs:
-        eps, warnings = demolog.read_demo_log(str(log))
-        for w in warnings:
-            print(f"warning: {w}")
-        for demo in eps:
-            # The standing person's pose is constant in a demonstration; its first sample stands for it.
-            person = (float(demo.person_x[0]), float(demo.person_y[0]), float(demo.person_yaw[0]))
-            xy = np.column_stack((demo.robot_x, demo.robot_y)).astype(float)
-            out.append(Episode(demo.id, demo.task, demo.homotopy, person, xy, ""))
+        raise RuntimeError(f"no demonstration logs (*.lcmlog) in {d} "
+                           f"(logs/README.md says how they are recorded or synthesized)")
+    out, warnings = episodes.read_episodes([str(p) for p in logs])
+    for w in warnings:
+        print(f"warning: {w}")
     return out
 
 

@@ -1,5 +1,5 @@
 // json_import.hpp - a mixture given as priors, means and covariances in JSON, for
-// `gmmrrt-learn import --json` (learner issue). Two shapes are read:
+// `gmmrrt-learn import --json`. Two shapes are read:
 //   1. the lab's published approach models (../shared/data/real/upo_approach_gmms.json):
 //      {"sets": {SET: {TASK_NAME: {"components": [{"weight", "mean", "cov"}, ...]}}}}, one task
 //      picked by set and task name (e.g. set "tasks", task "1-front");

@@ -1,6 +1,6 @@
 // kmeans.hpp - k-means++ seeding (greedy, 2 + ln K local trials, Arthur & Vassilvitskii 2007)
-// and Lloyd iterations, with several restarts of which the lowest inertia is kept. It seeds EM
-// (learner issue: "k-means++ seeding with several restarts (best kept)"). Angle dimensions use
+// and Lloyd iterations, with several restarts of which the lowest inertia is kept: it seeds EM,
+// whose result depends on its start, so the best of several starts is kept. Angle dimensions use
 // the wrapped difference, so a cluster across the theta = +-pi seam is one cluster.
 #ifndef GMMRRT_LEARNER_KMEANS_HPP
 #define GMMRRT_LEARNER_KMEANS_HPP

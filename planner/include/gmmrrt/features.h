@@ -28,6 +28,27 @@ typedef struct {
 /* Wraps an angle to (-pi, pi]. Finite input gives finite output; NaN stays NaN. */
 double gmmrrt_wrap_angle(double angle_rad);
 
+/* gmmrrt_wrap_angle, inline for loops that wrap one angle difference per point (the learner's
+ * k-means): the same bits for every input. The wrap is
+ *   a = fmod(angle + pi, 2 pi); a <= 0 ? a + 2 pi : a; minus pi.
+ * For |angle| < 2 pi, angle + pi lies in (-pi, 3 pi) and fmod subtracts 2 pi at most once,
+ * exactly (Sterbenz's lemma): that case is written out here; the library function does the
+ * rest (and calls this for |angle| < 2 pi, so the two cannot disagree). */
+static inline double gmmrrt_wrap_angle_inline(double angle_rad)
+{
+    const double pi = 3.14159265358979323846, two_pi = 2.0 * pi;
+    if (angle_rad > -pi && angle_rad <= pi)
+        return angle_rad;
+    if (!(angle_rad > -two_pi && angle_rad < two_pi))
+        return gmmrrt_wrap_angle(angle_rad); /* far from the range, or NaN */
+    double a = angle_rad + pi;               /* (-pi, 3 pi) */
+    if (a >= two_pi)
+        a -= two_pi;
+    if (a <= 0.0)
+        a += two_pi; /* (0, 2 pi] */
+    return a - pi;   /* (-pi, pi] */
+}
+
 /* Robot position (x, y) [m, world] -> features relative to `person`:
  * *d_m = distance, *theta_rad = bearing in the person's frame, in (-pi, pi].
  * At d = 0 theta is 0. */

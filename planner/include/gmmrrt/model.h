@@ -95,6 +95,28 @@ gmmrrt_status_t gmmrrt_model_decode(const uint8_t *buf, size_t len, gmmrrt_model
  * by writers that build a model in memory (the learner, tests). */
 gmmrrt_status_t gmmrrt_model_prepare(gmmrrt_model_t *model, char *err, size_t errcap);
 
+/* sizeof(gmmrrt_model_t) in this build, for callers that allocate it without the header
+ * (the Python tools through ctypes). */
+size_t gmmrrt_model_sizeof(void);
+
+/* Builds *out from flat arrays and prepares it (gmmrrt_model_prepare: every stored field is
+ * validated): weight[k], mean[k * dim] row by row, chol[k * GMMRRT_TRI(dim)] each factor
+ * packed as in gmmrrt_model_t. For writers in other languages, which then encode with
+ * gmmrrt_model_encode or gmmrrt_model_save_file: the file format stays in model.c.
+ * Returns GMMRRT_OK, GMMRRT_ERR_INVALID_ARGUMENT (a NULL pointer), GMMRRT_ERR_MODEL_BAD_SIZE
+ * (dim or k outside limits.h) or the status of gmmrrt_model_prepare, with the reason in err. */
+gmmrrt_status_t gmmrrt_model_from_arrays(int32_t kind, int32_t task, int32_t homotopy, int32_t dim, int32_t k,
+                                         uint32_t angle_mask, double delta, const double *weight,
+                                         const double *mean, const double *chol, gmmrrt_model_t *out, char *err,
+                                         size_t errcap);
+
+/* The stored fields of a valid model (decoded or prepared) into flat arrays laid out as for
+ * gmmrrt_model_from_arrays: header[6] = kind, task, homotopy, dim, k, angle_mask; *delta;
+ * weight[k], mean[k * dim], chol[k * GMMRRT_TRI(dim)] (caller-sized from header: call with
+ * the sizes of GMMRRT_MAX_K and GMMRRT_MAX_DIM, or read dim and k first from a decoded model). */
+void gmmrrt_model_to_arrays(const gmmrrt_model_t *model, int32_t *header, double *delta, double *weight,
+                            double *mean, double *chol);
+
 /* CRC-32 (IEEE 802.3 / zlib polynomial, reflected, init and final xor 0xFFFFFFFF), so
  * Python's zlib.crc32 checks files too. */
 uint32_t gmmrrt_crc32(const uint8_t *data, size_t len);

@@ -2,7 +2,7 @@
  * trial.hpp - one benchmark trial's record, shared by the OMPL and the gmmrrt runners of
  * gmmrrt-bench-ompl, and its JSON form (one object per line, read by tools/bench.py).
  *
- * The problem is the one of issue 8: [-10,10]^2, a disc of radius 2 at the origin, start
+ * The benchmark problem (docs/benchmarks.md): [-10,10]^2, a disc of radius 2 at the origin, start
  * (-5,0), goal (5,0), a point robot; path length, or path length plus the paper's task
  * cost (Sect. 4) integrated along the path.
  */

@@ -1,6 +1,6 @@
 // bench_learner_main.cpp - gmmrrt-bench-learner: times the learner's EM fit (FitMixture) or its
 // BIC sweep (SweepBic) on the points of a CSV file, for the comparison with scikit-learn in
-// tools/bench_learner.py (issue 8; paper Sect. 3 and 5.1). Only the fit is timed, not the
+// gmmrrt_tools.bench.learner (paper Sect. 3 and 5.1). Only the fit is timed, not the
 // reading: wall time (steady clock) and the process's CPU time (CLOCK_PROCESS_CPUTIME_ID: the
 // summed CPU time of all threads). Prints one
 // JSON object: the times, the learner's summary and the fitted mixture (weights, means,

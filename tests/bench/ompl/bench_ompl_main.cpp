@@ -1,6 +1,6 @@
 /*
- * bench_ompl_main.cpp - gmmrrt-bench-ompl: our RRT* against OMPL's RRTstar on the problem of
- * issue 8 (problem.hpp), runs interleaved (OMPL first on even trials, ours first on odd ones),
+ * bench_ompl_main.cpp - gmmrrt-bench-ompl: our RRT* against OMPL's RRTstar on the benchmark
+ * problem (problem.hpp), runs interleaved (OMPL first on even trials, ours first on odd ones),
  * one JSON object per trial on stdout or --out. tools/bench.py takes medians and ratios.
  * Optionally also writes an ompl::tools::Benchmark log of both planners (--ompl-log).
  */

@@ -1,5 +1,5 @@
 /*
- * problem.hpp - the benchmark problem both planners solve (issue 8), in one place:
+ * problem.hpp - the benchmark problem both planners solve, in one place:
  * [-10,10]^2, a disc of radius 2 at the origin, start (-5,0), goal (5,0), a point robot.
  *
  * Objective "length": path length. Objective "task": the paper's edge cost (Sect. 4),

@@ -1,5 +1,5 @@
 /*
- * bench_planner.c - micro-benchmarks of the planner core (issue 5, "Must show"); prints,
+ * bench_planner.c - micro-benchmarks of the planner core; prints,
  * asserts nothing (docs/planner.md quotes its output with this command):
  *   1. collision queries: FCL per query (what the loop would do without the grid) against
  *      the clearance grid, and the cost of building the grid (set_problem);

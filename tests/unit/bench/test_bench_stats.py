@@ -1,4 +1,4 @@
-"""bench.stats: the benchmark harness's arithmetic on hand-made trial records (issue 8).
+"""bench.stats: the benchmark harness's arithmetic on hand-made trial records.
 
 Oracles are computed by hand in each test from the records it builds: medians that keep
 "never" as infinity, best cost read off a curve, time to a cost, paired ratios, the social
@@ -9,9 +9,9 @@ import math
 
 import pytest
 
-from bench_planner import summarize_ompl, summarize_social
-from bench_report import evaluate_targets
-from bench_stats import INF, clean, cost_at, median, quantile, ratio, time_to_cost
+from gmmrrt_tools.bench.planner import summarize_ompl, summarize_social
+from gmmrrt_tools.bench.report import evaluate_targets
+from gmmrrt_tools.bench.stats import INF, clean, cost_at, median, quantile, ratio, time_to_cost
 
 CURVE = [[0.5, 10, 20.0], [2.0, 40, 15.0], [9.0, 200, 12.0], [50.0, 900, 11.0]]
 

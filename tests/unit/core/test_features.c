@@ -4,6 +4,8 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdint.h>
+#include <string.h>
 #include <cmocka.h>
 
 #include "gmmrrt/features.h"
@@ -12,6 +14,59 @@ static void assert_near(double a, double b, double tol)
 {
     if (!(fabs(a - b) <= tol))
         fail_msg("%.15g != %.15g (tol %g)", a, b, tol);
+}
+
+/* The wrap's definition written plainly (fmod), as the oracle of gmmrrt_wrap_angle and of its
+ * inline form, which skips fmod for |v| < 2 pi (k-means wraps one difference per point). */
+static double wrap_by_fmod(double v)
+{
+    if (v > -M_PI && v <= M_PI)
+        return v;
+    double a = fmod(v + M_PI, 2.0 * M_PI);
+    if (a <= 0.0)
+        a += 2.0 * M_PI;
+    return a - M_PI;
+}
+
+static uint64_t g_rng = 0x9E3779B97F4A7C15u;
+static double uniform_angle(void)
+{
+    g_rng ^= g_rng << 13; /* xorshift64: any spread of angles will do */
+    g_rng ^= g_rng >> 7;
+    g_rng ^= g_rng << 17;
+    return ((double)(g_rng >> 11) * (1.0 / 9007199254740992.0) * 2.0 - 1.0) * M_PI;
+}
+
+static void check_wrap_bits(double v, int *mismatches)
+{
+    const double want = wrap_by_fmod(v), got = gmmrrt_wrap_angle(v), inl = gmmrrt_wrap_angle_inline(v);
+    if (memcmp(&got, &want, sizeof got) != 0 || memcmp(&inl, &want, sizeof inl) != 0)
+        ++*mismatches;
+}
+
+/* Bit for bit: random differences of two wrapped angles, the edges (+-pi, +-2 pi and their
+ * neighbours, values whose v + pi rounds onto 2 pi), and values outside (-2 pi, 2 pi). */
+static void test_wrap_is_the_fmod_definition_bit_for_bit(void **state)
+{
+    (void)state;
+    int mismatches = 0;
+    const double fixed[] = {0.0, -0.0, M_PI, -M_PI, 2.0 * M_PI, -2.0 * M_PI, 3.0 * M_PI, -7.5, 1e6, -1e6};
+    for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; ++i)
+        check_wrap_bits(fixed[i], &mismatches);
+    const double edges[] = {M_PI, -M_PI, 2.0 * M_PI, -2.0 * M_PI};
+    for (size_t i = 0; i < 4; ++i) {
+        double up = edges[i], down = edges[i];
+        for (int u = 0; u < 4; ++u) {
+            up = nextafter(up, HUGE_VAL);
+            down = nextafter(down, -HUGE_VAL);
+            check_wrap_bits(up, &mismatches);
+            check_wrap_bits(down, &mismatches);
+        }
+    }
+    for (int i = 0; i < 200000; ++i)
+        check_wrap_bits(gmmrrt_wrap_angle(uniform_angle()) - gmmrrt_wrap_angle(uniform_angle()), &mismatches);
+    assert_int_equal(mismatches, 0);
+    assert_true(isnan(gmmrrt_wrap_angle_inline(NAN)) && isnan(gmmrrt_wrap_angle(NAN)));
 }
 
 static void test_robot_in_front_has_theta_zero(void **state)
@@ -101,6 +156,7 @@ static void test_matches_real_data_convention(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_wrap_is_the_fmod_definition_bit_for_bit),
         cmocka_unit_test(test_robot_in_front_has_theta_zero),
         cmocka_unit_test(test_left_of_person_is_positive_theta),
         cmocka_unit_test(test_behind_person_is_on_the_seam),

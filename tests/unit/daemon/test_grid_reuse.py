@@ -18,9 +18,7 @@ import sys
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-
-import make_scenarios as ms  # noqa: E402
+from gmmrrt_tools import scenario_logs as ms  # noqa: E402
 from gmmrrt_tools import replay_check  # noqa: E402
 from gmmrrt_tools.scenario_models import write_models  # noqa: E402
 

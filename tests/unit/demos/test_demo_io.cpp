@@ -526,7 +526,7 @@ void test_split_index_reads_and_rejects_duplicates(void** state) {
     assert_true(Contains(r.error, "no split column"));
 }
 
-// The synthesized logs in logs/demos/ (tools/synth_demos.py) read with no warning: 9 episodes per
+// The synthesized logs in logs/demos/ (tools/synth_demonstrations.py) read with no warning: 9 episodes per
 // file with the file's labels, and avoid demonstrations pass on their labelled side (features
 // from the C core, as the learner will compute them).
 void test_repository_demo_logs_read_with_their_labels(void** state) {

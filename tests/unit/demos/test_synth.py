@@ -1,4 +1,4 @@
-"""tools/synth_demos.py: deterministic from the seed (and logs/demos/ is what the documented command
+"""tools/synth_demonstrations.py: deterministic from the seed (and logs/demos/ is what the documented command
 makes), 9 demonstrations per task and homotopy with the asked homotopy, bounded speed, passing and
 final distances inside the documented ranges. Features come from the C core (gmmrrt_tools.core)."""
 import math
@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 from gmmrrt_tools import core
-from gmmrrt_tools.demolog import read_demo_log
+from gmmrrt_tools.episodes import read_episodes
 
 REPO = Path(__file__).resolve().parents[3]
-SYNTH = REPO / "tools" / "synth_demos.py"
+SYNTH = REPO / "tools" / "synth_demonstrations.py"
 FILES = {"avoid_left": ("avoid", "left"), "avoid_right": ("avoid", "right"),
          "approach_frontal": ("approach", "frontal"), "approach_left": ("approach", "left"),
          "approach_right": ("approach", "right")}
@@ -39,7 +39,7 @@ def test_same_seed_same_bytes_and_repo_logs_are_that_output(seed1, tmp_path):
         a = (seed1 / f"{name}.lcmlog").read_bytes()
         assert a == (tmp_path / f"{name}.lcmlog").read_bytes(), name
         assert a == (REPO / "logs" / "demos" / f"{name}.lcmlog").read_bytes(), \
-            f"logs/demos/{name}.lcmlog is not what `synth_demos.py --seed 1` makes: regenerate it"
+            f"logs/demos/{name}.lcmlog is not what `synth_demonstrations.py --seed 1` makes: regenerate it"
     total = sum(p.stat().st_size for p in (REPO / "logs" / "demos").glob("*"))
     assert total < 700_000, f"logs/demos/ holds {total} bytes"
 
@@ -62,7 +62,7 @@ def person_frame(ep):
 @pytest.mark.parametrize("name", sorted(FILES))
 def test_demonstrations_have_the_asked_shape(seed1, name):
     task, homotopy = FILES[name]
-    eps, warnings = read_demo_log(str(seed1 / f"{name}.lcmlog"))
+    eps, warnings = read_episodes(str(seed1 / f"{name}.lcmlog"))
     assert warnings == []
     assert len(eps) == 9
     for ep in eps:
@@ -103,7 +103,7 @@ def test_from_behind_approaches_straddle_the_seam(seed1):
     """Some from-behind approaches start across theta = +-pi from the side they curve round, so the
     learner's wrapped model sees data on both sides of the seam (docs/demonstrations.md)."""
     for name, sign in (("approach_left", 1.0), ("approach_right", -1.0)):
-        eps, _ = read_demo_log(str(seed1 / f"{name}.lcmlog"))
+        eps, _ = read_episodes(str(seed1 / f"{name}.lcmlog"))
         starts = [person_frame(e)[1][0] for e in eps]
         assert any(sign * t < 0 for t in starts), f"{name}: no start across the seam"
         assert any(sign * t > 0 for t in starts), f"{name}: every start across the seam"

@@ -1,4 +1,4 @@
-"""tools/demo_stats.py and tools/plot_demos.py on logs/demos and the real data: they run, write what
+"""tools/demonstration_stats.py and tools/plot_demonstrations.py on logs/demos and the real data: they run, write what
 they say, and fail plainly without the real data. Skipped (with the reason) when the real data is
 absent."""
 import os
@@ -20,8 +20,8 @@ def run(tool, *args, env=None):
 
 
 @need_real
-def test_demo_stats_prints_both_tables():
-    r = run("demo_stats.py", "--markdown", "--real-data", REAL)
+def test_demonstration_stats_prints_both_tables():
+    r = run("demonstration_stats.py", "--markdown", "--real-data", REAL)
     assert r.returncode == 0, r.stderr
     assert "vs UPO avoid (all, frontal encounters, 122 episodes)" in r.stdout
     rows = [l for l in r.stdout.splitlines() if l.startswith("| min distance to the person [m] | synthetic | 18 |")]
@@ -31,9 +31,9 @@ def test_demo_stats_prints_both_tables():
 
 
 @need_real
-def test_plot_demos_writes_a_png(tmp_path):
+def test_plot_demonstrations_writes_a_png(tmp_path):
     out = tmp_path / "d.png"
-    r = run("plot_demos.py", "--real-data", REAL, "--out", out, "--real-sample", 5)
+    r = run("plot_demonstrations.py", "--real-data", REAL, "--out", out, "--real-sample", 5)
     assert r.returncode == 0, r.stderr
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
@@ -41,6 +41,6 @@ def test_plot_demos_writes_a_png(tmp_path):
 def test_tools_without_real_data_fail_plainly(tmp_path):
     env = dict(os.environ)
     env.pop("GMMRRT_REAL_DATA", None)
-    for tool in ("demo_stats.py", "plot_demos.py"):
+    for tool in ("demonstration_stats.py", "plot_demonstrations.py"):
         r = run(tool, "--real-data", tmp_path / "nowhere", env=env)
         assert r.returncode == 1 and "real data folder not found" in r.stderr

@@ -1,6 +1,6 @@
 /*
  * test_roundtrip.c - lcmtypes.roundtrip: every gmmrrt message type through the validating
- * decoders of lcmtypes/include/gmmrrt/msg_decode.h (issue 2, "Message types").
+ * decoders of lcmtypes/include/gmmrrt/msg_decode.h.
  *
  * 1. Round trip: a message with every field set to a distinct value, encoded by the
  *    generated code and decoded by gmmrrt_msg_decode_*, equals the original field by field

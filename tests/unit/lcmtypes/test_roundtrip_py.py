@@ -1,7 +1,7 @@
 """lcmtypes.roundtrip_py: every gmmrrt message type round-trips through the generated Python
 package (build/python/gmmrrt), and the wire rules the Python side must respect hold:
 fixed-size arrays must be given at full length, a wrong fingerprint does not decode.
-(issue 2, "Message types"; the C side is tests/unit/lcmtypes/test_roundtrip.c.)
+(the C side is tests/unit/lcmtypes/test_roundtrip.c.)
 """
 import math
 import struct

@@ -224,7 +224,7 @@ def test_import_upo_approach_models():
 def test_fit_from_demonstration_logs(tmp_path):
     logs = [Path("logs/demos/avoid_left.lcmlog"), Path("logs/demos/avoid_right.lcmlog")]
     if not all(p.exists() for p in logs):
-        pytest.fail("logs/demos/avoid_*.lcmlog missing from the checkout")
+        pytest.fail("logs/demos/avoid_*.lcmlog missing: tools/synth_demonstrations.py --seed 1 --out-dir logs/demos makes them")
     model = tmp_path / "demo.gmm"
     r = run("fit", "--input", *logs, "--task", "avoid", "--homotopy", "left", "--k", 4, "-o", model, "-q")
     assert r.returncode == 0, r.stderr

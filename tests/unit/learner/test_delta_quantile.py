@@ -7,23 +7,20 @@ Checked against an independent computation: the model file's mixture evaluated b
 values and --delta together with --delta-quantile are refused with a clear error and no file.
 """
 import os
-import struct
 import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from gmmrrt_tools import mixture
+from gmmrrt_tools import core, mixture
 
 REPO = Path(__file__).resolve().parents[3]
 LEARN = Path(os.environ.get("GMMRRT_BIN_DIR", REPO / "build" / "bin")) / "gmmrrt-learn"
 
 
 def stored_delta(path):
-    # header: magic[8], version u16, byte-order mark u16, kind/task/homotopy/dim u8, k u16,
-    # reserved u16, angle mask u32, delta f64 (docs/model-format.md)
-    return struct.unpack_from("<d", Path(path).read_bytes(), 24)[0]
+    return core.model_fields(core.decode_model(Path(path).read_bytes()))["delta"]
 
 
 @pytest.fixture(scope="module")
@@ -31,7 +28,7 @@ def points(tmp_path_factory):
     rng = np.random.default_rng(5)
     d = np.concatenate([rng.normal(1.2, 0.2, 300), rng.normal(2.0, 0.3, 200)])
     th = np.concatenate([rng.normal(1.0, 0.3, 300), rng.normal(-2.5, 0.4, 200)])
-    th = (th + np.pi) % (2 * np.pi) - np.pi
+    th = np.array([core.wrap_angle(a) for a in th])
     csv = tmp_path_factory.mktemp("dq") / "features.csv"
     np.savetxt(csv, np.column_stack([d, th]), delimiter=",", fmt="%.9f")
     return csv, np.column_stack([d, th])

@@ -14,7 +14,6 @@
 
 #include "component_terms.hpp"
 #include "estep_2d.hpp"
-#include "wrap_difference.hpp"
 #include "gmmrrt/features.h"
 #include "gmmrrt_learner/em.hpp"
 #include "gmmrrt_learner/mixture.hpp"
@@ -238,34 +237,6 @@ void test_baseline_and_avx2_kernels_agree(void** state) {
   for (int q = 0; q < 4; ++q) assert_true(e[q] == f[q]);  // lane-wise the same operations
 }
 
-// k-means' inline wrap of angle differences (wrap_difference.hpp) against gmmrrt_wrap_angle, bit
-// for bit: random differences of two wrapped angles, the edges (+-pi, +-2 pi and their
-// neighbours, values whose v + pi rounds onto 2 pi), and values outside (-2 pi, 2 pi).
-void test_wrap_difference_is_gmmrrt_wrap_angle(void** state) {
-  (void)state;
-  std::vector<double> v = {0.0, -0.0, M_PI, -M_PI, 2.0 * M_PI, -2.0 * M_PI, 3.0 * M_PI, -7.5, 1e6, -1e6};
-  for (double e : {M_PI, -M_PI, 2.0 * M_PI, -2.0 * M_PI})
-    for (int ulps = 1; ulps <= 4; ++ulps) {
-      double up = e, down = e;
-      for (int u = 0; u < ulps; ++u) {
-        up = std::nextafter(up, HUGE_VAL);
-        down = std::nextafter(down, -HUGE_VAL);
-      }
-      v.push_back(up);
-      v.push_back(down);
-    }
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> angle(-M_PI, M_PI);
-  for (int i = 0; i < 200000; ++i) v.push_back(gmmrrt_wrap_angle(angle(rng)) - gmmrrt_wrap_angle(angle(rng)));
-  int mismatches = 0;
-  for (double x : v) {
-    const double got = detail::WrapDifference(x), want = gmmrrt_wrap_angle(x);
-    if (std::memcmp(&got, &want, sizeof got) != 0) ++mismatches;
-  }
-  assert_int_equal(mismatches, 0);
-  assert_true(std::isnan(detail::WrapDifference(NAN)));
-}
-
 // Five separated blobs, 30 000 points: more than a 4 000-point screening sample.
 Eigen::MatrixXd FiveBlobs() {
   using test_support::Diag;
@@ -316,7 +287,6 @@ int main(void) {
       cmocka_unit_test(test_fused_estep_matches_the_density_and_direct_moments),
       cmocka_unit_test(test_fused_estep_with_angle_matches_the_general_path),
       cmocka_unit_test(test_baseline_and_avx2_kernels_agree),
-      cmocka_unit_test(test_wrap_difference_is_gmmrrt_wrap_angle),
       cmocka_unit_test(test_screening_on_a_sample_is_deterministic_and_recovers_the_mixture),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);

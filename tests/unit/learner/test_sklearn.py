@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from sklearn.mixture import GaussianMixture
 
-import gen_model_vectors as oracle  # tools/ is on PYTHONPATH
+from gmmrrt_tools import model_vectors as oracle  # the independent oracle
 
 BIN = Path(os.environ.get("GMMRRT_BIN_DIR", "build/bin")) / "gmmrrt-learn"
 

@@ -27,11 +27,15 @@ print(json.dumps({"status": "ok", "path": path, "stats": {"iterations": int(get(
       "nodes": 3, "first_solution_ms": 0.5, "best_cost": 1.0, "time_ms": 1.0}}))
 '''
 
+# Episodes are read by the real learner's reader (`gmmrrt-learn dump`); only fitting is doubled.
+REAL_LEARN = str(Path(os.environ.get("GMMRRT_BIN_DIR", ROOT / "build" / "bin")) / "gmmrrt-learn")
 FAKE_LEARN = r'''#!/usr/bin/env python3
-import sys
+import os, sys
 a = sys.argv[1:]
+if a and a[0] == "dump":
+    os.execv(REAL_LEARN, [REAL_LEARN] + a)
 open(a[a.index("-o") + 1], "w").write(" ".join(a))
-'''
+'''.replace("REAL_LEARN", repr(REAL_LEARN))
 
 
 def _tool(dirpath, name, text):
@@ -48,7 +52,6 @@ def _run(args, bin_dir, tmp_path):
 
 
 def test_missing_tool_is_named(tmp_path):
-    sys.path.insert(0, str(ROOT / "tools"))
     from gmmrrt_tools import runner
     with pytest.raises(runner.MissingTool, match="gmmrrt-nosuchtool not found in .*tools/run build"):
         runner.find_tool("gmmrrt-nosuchtool", str(tmp_path))

@@ -2,7 +2,7 @@
 of tools/gen_model_vectors.py agrees with the C core (build/lib/libgmmrrt.so via ctypes).
 
 - `gen_model_vectors.py --check`: the checked-in files are what the script makes, every header
-  field exactly and every number within the script's CHECK_RTOL (other BLAS kernels change the
+  field exactly and every number within gmmrrt_tools.model_vectors.CHECK_RTOL (other BLAS kernels change the
   last bits; tools/run test runs this file again under a second OpenBLAS kernel); a copy
   changed by 1e-9 relative in one value, or in one header byte, fails the check.
 - Every vector file decodes in C and re-encodes to the same bytes (both byte layouts agree).
@@ -19,8 +19,7 @@ import numpy as np
 import pytest
 
 REPO = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(REPO / "tools"))
-import gen_model_vectors as gmv  # noqa: E402
+from gmmrrt_tools import model_vectors as gmv  # noqa: E402  (the independent oracle)
 
 VECTORS = REPO / "tests" / "data" / "model_vectors"
 MODEL_BYTES = 1 << 20  # more than sizeof(gmmrrt_model_t) for any limits.h

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """CTest fixture planner.learned_fit: fits the models the planner.learned_* tests plan with
-(issue 5, "Must show — with the learned avoid models"; paper Sect. 3: a 19-component GMM over the
+(paper Sect. 3: a 19-component GMM over the
 features (d, theta) of the demonstrations, Sect. 5.1) from logs/demos/ with the project's own
 learner, `gmmrrt-learn fit`:
 

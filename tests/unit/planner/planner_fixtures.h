@@ -1,6 +1,6 @@
 /*
- * planner_fixtures.h - shared problem builders for the planner tests: the disc problem of
- * issue 5 (start (-5, 0), goal (5, 0), disc of radius 2 at the origin, point robot; the
+ * planner_fixtures.h - shared problem builders for the planner tests: the disc problem
+ * (start (-5, 0), goal (5, 0), disc of radius 2 at the origin, point robot; the
  * shortest path wraps the disc: 2 sqrt(21) + 2 (pi - 2 acos(2/5)) = 10.8110 m) and
  * hand-built (d, theta) mixtures for the social tests.
  */

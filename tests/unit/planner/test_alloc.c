@@ -1,5 +1,5 @@
 /*
- * test_alloc.c - planner.alloc: proves that planning allocates nothing (issue 5, STYLE.md
+ * test_alloc.c - planner.alloc: proves that planning allocates nothing (STYLE.md
  * rule 1). This executable defines malloc, calloc, realloc, free, aligned_alloc and
  * posix_memalign, forwarding to glibc's __libc_* entry points and counting calls while
  * `counting` is set (C++ operator new in libstdc++ ends in malloc, so FCL is covered too).

@@ -1,19 +1,19 @@
-"""planner.cli: gmmrrt-plan end to end (issue 5, "Output and CLI").
+"""planner.cli: gmmrrt-plan end to end.
 
 Runs the installed-layout binary from GMMRRT_BIN_DIR on the disc problem, with a
-hand-written model file (layout of docs/model-format.md, written here independently of
-the C encoder), and checks the CSV and JSON outputs, determinism, and that bad input
+hand-made model file (written by the C core through gmmrrt_tools.core: the format's one
+implementation; its independent oracle is tools/gen_model_vectors.py), and checks the CSV and JSON outputs, determinism, and that bad input
 gets a clear error and a non-zero exit with nothing on stdout.
 """
 import json
 import math
 import os
-import struct
 import subprocess
-import zlib
 from pathlib import Path
 
 import pytest
+
+from gmmrrt_tools import core
 
 BIN = Path(os.environ.get("GMMRRT_BIN_DIR", "build/bin")) / "gmmrrt-plan"
 DISC = ["--start", "-5,0", "--goal", "5,0", "--obstacle", "circle:0,0,2", "--robot-radius", "0",
@@ -29,13 +29,9 @@ def run(*args):
 def write_features_model(path, thetas, d=1.2, sd=0.2, st=0.25, task=1):
     """kind 1 (features), D = 2, angle_mask 0x2; components (d, theta_i), equal weights."""
     k = len(thetas)
-    head = b"GMMRRTMD" + struct.pack("<HHBBBBHHId", 1, 0xFEFF, 1, task, 0, 2, k, 0, 0x2, 0.001)
     weights = [1.0 / k] * (k - 1) + [1.0 - (k - 1) * (1.0 / k)]
-    body = b"".join(struct.pack("<d", w) for w in weights)           # all weights,
-    body += b"".join(struct.pack("<dd", d, th) for th in thetas)     # then all means,
-    body += b"".join(struct.pack("<ddd", sd, 0.0, st) for _ in thetas)  # then all factors
-    data = head + body
-    path.write_bytes(data + struct.pack("<I", zlib.crc32(data) & 0xFFFFFFFF))
+    model = core.model_from_arrays(1, task, 0, weights, [(d, th) for th in thetas], [(sd, 0.0, st)] * k, 0x2, 0.001)
+    core.save_model(str(path), model)
     return path
 
 
@@ -140,7 +136,7 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0"], "--goal"),
     (["--start"], "needs a value"),
     (["--start", "0,0", "--goal", "1,1", "--frobnicate"], "unknown option"),
-    (["--start", "0,0", "--goal", "1,1", "--delta", "0"], "--delta"),
+    (["--start", "0,0", "--goal", "1,1", "--delta", "-1"], "--delta '-1': config.delta must be finite and >= 0"),
     (["--start", "0,0", "--goal", "1,1", "--delta", "nan"], "--delta"),
     (["--start", "0,0", "--goal", "1,1", "--w-task", "-1"], "--w-task"),
     (["--start", "0,0", "--goal", "1,1", "--rewire-k", "-1"], "--rewire-k"),
@@ -155,6 +151,8 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0", "--goal", "1,1", "--cost", "max"], "--cost"),
     (["--start", "0,0", "--goal", "1,1", "--cost", "background"], "needs --background-model"),
     (["--start", "0,0", "--goal", "1,1", "--background-model", "/nonexistent/bg.gmm"], "/nonexistent/bg.gmm"),
+    (["--start", "0,0", "--goal", "1,1", "--bias", "1.5"], "--bias '1.5': config.gmm_bias must be in [0, 1]"),
+    (["--start", "0,0", "--goal", "1,1", "--robot-radius", "-0.1"], "--robot-radius '-0.1': config.robot_radius_m"),
 ])
 def test_bad_input_is_refused_with_a_clear_error(args, message):
     r = run(*args)

@@ -1,5 +1,5 @@
 """planner.learned_*: GMM-RRT* (paper Sect. 4) with the avoid models learned from logs/demos/ by
-gmmrrt-learn (issue 5, "Must show — with the learned avoid models"). The models are fitted by the
+gmmrrt-learn. The models are fitted by the
 CTest fixture planner.learned_fit (fit_learned_models.py) into $GMMRRT_BUILD_DIR/tests/learned_models.
 
 Scene: a robot walks head-on past a standing person, from 3 m in front of them to 3 m behind (in the

@@ -1,6 +1,6 @@
 /*
  * test_rrtstar.c - planner.rrtstar: the RRT* of rrtstar.h on problems with known answers
- * (issue 5 "Must show") and its invariants (Karaman & Frazzoli 2011; OMPL-style checks):
+ * and its invariants (Karaman & Frazzoli 2011; OMPL-style checks):
  * free straight line, the disc detour converging to its closed-form length, best cost
  * never increasing, every tree edge collision-free (FCL oracle), cost-to-come consistent
  * after rewiring, same seed same path, pool exhaustion, and the statuses of bad problems.

@@ -1,4 +1,4 @@
-"""Planner benchmarks of issue 8, run through the C++ benchmark programs and summarised here.
+"""Planner benchmarks (docs/benchmarks.md), run through the C++ benchmark programs and summarised here.
 
 - OMPL comparison (gmmrrt-bench-ompl): our RRT* and OMPL's RRTstar on the disc problem, runs
   interleaved inside the program; medians, and ratios against OMPL measured in the same run.
@@ -18,7 +18,7 @@ import time
 from pathlib import Path
 from typing import Dict, List, Optional
 
-from bench_stats import INF, cost_at, median, quantile, ratio, time_to_cost
+from gmmrrt_tools.bench.stats import INF, cost_at, median, quantile, ratio, time_to_cost
 
 CHECKPOINTS_MS = (10.0, 100.0, 1000.0)
 

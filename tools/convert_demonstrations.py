@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""demo_convert.py - episode CSV <-> demonstration log (paper Sect. 2 / 5.1 demonstrations; layout in
+"""convert_demonstrations.py - episode CSV <-> demonstration log (paper Sect. 2 / 5.1 demonstrations; layout in
 docs/demonstrations.md).
 
-  demo_convert.py csv2log IN.csv OUT.lcmlog [--index INDEX.csv --split train] [--task avoid]
+  convert_demonstrations.py csv2log IN.csv OUT.lcmlog [--index INDEX.csv --split train] [--task avoid]
                                             [--homotopy left] [--max-episodes N]
-  demo_convert.py log2csv IN.lcmlog OUT.csv
+  convert_demonstrations.py log2csv IN.lcmlog OUT.csv
 
 Labels (task, homotopy) are kept both ways. A CSV with many episodes becomes one log with one
 DEMO_INFO per episode (episode numbers 0, 1, ... in CSV order); csv2log prints the mapping from
@@ -17,23 +17,21 @@ from __future__ import annotations
 import argparse
 import sys
 
-from gmmrrt_tools.demolog import read_demo_log, write_demo_log
-from gmmrrt_tools.episodes import (HOMOTOPIES, TASKS, EpisodeError, read_episode_csv, read_split_index,
-                                   write_episode_csv)
+from gmmrrt_tools.demonstration_log import write_demo_log
+from gmmrrt_tools.episodes import HOMOTOPIES, TASKS, EpisodeError, read_episodes, write_episode_csv
 
 
 def csv2log(args) -> int:
-    episodes = read_episode_csv(args.input)
     if args.split and not args.index:
         raise EpisodeError("--split needs --index (the index CSV with episode_id and split columns)")
+    episodes, _ = read_episodes(args.input, index=args.index)
     if args.index:
-        split = read_split_index(args.index)
-        missing = [e.id for e in episodes if e.id not in split]
+        missing = [e.id for e in episodes if not e.split]
         if missing:
             raise EpisodeError(f"{args.index}: no split for episode '{missing[0]}' of {args.input} "
                                f"({len(missing)} episodes missing)")
         if args.split:
-            episodes = [e for e in episodes if split[e.id] == args.split]
+            episodes = [e for e in episodes if e.split == args.split]
     if args.task:
         episodes = [e for e in episodes if e.task == args.task]
     if args.homotopy:
@@ -53,7 +51,7 @@ def csv2log(args) -> int:
 
 
 def log2csv(args) -> int:
-    episodes, warnings = read_demo_log(args.input)
+    episodes, warnings = read_episodes(args.input)
     for w in warnings:
         print(f"warning: {w}", file=sys.stderr)
     write_episode_csv(args.output, episodes)
@@ -90,7 +88,7 @@ def main(argv=None) -> int:
     try:
         return args.func(args)
     except EpisodeError as e:
-        print(f"demo_convert: error: {e}", file=sys.stderr)
+        print(f"convert_demonstrations: error: {e}", file=sys.stderr)
         return 1
 
 

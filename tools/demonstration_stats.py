@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""demo_stats.py - statistics of demonstrations, synthetic against real (issue 3; paper Sect. 5.1 uses
+"""demonstration_stats.py - statistics of demonstrations, synthetic against real (paper Sect. 5.1 uses
 9 demonstrations per homotopy): per episode the minimum distance to the person, the mean speed
 (path length / duration) and the path length over the straight start-goal distance; per set the
 mean, std and 5/25/50/75/95 % quantiles, and the two-sample Kolmogorov-Smirnov distance between
 the synthetic and the real episodes (0 = same distribution, 1 = disjoint).
 
-  demo_stats.py [--demos logs/demos] [--real-data DIR] [--split all|train|test]
+  demonstration_stats.py [--demos logs/demos] [--real-data DIR] [--split all|train|test]
                 [--encounter frontal|all] [--markdown]
 
 Avoid: logs/demos/avoid_*.lcmlog against UPO avoid (upo_avoid_episodes.csv), by default only the
@@ -26,8 +26,8 @@ import numpy as np
 from scipy.stats import ks_2samp
 
 from gmmrrt_tools import core
-from gmmrrt_tools.demolog import read_demo_log
-from gmmrrt_tools.episodes import Episode, EpisodeError, read_episode_csv
+from gmmrrt_tools.episodes import Episode, EpisodeError, read_episodes
+from gmmrrt_tools.runner import MissingTool
 from gmmrrt_tools.realdata import select_upo
 
 QUANTILES = (5, 25, 50, 75, 95)
@@ -87,12 +87,9 @@ def read_logs(pattern: str) -> List[Episode]:
     files = sorted(glob.glob(pattern))
     if not files:
         raise EpisodeError(f"no demonstration log matches {pattern}")
-    eps: List[Episode] = []
-    for f in files:
-        e, warnings = read_demo_log(f)
-        for w in warnings:
-            print(f"warning: {w}", file=sys.stderr)
-        eps += e
+    eps, warnings = read_episodes(files)
+    for w in warnings:
+        print(f"warning: {w}", file=sys.stderr)
     return eps
 
 
@@ -109,16 +106,16 @@ def main(argv=None) -> int:
     ap.add_argument("--markdown", action="store_true", help="print Markdown tables (for docs)")
     args = ap.parse_args(argv)
     if not args.real_data or not os.path.isdir(args.real_data):
-        print(f"demo_stats: error: real data folder not found ({args.real_data!r}): pass --real-data or set "
+        print(f"demonstration_stats: error: real data folder not found ({args.real_data!r}): pass --real-data or set "
               "GMMRRT_REAL_DATA", file=sys.stderr)
         return 1
     try:
         s_avoid = read_logs(os.path.join(args.demos, "avoid_*.lcmlog"))
         s_appr = read_logs(os.path.join(args.demos, "approach_*.lcmlog"))
         upo = select_upo(args.real_data, args.split, args.encounter)
-        ucy = read_episode_csv(os.path.join(args.real_data, "ucy_approach_episodes.csv"))
-    except (EpisodeError, core.CoreNotBuilt) as e:
-        print(f"demo_stats: error: {e}", file=sys.stderr)
+        ucy, _ = read_episodes(os.path.join(args.real_data, "ucy_approach_episodes.csv"))
+    except (EpisodeError, core.CoreNotBuilt, MissingTool) as e:
+        print(f"demonstration_stats: error: {e}", file=sys.stderr)
         return 1
     what = f"{args.split}, {'frontal encounters' if args.encounter == 'frontal' else 'all encounters'}"
     t1 = table(f"avoid: synthetic ({len(s_avoid)} episodes) vs UPO avoid ({what}, {len(upo)} episodes)",

@@ -1,5 +1,4 @@
-#!/usr/bin/env python3
-"""Latency benchmark of gmmrrtd (issue 6, "Must show"): from a pose message to the plan it caused.
+"""Latency benchmark of gmmrrtd: from a pose message to the plan it caused.
 
 Starts gmmrrtd (live clock) on a private UDP multicast port with ttl=0, sends one avoid
 scenario (a goal 8 m ahead, a person in the way, a circle obstacle) and robot poses at
@@ -8,8 +7,8 @@ a plan started from, so latency = time the plan arrived - time that pose was sen
 the wait for the next tick (up to one period), the planning budget and LCM transport. Prints
 p50/p90/p99/max, the plans per second and the daemon's missed deadlines, for each --rate-hz.
 
-    .venv/bin/python tools/bench_daemon.py                       # 10 Hz and 20 Hz, 20 s each
-    .venv/bin/python tools/bench_daemon.py --rate-hz 10 --seconds 60 --json out.json
+    .venv/bin/python python -m gmmrrt_tools.bench.daemon                       # 10 Hz and 20 Hz, 20 s each
+    .venv/bin/python python -m gmmrrt_tools.bench.daemon --rate-hz 10 --seconds 60 --json out.json
 """
 import argparse
 import json
@@ -22,17 +21,13 @@ import sys
 import tempfile
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-try:
-    import gmmrrt  # noqa: F401
-except ImportError:
-    sys.path.insert(0, os.path.join(HERE, "..", "build", "python"))
-import lcm  # noqa: E402
-from gmmrrt import nav_goal_t, planner_status_t, waypoints_t  # noqa: E402
+import lcm
+from gmmrrt import nav_goal_t, planner_status_t, waypoints_t  # generated; on PYTHONPATH (tools/run env)
 
-from make_scenarios import goal, obstacles, people, pose  # noqa: E402
-from gmmrrt_tools.scenario_models import write_models  # noqa: E402
+from gmmrrt_tools.scenario_logs import goal, obstacles, people, pose
+from gmmrrt_tools.scenario_models import write_models
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 
 
 def percentile(values, q):
@@ -113,7 +108,7 @@ def bench(gmmrrtd, rate_hz, budget_ms, seconds, pose_hz, port, models):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--gmmrrtd", default=os.path.join(os.environ.get("GMMRRT_BIN_DIR", os.path.join(HERE, "..", "build", "bin")), "gmmrrtd"))
+    ap.add_argument("--gmmrrtd", default=os.path.join(os.environ.get("GMMRRT_BIN_DIR", os.path.join(ROOT, "build", "bin")), "gmmrrtd"))
     ap.add_argument("--rate-hz", type=float, action="append", help="cycle rate(s) to measure (default 10 and 20)")
     ap.add_argument("--budget-fraction", type=float, default=0.6, help="planning budget as a fraction of the period")
     ap.add_argument("--seconds", type=float, default=20.0)

@@ -1,4 +1,4 @@
-"""Targets of issue 8 judged from a benchmark result, and docs/benchmarks.md written from it.
+"""The benchmark targets judged from a benchmark result, and docs/benchmarks.md written from it.
 
 Targets are reported, never asserted: each is "met", "not met" or "not run" (section missing
 or failed), with the measured value.
@@ -9,7 +9,7 @@ import math
 from pathlib import Path
 from typing import List, Optional
 
-from bench_stats import fmt
+from gmmrrt_tools.bench.stats import fmt
 
 LL_EQUAL_TOLERANCE = 1e-3  # nats per point: "equal" log-likelihood within this
 
@@ -129,10 +129,10 @@ def observations(res: dict) -> List[str]:
         hi = sw.get("k_range", [1, 30])[1]
         if k_s == hi:
             notes.append(f"scikit-learn's single-init BIC sweep picked K = {k_s}, the edge of the range "
-                         f"(true K = {k_t}), as issue 8 says it does.")
+                         f"(true K = {k_t}), as the benchmark targets say it does.")
         else:
             notes.append(f"scikit-learn's single-init BIC sweep picked K = {k_s} (true K = {k_t}) on this data: the "
-                         "edge-of-range pick that issue 8 mentions did not show here (well-separated Gaussian "
+                         "edge-of-range pick that the benchmark targets mention did not show here (well-separated Gaussian "
                          "components).")
         for name, ex in (_get(res, "learner", "sweep_extra") or {}).items():
             if not isinstance(ex, dict) or "error" in ex:
@@ -156,7 +156,7 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
     h = res.get("host", {})
     L += ["# Benchmarks",
           "",
-          f"Written by `tools/bench.py` (issue 8) from `{results_path}`; do not edit by hand: rerun "
+          f"Written by `tools/bench.py` from `{results_path}`; do not edit by hand: rerun "
           "`tools/run bench`.",
           "",
           "Every figure is a median over runs; where there is a peer (OMPL, scikit-learn) the peer ran in the "
@@ -371,7 +371,7 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
         L += ["", f"- speed-up (defaults against scikit-learn), CPU time: **{fmt(fit.get('speedup_cpu'), 2, 'x')}**; "
               f"wall time: {fmt(fit.get('speedup'), 2, 'x')}; log-likelihood gap (ours - scikit-learn): "
               f"{fmt(fit.get('log_likelihood_gap'), 5)} nats per point",
-              f"- our command (data written by tools/bench_learner.py): `{fit.get('command_example')}`", ""]
+              f"- our command (data written by gmmrrt_tools.bench.learner): `{fit.get('command_example')}`", ""]
         sw = le.get("sweep", {})
         L += [f"BIC sweep K = 1..30 on N = {sw.get('n'):,} points of {sw.get('k_true')} well-separated Gaussians "
               "(same settings; one run each, ours then scikit-learn):", "",
@@ -392,7 +392,7 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
             L += ["", "</details>", ""]
         extra = le.get("sweep_extra") or {}
         if extra:
-            L += ["Extra BIC sweeps K = 1..30 (not targets: issue 8 says scikit-learn's single-init sweep picks the "
+            L += ["Extra BIC sweeps K = 1..30 (not targets: the targets say scikit-learn's single-init sweep picks the "
                   "edge of the range, which the data above does not show; these cases are reported whatever they "
                   "show, same settings, one run each):", "",
                   "| data | true K | gmmrrt: K, its BIC, CPU time | scikit-learn: K, its BIC, CPU time | CPU speed-up |",
@@ -475,8 +475,8 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
           "`tests/bench/learner/` (gmmrrt-bench-learner: times our EM or BIC sweep on a CSV of points), "
           "`tests/bench/ompl/bench_all_main.cpp` (gmmrrt-bench-all: every OMPL planner), "
           "`tests/bench/planner/bench_world.c` (bench_world: the collision world's set-up, maps, scans); "
-          "`tools/bench.py` runs them with `tools/bench_planner.py`, `tools/bench_learner.py` (the scikit-learn "
-          "peer), `tools/bench_report.py` (targets, this page) and `tools/bench_stats.py`. Each program prints "
+          "`tools/bench.py` runs them with `gmmrrt_tools.bench.planner`, `gmmrrt_tools.bench.learner` (the scikit-learn "
+          "peer), `gmmrrt_tools.bench.report` (targets, this page) and `gmmrrt_tools.bench.stats`. Each program prints "
           "one JSON object per trial; raw records land in `build/bench-raw/`.", "",
           "```", "GMMRRT_REAL_DATA=/path/to/data/real tools/run bench          # full run, this page",
           "tools/run bench --quick                                      # smoke run (build/bench-results-quick.json)",

@@ -1,5 +1,4 @@
-#!/usr/bin/env python3
-"""Learner speed, before and after (issue 8): interleaved CPU-time runs of two gmmrrt-learn
+"""Learner speed, before and after: interleaved CPU-time runs of two gmmrrt-learn
 binaries and of single-threaded scikit-learn on one CSV of 2-D points, medians.
 
 Times are CPU seconds of each run (user + sys of the child, or process_time for scikit-learn),
@@ -7,7 +6,7 @@ not wall time: the development machine is shared, so only ratios measured in one
 The learner's times include reading the CSV (about 0.1 s for 200 000 points); scikit-learn's do
 not. Each learner run's mean log-likelihood is the one its `fit` summary prints.
 
-    .venv/bin/python tools/learner_speed.py --data big.csv --k 19 --reps 3 \\
+    .venv/bin/python -m gmmrrt_tools.bench.learner_speed --data big.csv --k 19 --reps 3 \\
         --bin before=/tmp/gmmrrt-learn.before --bin after=build/bin/gmmrrt-learn [-- --tol 1e-3]
 """
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Learner against scikit-learn (issue 8): EM fit time and log-likelihood at N = 200 000,
+"""Learner against scikit-learn: EM fit time and log-likelihood at N = 200 000,
 D = 2, K = 19, full covariances; and BIC sweeps over K = 1..30: on a mixture of known K
 (well separated), and, as extra cases, on overlapping components of known K and on real
 features (UPO avoid demonstrations, train split, person frame x', y').
@@ -38,8 +38,8 @@ import numpy as np  # noqa: E402
 from sklearn.mixture import GaussianMixture  # noqa: E402
 from threadpoolctl import threadpool_info, threadpool_limits  # noqa: E402
 
-from bench_planner import BenchError  # noqa: E402
-from bench_stats import median, ratio  # noqa: E402
+from gmmrrt_tools.bench.planner import BenchError  # noqa: E402
+from gmmrrt_tools.bench.stats import median, ratio  # noqa: E402
 
 SKLEARN_TOL = 1e-3
 SKLEARN_MAX_ITER = 100
@@ -249,7 +249,7 @@ def upo_avoid_train_points(real: Path) -> np.ndarray:
 
 def run_extra_sweeps(exe: Path, work: Path, quick: bool, k_max: int, seed: int,
                      real: Optional[Path]) -> Dict[str, dict]:
-    """Issue 8 says scikit-learn's single-init sweep picks the edge of the range; the target's
+    """The benchmark targets say scikit-learn's single-init sweep picks the edge of the range; the target's
     well-separated data does not show it. Two more honest cases, reported whatever they show:
     overlapping components of known K (make_mixture_points, means closer together), and the real
     UPO avoid features (no true K; what each sweep picks, and its BIC)."""
@@ -259,7 +259,7 @@ def run_extra_sweeps(exe: Path, work: Path, quick: bool, k_max: int, seed: int,
                       work / f"sweep_overlap_{n}_{k_true}.csv", k_max, seed)
     ov["k_true"] = k_true
     ov["data"] = (f"{n:,} points of a random {k_true}-component mixture with means in a square of side 7 "
-                  "(tools/bench_learner.py make_mixture_points, separation 0.35): components overlap")
+                  "(gmmrrt_tools.bench.learner make_mixture_points, separation 0.35): components overlap")
     out["overlap"] = ov
     if real is not None and (real / "upo_avoid_episodes.csv").is_file():
         pts = upo_avoid_train_points(real)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""synth_demos.py - synthetic demonstrations of the paper's social tasks, shaped like a careful
+"""synth_demonstrations.py - synthetic demonstrations of the paper's social tasks, shaped like a careful
 human teleoperator, written as demonstration logs (paper Sect. 2 tasks; Sect. 5.1: 9 demonstrations per task
 and homotopy; layout in docs/demonstrations.md).
 
@@ -18,7 +18,7 @@ passing distance and of the final approach distance are those of the real data
 (../shared/data/real: UPO frontal-encounter avoid d_min and facing, UCY approach d_end; numbers
 below and in docs/demonstrations.md). Deterministic: the same --seed gives byte-identical logs.
 
-  synth_demos.py --seed 1 --out-dir logs/demos
+  synth_demonstrations.py --seed 1 --out-dir logs/demos
 """
 from __future__ import annotations
 
@@ -32,7 +32,8 @@ from typing import List, Optional, Tuple
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from gmmrrt_tools.demolog import DEFAULT_START_UTIME, MAX_PERSON_AGE_S, write_demo_log
+from gmmrrt_tools import core
+from gmmrrt_tools.demonstration_log import DEFAULT_START_UTIME, MAX_PERSON_AGE_S, write_demo_log
 from gmmrrt_tools.episodes import Episode
 
 # ---------------------------------------------------------------- distributions (from the real data)
@@ -77,8 +78,9 @@ SETS = [("avoid", "left"), ("avoid", "right"), ("approach", "frontal"), ("approa
         ("approach", "right")]
 
 
-def wrap(a: float) -> float:
-    return (a + math.pi) % (2 * math.pi) - math.pi
+# Angle wrapping and the features (d, theta) are the C core's (planner/src/features.c, through
+# gmmrrt_tools.core): the demonstrations are made with the planner's own conventions.
+wrap = core.wrap_angle
 
 
 def truncnorm(rng: np.random.Generator, mean: float, std: float, lo: float, hi: float) -> float:
@@ -96,17 +98,14 @@ def from_deciles(rng: np.random.Generator, deciles) -> float:
 
 
 def from_person(person: Tuple[float, float, float], d: float, theta: float) -> np.ndarray:
-    """World point at distance d, bearing theta in the person's frame (README convention)."""
-    px, py, yaw = person
-    return np.array([px + d * math.cos(yaw + theta), py + d * math.sin(yaw + theta)])
+    """World point at distance d, bearing theta in the person's frame (gmmrrt_features_to_xy)."""
+    return np.array(core.features_to_xy(person, d, theta))
 
 
 def features(person, x, y) -> Tuple[np.ndarray, np.ndarray]:
-    px, py, yaw = person
-    dx, dy = np.asarray(x) - px, np.asarray(y) - py
-    xp = dx * math.cos(yaw) + dy * math.sin(yaw)
-    yp = -dx * math.sin(yaw) + dy * math.cos(yaw)
-    return np.hypot(xp, yp), np.arctan2(yp, xp)
+    """(d, theta) of each point (x[i], y[i]) (gmmrrt_features_from_xy)."""
+    f = np.array([core.features_from_xy(person, xi, yi) for xi, yi in zip(np.ravel(x), np.ravel(y))])
+    return f[:, 0], f[:, 1]
 
 
 # ---------------------------------------------------------------- reference path and tracking
@@ -322,7 +321,7 @@ def main(argv=None) -> int:
     try:
         os.makedirs(args.out_dir, exist_ok=True)
     except OSError as e:
-        print(f"synth_demos: error: cannot create {args.out_dir}: {e.strerror}", file=sys.stderr)
+        print(f"synth_demonstrations: error: cannot create {args.out_dir}: {e.strerror}", file=sys.stderr)
         return 1
     for k, (task, homotopy) in enumerate(SETS):
         # One stream per set, derived from the seed: each file is reproducible on its own.

@@ -1,4 +1,4 @@
-"""Small statistics for the benchmarks (issue 8): medians that keep "never" as infinity, and
+"""Small statistics for the benchmarks: medians that keep "never" as infinity, and
 best-cost curves read at a time or a cost.
 
 A curve is a list of (time_ms, iterations, cost) points of one run, as gmmrrt-bench-ompl and

@@ -1,6 +1,9 @@
-"""Python demonstration I/O (tools/gmmrrt_tools/{episodes,demolog}.py, tools/demo_convert.py):
-CSV -> log -> CSV round trip (values to 1e-9, labels kept), corrupted logs (cut at every
-byte, flipped sync words, bad events), CSV errors, and agreement with the C++ reader's rules."""
+"""Python demonstration I/O (tools/gmmrrt_tools/{episodes,demonstration_log}.py, tools/convert_demonstrations.py): the
+Python writers against the one reader, the learner's (read through `gmmrrt-learn dump --json`).
+CSV -> log -> CSV round trip (values to 1e-9, labels kept), the writer's refusals, the reader's
+errors and warnings reaching Python with file and place, sparse PEOPLE within the pairing age.
+The reader's own fault tests (truncated and bit-flipped logs, every CSV rule) are
+tests/unit/demos/test_demo_io.cpp."""
 import math
 import os
 import subprocess
@@ -11,14 +14,13 @@ import numpy as np
 import pytest
 
 from gmmrrt import demo_info_t, people_t, pose2d_t
-from gmmrrt_tools.demolog import (DemoLogError, MAX_PERSON_AGE_S, read_demo_log, read_episodes,
-                                  scan_structure, write_demo_log)
-from gmmrrt_tools.episodes import Episode, EpisodeError, read_episode_csv, write_episode_csv
+from gmmrrt_tools.demonstration_log import MAX_PERSON_AGE_S, write_demo_log
+from gmmrrt_tools.episodes import Episode, EpisodeError, read_episodes
 
 import lcm
 
 REPO = Path(__file__).resolve().parents[3]
-CONVERT = REPO / "tools" / "demo_convert.py"
+CONVERT = REPO / "tools" / "convert_demonstrations.py"
 HEADER = "episode_id,task,homotopy,t,robot_x,robot_y,person_x,person_y,person_yaw\n"
 
 
@@ -60,11 +62,11 @@ def test_csv_log_csv_round_trip_keeps_values_and_labels(tmp_path):
     assert "episode 1: b_7 approach frontal" in r.stdout
     r = run_convert("log2csv", log, back)
     assert r.returncode == 0, r.stderr
-    a, b = read_episode_csv(str(src)), read_episode_csv(str(back))
+    a, b = read_episodes(str(src))[0], read_episodes(str(back))[0]
     assert_same_episodes(a, b)
     assert [e.id for e in b] == ["demo_0000", "demo_0001", "demo_0002"]
     # The log itself carries the labels and a heading from the motion (finite, +x mostly).
-    eps, warnings = read_demo_log(str(log))
+    eps, warnings = read_episodes(str(log))
     assert warnings == []
     assert [(e.task, e.homotopy) for e in eps] == [("avoid", "left"), ("approach", "frontal"),
                                                    ("approach", "right")]
@@ -80,12 +82,10 @@ def test_real_upo_round_trip_with_split(tmp_path):
     log, back = tmp_path / "upo.lcmlog", tmp_path / "back.csv"
     r = run_convert("csv2log", src, log, "--index", index, "--split", "test", "--max-episodes", 20)
     assert r.returncode == 0, r.stderr
-    from gmmrrt_tools.episodes import read_split_index
-    split = read_split_index(str(index))
-    orig = [e for e in read_episode_csv(str(src)) if split[e.id] == "test"][:20]
+    orig = [e for e in read_episodes(str(src), index=str(index))[0] if e.split == "test"][:20]
     r = run_convert("log2csv", log, back)
     assert r.returncode == 0, r.stderr
-    assert_same_episodes(orig, read_episode_csv(str(back)))
+    assert_same_episodes(orig, read_episodes(str(back))[0])
 
 
 def test_writer_refuses_bad_input_and_leaves_no_file(tmp_path):
@@ -97,83 +97,6 @@ def test_writer_refuses_bad_input_and_leaves_no_file(tmp_path):
     r = run_convert("csv2log", tmp_path / "missing.csv", out)
     assert r.returncode == 1 and "missing.csv: cannot open" in r.stderr
     assert not out.exists()
-
-
-def good_log(path: Path, n: int = 3) -> None:
-    eps = [Episode.from_rows("a", "avoid", "right", [(0.1 * i, 0.1 * i, 0, 0, 2, 0.5, 3.0) for i in range(n)]),
-           Episode.from_rows("b", "approach", "left", [(0.1 * i, 0, 0.1 * i, 1, 1, 0, 0) for i in range(n)])]
-    write_demo_log(str(path), eps)
-
-
-def test_truncated_log_at_every_byte_reads_the_complete_events_with_a_warning(tmp_path):
-    """A log cut anywhere (a recorder killed mid-write) is read up to its last complete event with a
-    warning naming the file, the event and the cut; when too little is left, the error names the cut."""
-    src = tmp_path / "good.lcmlog"
-    good_log(src, n=2)
-    data = src.read_bytes()
-    ends = set()
-    off = 0
-    for o, ch, payload in scan_structure(str(src), data):
-        off = o + 28 + len(ch) + len(payload)
-        ends.add(off)
-    whole = sum(len(e) for e in read_demo_log(str(src))[0])
-    cut = tmp_path / "cut.lcmlog"
-    read_with_warning = 0
-    for n in range(4, len(data)):
-        cut.write_bytes(data[:n])
-        if n not in ends:
-            with pytest.raises(DemoLogError):  # the strict scan still refuses the cut file
-                scan_structure(str(cut), data[:n])
-        try:
-            eps, warnings = read_demo_log(str(cut))
-        except DemoLogError as e:
-            assert str(cut) in str(e)
-            if n not in ends:
-                assert "truncated" in str(e), str(e)
-            continue
-        named = [w for w in warnings if str(cut) in w and ": event " in w and "truncated" in w]
-        assert bool(named) == (n not in ends), (n, warnings)
-        assert sum(len(e) for e in eps) <= whole
-        read_with_warning += n not in ends
-    assert read_with_warning > 0
-    # Cut by one byte: only the last event is lost.
-    cut.write_bytes(data[:-1])
-    eps, warnings = read_demo_log(str(cut))
-    assert sum(len(e) for e in eps) == whole - 1 and any("truncated" in w for w in warnings)
-
-
-def test_flipped_sync_word_names_the_event(tmp_path):
-    src = tmp_path / "good.lcmlog"
-    good_log(src)
-    data = bytearray(src.read_bytes())
-    events = scan_structure(str(src), bytes(data))
-    for k, (off, _ch, _payload) in enumerate(events, start=1):
-        bad = bytearray(data)
-        bad[off + 1] ^= 0xFF
-        p = tmp_path / "flip.lcmlog"
-        p.write_bytes(bytes(bad))
-        with pytest.raises(DemoLogError, match=rf"flip.lcmlog: event {k} \(byte {off}\)"):
-            read_demo_log(str(p))
-
-
-def test_flipped_payload_bytes_never_crash(tmp_path):
-    src = tmp_path / "good.lcmlog"
-    good_log(src, n=2)
-    data = src.read_bytes()
-    p = tmp_path / "flip.lcmlog"
-    for i in range(0, len(data), 3):
-        bad = bytearray(data)
-        bad[i] ^= 0x5A
-        p.write_bytes(bytes(bad))
-        try:
-            eps, _ = read_demo_log(str(p))
-        except DemoLogError as e:
-            assert str(p) in str(e)
-            continue
-        for e in eps:
-            for name in ("t", "robot_x", "robot_y", "robot_yaw", "person_x", "person_y", "person_yaw"):
-                assert np.all(np.isfinite(getattr(e, name)))
-            assert np.all(np.diff(e.t) > 0)
 
 
 def write_events(path: Path, events):
@@ -212,7 +135,7 @@ def test_bad_events_are_skipped_with_warnings_naming_the_event(tmp_path):
                      ("ROBOT_POSE", pose(t0 + 1, 0.5)),                               # 5 backwards
                      ("ROBOT_POSE", pose(t0 + age, 1.0)),                             # 6 at the age limit
                      ("ROBOT_POSE", pose(t0 + age + 1000, 2.0))])                     # 7 stale
-    eps, warnings = read_demo_log(str(p))
+    eps, warnings = read_episodes(str(p))
     assert len(eps) == 1 and len(eps[0]) == 2
     text = "\n".join(warnings)
     assert f"{p}: event 4 (byte" in text and "pose2d_t.x is not finite" in text
@@ -224,16 +147,17 @@ def test_missing_channels_are_errors(tmp_path):
     t0 = 1_700_000_000_000_000
     p = tmp_path / "nopeople.lcmlog"
     write_events(p, [("DEMO_INFO", info(t0, 0)), ("ROBOT_POSE", pose(t0, 0.0))])
-    with pytest.raises(DemoLogError, match="no PEOPLE event"):
-        read_demo_log(str(p))
+    with pytest.raises(EpisodeError, match="no PEOPLE event"):
+        read_episodes(str(p))
     p = tmp_path / "noinfo.lcmlog"
     write_events(p, [("PEOPLE", people(t0)), ("ROBOT_POSE", pose(t0, 0.0))])
-    with pytest.raises(DemoLogError, match="no DEMO_INFO event"):
-        read_demo_log(str(p))
+    with pytest.raises(EpisodeError, match="no DEMO_INFO event"):
+        read_episodes(str(p))
     p = tmp_path / "text.lcmlog"
     p.write_text("hello, not a log\n")
-    with pytest.raises(DemoLogError, match="event 1 \\(byte 0\\): not an LCM log"):
-        read_demo_log(str(p))
+    # Without the LCM sync word the reader takes the file for an episode CSV.
+    with pytest.raises(EpisodeError, match="text.lcmlog: line 1: header must be"):
+        read_episodes(str(p))
 
 
 @pytest.mark.parametrize("body,expect", [
@@ -249,7 +173,7 @@ def test_csv_errors_name_file_and_line(tmp_path, body, expect):
     p = tmp_path / "bad.csv"
     p.write_text(HEADER + body)
     with pytest.raises(EpisodeError) as exc:
-        read_episode_csv(str(p))
+        read_episodes(str(p))
     assert str(p) in str(exc.value) and expect in str(exc.value)
     r = run_convert("csv2log", p, tmp_path / "out.lcmlog")
     assert r.returncode == 1 and expect in r.stderr
@@ -260,7 +184,7 @@ def test_read_episodes_dispatches_by_content(tmp_path):
     src = tmp_path / "x.csv"
     sample_csv(src)
     log = tmp_path / "looks_like.csv"
-    write_demo_log(str(log), read_episode_csv(str(src)))
+    write_demo_log(str(log), read_episodes(str(src))[0])
     eps, _ = read_episodes(str(log))
     assert len(eps) == 3 and eps[0].id == "looks_like_0000"
     eps, _ = read_episodes(str(src))
@@ -275,12 +199,12 @@ def test_sparse_people_pair_within_the_age_limit(tmp_path):
     ep = Episode.from_rows("s", "avoid", "left", rows)
     p = tmp_path / "sparse.lcmlog"
     write_demo_log(str(p), [ep], people_every=4)
-    eps, warnings = read_demo_log(str(p))
+    eps, warnings = read_episodes(str(p))
     assert warnings == [] and len(eps[0]) == n
     np.testing.assert_allclose(eps[0].person_x, [2.0 + 0.01 * (4 * (i // 4)) for i in range(n)], atol=1e-12)
     # Too sparse for the limit: poses more than MAX_PERSON_AGE_S after the last entry are dropped.
     slow = Episode.from_rows("s", "avoid", "left", [(2.0 * i, 0.1 * i, 0, 0, 2, 1, 0.3) for i in range(8)])
     write_demo_log(str(p), [slow], people_every=4)
-    eps, warnings = read_demo_log(str(p))
+    eps, warnings = read_episodes(str(p))
     assert len(eps[0]) == 6  # ages 0, 2, 4 kept, 6 s dropped, in both groups of four
     assert any("2 ROBOT_POSE events had no PEOPLE entry" in w for w in warnings)

@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""plot_demos.py - demonstrations (paper Sect. 2 tasks, as in its Fig. 2) in the person's frame
+"""plot_demonstrations.py - demonstrations (paper Sect. 2 tasks, as in its Fig. 2) in the person's frame
 (x', y'; the person at the origin facing +x, theta > 0 on their left; ../shared/data/real/README.md),
 one row per task, synthetic
 (logs/demos) and real side by side: UPO avoid (a random sample of the frontal encounters, where
 the person faces the oncoming robot as in the paper's avoid task) and UCY approach (all). The frame
 transform is the C core's (gmmrrt_tools.core.world_to_person), as the learner and planner use it.
 
-  plot_demos.py [--demos logs/demos] [--real-data DIR] [--real-sample 40] [--seed 1]
+  plot_demonstrations.py [--demos logs/demos] [--real-data DIR] [--real-sample 40] [--seed 1]
                 [--out docs/img/demonstrations.png]
 """
 from __future__ import annotations
@@ -24,8 +24,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from gmmrrt_tools import core  # noqa: E402
-from gmmrrt_tools.demolog import read_demo_log  # noqa: E402
-from gmmrrt_tools.episodes import EpisodeError, read_episode_csv  # noqa: E402
+from gmmrrt_tools.episodes import EpisodeError, read_episodes  # noqa: E402
+from gmmrrt_tools.runner import MissingTool  # noqa: E402
 from gmmrrt_tools.realdata import select_upo  # noqa: E402
 
 COLORS = {"left": "tab:blue", "right": "tab:orange", "frontal": "tab:green"}
@@ -80,7 +80,7 @@ def main(argv=None) -> int:
     if args.real_sample < 1:
         ap.error("--real-sample must be >= 1")
     if not args.real_data or not os.path.isdir(args.real_data):
-        print(f"plot_demos: error: real data folder not found ({args.real_data!r}): pass --real-data or set "
+        print(f"plot_demonstrations: error: real data folder not found ({args.real_data!r}): pass --real-data or set "
               "GMMRRT_REAL_DATA", file=sys.stderr)
         return 1
     try:
@@ -88,12 +88,12 @@ def main(argv=None) -> int:
         for task in ("avoid", "approach"):
             files = sorted(glob.glob(os.path.join(args.demos, f"{task}_*.lcmlog")))
             if not files:
-                raise EpisodeError(f"no {task}_*.lcmlog in {args.demos}: run tools/synth_demos.py")
-            synth[task] = [e for f in files for e in read_demo_log(f)[0]]
+                raise EpisodeError(f"no {task}_*.lcmlog in {args.demos}: run tools/synth_demonstrations.py")
+            synth[task] = read_episodes(files)[0]
         upo = select_upo(args.real_data, "all", "frontal")
-        ucy = read_episode_csv(os.path.join(args.real_data, "ucy_approach_episodes.csv"))
-    except (EpisodeError, core.CoreNotBuilt) as e:
-        print(f"plot_demos: error: {e}", file=sys.stderr)
+        ucy, _ = read_episodes(os.path.join(args.real_data, "ucy_approach_episodes.csv"))
+    except (EpisodeError, core.CoreNotBuilt, MissingTool) as e:
+        print(f"plot_demonstrations: error: {e}", file=sys.stderr)
         return 1
     rng = np.random.default_rng(args.seed)
     n_upo = len(upo)

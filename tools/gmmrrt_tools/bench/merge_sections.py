@@ -1,13 +1,12 @@
-#!/usr/bin/env python3
-"""bench/merge_sections.py - fold a partial benchmark run (tools/bench.py --only ... --results FILE
+"""gmmrrt_tools.bench.merge_sections - fold a partial benchmark run (tools/bench.py --only ... --results FILE
 --no-doc) into bench/results.json and rewrite docs/benchmarks.md from the merged results.
 
 Sections present in the partial run (and its date, host, loads and command) replace the old ones;
 sections it did not run are kept from the previous full run and listed under "carried_over" with
 that run's date and commit, which the report then states. Used when only the planner changed, so
-the learner and daemon figures need not be measured again (issue 8; see docs/benchmarks.md).
+the learner and daemon figures need not be measured again (see docs/benchmarks.md).
 
-    .venv/bin/python bench/merge_sections.py build/bench-pp.json
+    .venv/bin/python -m gmmrrt_tools.bench.merge_sections build/bench-pp.json
 """
 import argparse
 import json
@@ -15,9 +14,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "tools"))
-from bench_report import evaluate_targets, write_markdown  # noqa: E402
+from gmmrrt_tools.bench.report import evaluate_targets, write_markdown
+
+ROOT = Path(__file__).resolve().parents[3]
 
 SECTIONS = ("memory", "ompl", "planners", "social", "learner", "micro", "daemon")
 
@@ -56,7 +55,7 @@ def main() -> int:
         # The cost-over-time figure, as tools/bench.py makes it when it writes the report itself.
         fig = args.doc.resolve().parent / "img" / "benchmarks-ompl-cost.png"
         recs = [raw / "ompl_length.jsonl"] + ([raw / "ompl_task.jsonl"] if "error" not in om.get("task", {}) else [])
-        cmd = [sys.executable, str(ROOT / "tools" / "bench_plot.py")] + [str(r) for r in recs] + ["-o", str(fig)]
+        cmd = [sys.executable, "-m", "gmmrrt_tools.bench.plot"] + [str(r) for r in recs] + ["-o", str(fig)]
         proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
         if proc.returncode == 0:
             om["figure"] = str(fig.relative_to(args.doc.resolve().parent))
@@ -72,7 +71,7 @@ def main() -> int:
         note = "\n".join(
             [f"- sections **not** re-measured in this run, kept from an earlier run: "
              + "; ".join(f"{s} ({c.get('date_utc')}, commit {c.get('commit')})" for s, c in carried.items()),
-             f"- merged with `.venv/bin/python bench/merge_sections.py {args.partial}` after "
+             f"- merged with `.venv/bin/python -m gmmrrt_tools.bench.merge_sections {args.partial}` after "
              f"`{new.get('argv')}`", ""])
         text = text.replace("\n## Planner against OMPL RRT*", "\n" + note + "\n## Planner against OMPL RRT*", 1)
         args.doc.write_text(text)

@@ -1,8 +1,7 @@
-#!/usr/bin/env python3
-"""Best cost against time, ours and OMPL's RRTstar, from gmmrrt-bench-ompl's trial records
-(issue 8): the median over trials and the range, one panel per objective.
+"""Best cost against time, ours and OMPL's RRTstar, from gmmrrt-bench-ompl's trial
+records: the median over trials and the range, one panel per objective.
 
-    .venv/bin/python tools/bench_plot.py build/bench-raw/ompl_length.jsonl \\
+    .venv/bin/python -m gmmrrt_tools.bench.plot build/bench-raw/ompl_length.jsonl \\
         build/bench-raw/ompl_task.jsonl -o docs/img/benchmarks-ompl-cost.png
 """
 from __future__ import annotations
@@ -18,8 +17,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from bench_stats import cost_at  # noqa: E402
+from gmmrrt_tools.bench.stats import cost_at  # noqa: E402
 
 LABELS = {"ompl_rrtstar": "OMPL RRTstar (defaults)", "gmmrrt_rrtstar": "gmmrrt RRT*"}
 COLORS = {"ompl_rrtstar": "tab:blue", "gmmrrt_rrtstar": "tab:red"}

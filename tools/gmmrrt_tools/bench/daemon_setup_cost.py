@@ -1,13 +1,12 @@
-#!/usr/bin/env python3
 """What a gmmrrtd cycle spends before planning (set_problem: the collision world, and the warm
 start), measured on a cluttered drive: 10 circles and 5 boxes (bench_planner's clutter), four
 walking people, the robot driving 12 m at 0.6 m/s towards an avoid goal, OBSTACLES re-sent every
-second. The log is made here with tools/make_scenarios.py's helpers, replayed deterministically
+second. The log is made here with gmmrrt_tools.scenario_logs' helpers, replayed deterministically
 (log clock, iteration budget) with --log-level debug, and the daemon's "cycle set-up" lines are
 summarised. Give several gmmrrtd binaries to compare them (they run interleaved, --repeat times).
 Not a test: it prints, asserts nothing (docs/daemon.md, "Cycle set-up").
 
-    PYTHONPATH=build/python:tools .venv/bin/python tests/replay/daemon_setup_cost.py build/bin/gmmrrtd
+    eval "$(tools/run env)"; python -m gmmrrt_tools.bench.daemon_setup_cost build/bin/gmmrrtd
 """
 import argparse
 import math
@@ -18,11 +17,8 @@ import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-
-import make_scenarios as ms  # noqa: E402
-from gmmrrt_tools.scenario_models import write_models  # noqa: E402
+from gmmrrt_tools import scenario_logs as ms
+from gmmrrt_tools.scenario_models import write_models
 
 
 def make_log(path):
