@@ -1,11 +1,16 @@
 /*
- * cycle.c - one gmmrrtd planning cycle: from the latest inputs to a plan. Picks the model by the goal's task (avoid / approach, paper Sect. 4-5), plans from
- * the latest robot pose with gmmrrt_planner_set_problem + run, warm-starts from the last
- * published path when the situation has not changed much, and publishes PLAN and
- * PLANNER_STATUS. A stale pose or obstacle list, a missing model or target, an unusable goal
- * or no path publishes a stop (an empty plan whose status says why), never an old plan; every
- * stop is counted by reason (planner_status_t.stops) and logged rate-limited. A stale people
- * list is dropped: the plan no longer avoids people who may have left.
+ * cycle.c - one gmmrrtd planning cycle: from the latest inputs to a plan. Picks the model by
+ * the goal's task (avoid / approach, paper Sect. 4-5; for approach, the model set's direction
+ * the robot comes from when a set is configured), plans from the latest robot pose (walking
+ * people with their velocities) with gmmrrt_planner_set_problem + run, warm-starts from the
+ * last published path when the situation has not changed much, and publishes PLAN (the
+ * drivable path, drivable.h) and PLANNER_STATUS. A start in collision is not a stop: it plans
+ * an escape, published with status GMMRRT_ESCAPE and counted; only GMMRRT_ERR_FROZEN (no
+ * motion increases the clearance) stops, with the core's reason logged. A stale pose or
+ * obstacle list, a missing model or target, an unusable goal or no path publishes a stop (an
+ * empty plan whose status says why), never an old plan; every stop is counted by reason
+ * (planner_status_t.stops) and logged rate-limited. A stale people list is dropped: the plan
+ * no longer avoids people who may have left.
  */
 #include <math.h>
 #include <stdio.h>
@@ -78,6 +83,7 @@ static void publish_plan(gmmrrtd_t *d, const gmmrrt_path_t *path, int status)
 
 static void clear_stats(gmmrrtd_t *d)
 {
+    d->status.approach_model = -1;
     d->status.iterations = 0;
     d->status.nodes = 0;
     d->status.first_solution_ms = -1.0;
@@ -98,6 +104,7 @@ static int stop_slot(int why)
     case GMMRRT_ERR_GOAL_IN_COLLISION:
     case GMMRRT_ERR_GOAL_OUT_OF_BOUNDS: return ST(STOP_GOAL_BLOCKED);
     case GMMRRT_NO_PATH_YET: return ST(STOP_NO_PATH);
+    case GMMRRT_ERR_FROZEN: return ST(STOP_FROZEN);
     default: return ST(STOP_SETUP);
     }
 }
@@ -160,10 +167,15 @@ static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_
     }
     if (people_usable(d)) {
         p->obstacles.num_people = d->people.num_people;
-        for (int32_t i = 0; i < d->people.num_people; ++i)
-            p->obstacles.people[i] =
-                (gmmrrt_pose_t){d->people.people[i].x, d->people.people[i].y, d->people.people[i].yaw};
+        for (int32_t i = 0; i < d->people.num_people; ++i) {
+            const gmmrrt_person_t *q = &d->people.people[i];
+            p->obstacles.people[i] = (gmmrrt_pose_t){q->x, q->y, q->yaw};
+            p->person_vx[i] = q->vx; /* bounded at input (inputs.c); slow ones count as standing */
+            p->person_vy[i] = q->vy;
+        }
     }
+    p->nominal_speed_m_s = d->set.nominal_speed_m_s;
+    p->prediction_horizon_s = d->set.prediction_horizon_s;
 }
 
 /* "Not changed much" (docs/daemon.md): same task and target, goal moved < warm_goal_shift_m,
@@ -226,6 +238,24 @@ static void remember_situation(gmmrrtd_t *d)
         s->people_y[i] = d->people.people[i].y;
     }
     d->last_path = d->path;
+}
+
+/* The published path's options (drivable.h) from [drive]: approach arrives facing the target
+ * (face_target) or on the goal's yaw (use_goal_yaw); other tasks on the goal's yaw when
+ * use_goal_yaw, else with any heading. */
+static gmmrrt_drive_options_t drive_options(const gmmrrtd_t *d)
+{
+    gmmrrt_drive_options_t opt;
+    gmmrrt_drive_options_default(&opt);
+    opt.min_turn_radius_m = d->set.min_turn_radius_m;
+    opt.goal_yaw_tolerance_rad = d->set.yaw_tolerance_deg * M_PI / 180.0;
+    opt.arrival_leg_m = d->set.arrival_leg_m;
+    opt.goal_yaw = d->goal.yaw;
+    if (d->problem.task == GMMRRT_TASK_APPROACH && d->problem.target_person >= 0 && d->set.face_target)
+        opt.arrival = GMMRRT_ARRIVAL_FACE_TARGET;
+    else
+        opt.arrival = d->set.use_goal_yaw ? GMMRRT_ARRIVAL_YAW : GMMRRT_ARRIVAL_ANY;
+    return opt;
 }
 
 /* Per-channel staleness at local time now_us (clock.h: each source's data time on the local
@@ -309,7 +339,8 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     int target = -1;
     if (d->goal.task == GMMRRT_NAV_GOAL_T_TASK_AVOID || d->goal.task == GMMRRT_NAV_GOAL_T_TASK_APPROACH) {
         const int avoid = d->goal.task == GMMRRT_NAV_GOAL_T_TASK_AVOID;
-        if (!(avoid ? d->have_avoid : d->have_approach) && d->set.cfg.planner != GMMRRT_PLANNER_RRT_STAR) {
+        if (!(avoid ? d->have_avoid : (d->have_approach || d->have_approach_set)) &&
+            d->set.cfg.planner != GMMRRT_PLANNER_RRT_STAR) {
             reject_once_per_goal(d, ST(REJECT_NO_MODEL), (gmmrrt_status_t)GMMRRTD_STOP_NO_MODEL);
             publish_stop(d, now_us, GMMRRTD_STOP_NO_MODEL, ST(STATE_ERROR));
             return;
@@ -324,8 +355,21 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
             return;
         }
     }
-    if (d->set.cfg.planner == GMMRRT_PLANNER_RRT_STAR)
+    if (target >= 0 && d->have_approach_set) {
+        /* The set's model of the direction the robot comes from (model_set.h), chosen every cycle. */
+        gmmrrt_model_set_t set;
+        for (int32_t k = 0; k < GMMRRT_APPROACH_DIRECTIONS; ++k)
+            set.model[k] = &d->approach_set[k];
+        const gmmrrt_person_t *q = &d->people.people[target];
+        const gmmrrt_pose_t person = {q->x, q->y, q->yaw};
+        int32_t direction = -1;
+        model = gmmrrt_model_set_select(&set, &person, d->pose.x, d->pose.y, &direction);
+        d->status.approach_model = (int8_t)direction;
+    }
+    if (d->set.cfg.planner == GMMRRT_PLANNER_RRT_STAR) {
         model = NULL;
+        d->status.approach_model = -1;
+    }
 
     const int64_t setup_start_us = gmmrrtd_mono_us();
     build_problem(d, model, target);
@@ -335,6 +379,26 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     gmmrrt_status_t st = gmmrrt_planner_set_problem(d->planner, &d->problem);
     gmmrrtd_watchdog_long_step(d, 0);
     d->status.setup_time_ms = (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3;
+    /* A start inside a person's disc or an inflated obstacle plans an escape (rrtstar.h): the
+     * plan first leaves along the shortest way out, then goes on to the goal. */
+    const int escaping = st == GMMRRT_ESCAPE;
+    if (escaping) {
+        d->status.escapes++;
+        gmmrrtd_log_limited(&d->rl_escape, gmmrrtd_mono_us() / 1000, (int64_t)d->set.log_interval_ms,
+                            GMMRRTD_LOG_INFO, "escaping (%lld escape cycles): %s", (long long)d->status.escapes,
+                            gmmrrt_planner_escape_reason(d->planner));
+        st = GMMRRT_OK;
+    }
+    if (st == GMMRRT_ERR_FROZEN) {
+        /* No motion increases the clearance: the only stop left for a start in collision. */
+        gmmrrtd_count_stop(d, ST(STOP_FROZEN), "frozen at (%.2f, %.2f): %s", d->pose.x, d->pose.y,
+                           gmmrrt_planner_escape_reason(d->planner));
+        d->last.valid = 0;
+        d->status.last_error = (int32_t)st;
+        publish_plan(d, NULL, st);
+        publish_status(d, now_us, ST(STATE_STOPPED));
+        return;
+    }
     if (st != GMMRRT_OK) {
         int8_t state = ST(STATE_STOPPED);
         if (st == GMMRRT_ERR_BUFFER_TOO_SMALL) {
@@ -358,7 +422,8 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     if (gmmrrt_world_grid_stats(gmmrrt_planner_world(d->planner), &grid) == GMMRRT_OK)
         d->grid_updates[grid.last]++;
 
-    const int32_t n_seed = warm_start_seed(d);
+    /* No warm start while escaping: the tree is rooted at the exit, not at the robot. */
+    const int32_t n_seed = escaping ? 0 : warm_start_seed(d);
     if (n_seed > 0) {
         if (gmmrrt_planner_seed_path(d->planner, d->seed_x, d->seed_y, n_seed) == GMMRRT_OK)
             d->warm_starts++;
@@ -385,15 +450,34 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     d->status.best_cost = isfinite(stats.best_cost) ? stats.best_cost : -1.0;
     d->status.plan_time_ms = stats.time_ms;
 
-    const int path_ok = (st == GMMRRT_OK || st == GMMRRT_POOL_FULL) &&
-                        gmmrrt_planner_best_path(d->planner, &d->path) == GMMRRT_OK && d->path.num_points >= 2;
+    gmmrrt_status_t drive_st = GMMRRT_NO_PATH_YET;
+    if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL) {
+        const gmmrrt_drive_options_t opt = drive_options(d);
+        drive_st = gmmrrt_planner_drivable_path(d->planner, &opt, &d->path, &d->drive_report);
+        if (drive_st != GMMRRT_OK && drive_st != GMMRRT_ESCAPE && drive_st != GMMRRT_NO_PATH_YET) {
+            reject_once_per_goal(d, ST(REJECT_SETUP), drive_st); /* options out of range, a tree path too long */
+            publish_stop(d, now_us, drive_st, ST(STATE_ERROR));
+            return;
+        }
+    }
+    const int path_ok = (drive_st == GMMRRT_OK || drive_st == GMMRRT_ESCAPE) && d->path.num_points >= 2;
     LOG_DEBUG("cycle: run %.2f ms (%lld iterations), whole cycle so far %.2f ms", stats.time_ms,
               (long long)stats.iterations, (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3);
     if (path_ok) {
         d->no_path_cycles = 0;
         d->status.last_error = st == GMMRRT_POOL_FULL ? (int32_t)st : 0;
         remember_situation(d);
-        publish_plan(d, &d->path, GMMRRT_OK);
+        if (d->set.min_turn_radius_m > 0.0 && (d->drive_report.tight_turns > 0 || d->drive_report.turns_in_place > 0)) {
+            /* Published all the same (a stop would be worse), but never silently. */
+            d->status.tight_turn_plans++;
+            gmmrrtd_log_limited(&d->rl_tight, gmmrrtd_mono_us() / 1000, (int64_t)d->set.log_interval_ms,
+                                GMMRRTD_LOG_WARN,
+                                "plan turns tighter than min_turn_radius_m = %.2f m at %d corner(s), in place at %d: "
+                                "no free arc there (%lld such plans)",
+                                d->set.min_turn_radius_m, (int)d->drive_report.tight_turns,
+                                (int)d->drive_report.turns_in_place, (long long)d->status.tight_turn_plans);
+        }
+        publish_plan(d, &d->path, escaping ? GMMRRT_ESCAPE : GMMRRT_OK);
         publish_status(d, now_us, ST(STATE_PLANNING));
         return;
     }

@@ -18,7 +18,9 @@
 
 #include <lcm/lcm.h>
 
+#include "gmmrrt/drivable.h"
 #include "gmmrrt/model.h"
+#include "gmmrrt/model_set.h"
 #include "gmmrrt/msg_decode.h"
 #include "gmmrrt/rrtstar.h"
 #include "log.h"
@@ -82,6 +84,10 @@ typedef struct {
     /* Models by task; loaded at start, replaced on SIGHUP only when the new file is good. */
     gmmrrt_model_t model_avoid, model_approach, model_scratch;
     int have_avoid, have_approach;
+    /* The approach model set (model_set.h), used instead of model_approach when configured: all 8
+     * directions or none (a reload loads into the scratch set and swaps only when all are good). */
+    gmmrrt_model_t approach_set[GMMRRT_APPROACH_DIRECTIONS], approach_set_scratch[GMMRRT_APPROACH_DIRECTIONS];
+    int have_approach_set;
 
     /* The planner: one block, allocated once. */
     void *mem;
@@ -112,6 +118,9 @@ typedef struct {
     gmmrrtd_ratelimit_t rl[GMMRRTD_RL_ROWS][GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS];
     gmmrrtd_ratelimit_t rl_stop[GMMRRT_PLANNER_STATUS_T_NUM_STOP_REASONS];
     gmmrrtd_ratelimit_t rl_goal;  /* the "new goal" line */
+    gmmrrtd_ratelimit_t rl_escape; /* the "escaping" line */
+    gmmrrtd_ratelimit_t rl_tight;  /* the "turns tighter than the bound" line */
+    gmmrrt_drive_report_t drive_report; /* the last published path's (drivable.h) */
 } gmmrrtd_t;
 
 /* CLOCK_MONOTONIC in microseconds. */

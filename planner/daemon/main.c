@@ -238,10 +238,10 @@ static void summarize(const gmmrrtd_t *d, char *rej, size_t rcap, char *stp, siz
     static const char *const k_rej[GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS] = {
         "decode", "count", "not_finite", "backwards", "goal_coll", "unreachable", "pose_stale", "bad_value",
         "unknown_target", "start_coll", "model_reload", "time_future", "clock_resync", "people_stale",
-        "obstacles_stale", "planning_box", "scan_stale", "grid_stale", "setup", "no_model"};
+        "obstacles_stale", "planning_box", "scan_stale", "grid_stale", "setup", "no_model", "person_speed"};
     static const char *const k_stop[GMMRRT_PLANNER_STATUS_T_NUM_STOP_REASONS] = {
         "pose_stale", "no_model", "unknown_target", "obstacles_stale", "start_blocked", "goal_blocked", "no_path",
-        "planning_box", "setup", "scan_stale", "grid_stale"};
+        "planning_box", "setup", "scan_stale", "grid_stale", "frozen"};
     size_t off = 0;
     rej[0] = stp[0] = '\0';
     for (int i = 0; i < GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS && off < rcap; ++i)
@@ -321,9 +321,10 @@ int main(int argc, char **argv)
     NOTIFY("STOPPING=1");
     char summary[1024], stops[512];
     summarize(d, summary, sizeof summary, stops, sizeof stops);
-    LOG_INFO("exiting: %lld cycles, %lld plans, %lld warm starts, %lld missed deadlines; rejected:%s; stops:%s",
+    LOG_INFO("exiting: %lld cycles, %lld plans, %lld warm starts, %lld missed deadlines, %lld escapes; rejected:%s; "
+             "stops:%s",
              (long long)d->cycles, (long long)d->status.plans_published, (long long)d->warm_starts,
-             (long long)d->status.missed_deadlines, summary, stops);
+             (long long)d->status.missed_deadlines, (long long)d->status.escapes, summary, stops);
     LOG_INFO("clearance grid: %lld built, %lld shifted, %lld kept", (long long)d->grid_updates[GMMRRT_GRID_BUILT],
              (long long)d->grid_updates[GMMRRT_GRID_SHIFTED], (long long)d->grid_updates[GMMRRT_GRID_KEPT]);
     if (d->lcm_out != d->lcm_in)
