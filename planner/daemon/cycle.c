@@ -212,10 +212,17 @@ static int32_t warm_start_seed(gmmrrtd_t *d)
     }
     if (best >= set->warm_robot_offset_m)
         return 0;
+    /* The published path is sampled every waypoint_spacing_m (its arcs as many short chords):
+     * seeded as it is, every sample would become a tree node and a collision check. One seed
+     * point per step_m (the tree's own edge length) and the path's end keep the route, not its
+     * sampling. */
     int32_t n = 0;
     d->seed_x[n] = d->pose.x;
     d->seed_y[n++] = d->pose.y;
     for (int32_t i = nearest + 1; i < lp->num_points; ++i) {
+        const int last = i == lp->num_points - 1;
+        if (!last && hypot(lp->x[i] - d->seed_x[n - 1], lp->y[i] - d->seed_y[n - 1]) < d->set.cfg.step_m)
+            continue;
         d->seed_x[n] = lp->x[i];
         d->seed_y[n++] = lp->y[i];
     }
