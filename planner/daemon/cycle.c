@@ -13,6 +13,7 @@
  * no longer avoids people who may have left.
  */
 #include <math.h>
+#include <poll.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -20,6 +21,12 @@
 #include "daemon.h"
 
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
+
+/* Anytime cycles run the budget in slices this long (ms) or of this many samples, whichever
+ * the budget uses: short enough that a first path is published within about a slice of being
+ * found, long enough that the per-call overhead of gmmrrt_planner_run stays small. */
+#define GMMRRTD_ANYTIME_SLICE_MS 1.0
+#define GMMRRTD_ANYTIME_SLICE_ITERATIONS 50
 
 /* build_problem() copies wire counts (checked against the messages' MAX_*) into the core's
  * arrays (sized by limits.h, which a build may override), and publish_plan() copies a path
@@ -314,9 +321,60 @@ static void planning_box_too_large(gmmrrtd_t *d, int64_t now_us)
     publish_stop(d, now_us, GMMRRTD_STOP_PLANNING_BOX, ST(STATE_ERROR));
 }
 
+/* Live and event-triggered only: whether an LCM message is waiting to be read. A cycle that has
+ * published its first plan then ends early, so the next cycle starts from the newer input
+ * without waiting for this one's budget. Replays never look (their cycles follow message time). */
+static int input_waiting(const gmmrrtd_t *d)
+{
+    if (d->clock_mode != GMMRRTD_CLOCK_LIVE || strcmp(d->set.trigger, "event") != 0 || d->lcm_in == NULL)
+        return 0;
+    struct pollfd pfd = {.fd = lcm_get_fileno(d->lcm_in), .events = POLLIN};
+    return pfd.fd >= 0 && poll(&pfd, 1, 0) > 0 && (pfd.revents & POLLIN);
+}
+
+/* The planner's best path made drivable (drivable.h) and published as PLAN when its cost is
+ * below *published_cost (the cycle's last publication; INFINITY before the first), which it
+ * then becomes: the publications of one cycle never rise in cost. 1 published, 0 not (no path,
+ * or no better), -1 when the smoother refused its options (a stop was published). run_st: the
+ * run's status (POOL_FULL is kept in last_error). */
+static int publish_drivable(gmmrrtd_t *d, int64_t now_us, int escaping, gmmrrt_status_t run_st,
+                            double *published_cost)
+{
+    const gmmrrt_drive_options_t opt = drive_options(d);
+    const gmmrrt_status_t drive_st = gmmrrt_planner_drivable_path(d->planner, &opt, &d->path, &d->drive_report);
+    if (drive_st != GMMRRT_OK && drive_st != GMMRRT_ESCAPE && drive_st != GMMRRT_NO_PATH_YET) {
+        reject_once_per_goal(d, ST(REJECT_SETUP), drive_st); /* options out of range, a tree path too long */
+        publish_stop(d, now_us, drive_st, ST(STATE_ERROR));
+        return -1;
+    }
+    if (drive_st == GMMRRT_NO_PATH_YET || d->path.num_points < 2)
+        return 0;
+    if (*published_cost != INFINITY && !(d->path.cost < *published_cost))
+        return 0;
+    *published_cost = isnan(d->path.cost) ? -INFINITY : d->path.cost; /* no cost: nothing counts as better */
+    d->no_path_cycles = 0;
+    d->status.last_error = run_st == GMMRRT_POOL_FULL ? (int32_t)run_st : 0;
+    remember_situation(d);
+    const gmmrrt_drive_report_t *rep = &d->drive_report;
+    if (d->set.min_turn_radius_m > 0.0 && (rep->tight_turns > 0 || rep->turns_in_place > 0)) {
+        /* Published all the same (a stop would be worse), but never silently. */
+        d->status.tight_turn_plans++;
+        gmmrrtd_log_limited(&d->rl_tight, gmmrrtd_mono_us() / 1000, (int64_t)d->set.log_interval_ms,
+                            GMMRRTD_LOG_WARN,
+                            "plan turns tighter than min_turn_radius_m = %.2f m at %d corner(s), in place at %d: "
+                            "no free arc there (%lld such plans)",
+                            d->set.min_turn_radius_m, (int)rep->tight_turns, (int)rep->turns_in_place,
+                            (long long)d->status.tight_turn_plans);
+    }
+    publish_plan(d, &d->path, escaping ? GMMRRT_ESCAPE : GMMRRT_OK);
+    return 1;
+}
+
 void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
 {
     d->cycles++;
+    d->event_pending = 0; /* this cycle takes every input so far */
+    d->last_cycle_us = now_us;
     d->status.plan_time_ms = 0.0;
     d->status.setup_time_ms = 0.0;
     clear_stats(d);
@@ -449,46 +507,72 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
         .converge_rel = 0.0,
         .converge_window = 0,
     };
-    gmmrrt_plan_stats_t stats;
-    st = gmmrrt_planner_run(d->planner, &budget, &stats);
+    gmmrrt_plan_stats_t stats = {0, 0, -1, -1.0, INFINITY, 0.0};
+    double published_cost = INFINITY;
+    int published = 0;
+    if (d->set.anytime_max_plans <= 1) {
+        st = gmmrrt_planner_run(d->planner, &budget, &stats);
+    } else {
+        /* Anytime: the budget in slices; the first path is published at once, a better one only
+         * when its cost falls by anytime_improvement, at most anytime_max_plans per cycle. */
+        const int64_t run_start_us = gmmrrtd_mono_us();
+        int64_t iterations_left = budget.max_iterations;
+        for (;;) {
+            gmmrrt_budget_t slice = budget;
+            if (budget.time_ms > 0.0) {
+                const double left_ms = budget.time_ms - (double)(gmmrrtd_mono_us() - run_start_us) * 1e-3;
+                if (left_ms <= 0.0)
+                    break;
+                slice.time_ms = fmin(GMMRRTD_ANYTIME_SLICE_MS, left_ms);
+            }
+            if (budget.max_iterations > 0) {
+                if (iterations_left <= 0)
+                    break;
+                slice.max_iterations = iterations_left < GMMRRTD_ANYTIME_SLICE_ITERATIONS
+                                           ? iterations_left
+                                           : GMMRRTD_ANYTIME_SLICE_ITERATIONS;
+            }
+            const int64_t before = stats.iterations;
+            st = gmmrrt_planner_run(d->planner, &slice, &stats);
+            iterations_left -= stats.iterations - before;
+            if (st != GMMRRT_OK && st != GMMRRT_POOL_FULL && st != GMMRRT_NO_PATH_YET && st != GMMRRT_TIMEOUT)
+                break;
+            if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL) {
+                if (published < d->set.anytime_max_plans &&
+                    stats.best_cost <= published_cost * (1.0 - d->set.anytime_improvement)) {
+                    const int r = publish_drivable(d, now_us, escaping, st, &published_cost);
+                    if (r < 0)
+                        return;
+                    published += r;
+                }
+            }
+            if (st == GMMRRT_POOL_FULL || published >= d->set.anytime_max_plans)
+                break;
+            if (published > 0 && input_waiting(d))
+                break; /* a newer pose (or world) is waiting: plan from it rather than polish this one */
+        }
+        if (published > 0)
+            st = GMMRRT_OK;
+    }
     d->status.iterations = stats.iterations;
     d->status.nodes = stats.nodes;
     d->status.first_solution_ms = stats.first_solution_ms;
     d->status.best_cost = isfinite(stats.best_cost) ? stats.best_cost : -1.0;
     d->status.plan_time_ms = stats.time_ms;
-
-    gmmrrt_status_t drive_st = GMMRRT_NO_PATH_YET;
-    if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL) {
-        const gmmrrt_drive_options_t opt = drive_options(d);
-        drive_st = gmmrrt_planner_drivable_path(d->planner, &opt, &d->path, &d->drive_report);
-        if (drive_st != GMMRRT_OK && drive_st != GMMRRT_ESCAPE && drive_st != GMMRRT_NO_PATH_YET) {
-            reject_once_per_goal(d, ST(REJECT_SETUP), drive_st); /* options out of range, a tree path too long */
-            publish_stop(d, now_us, drive_st, ST(STATE_ERROR));
-            return;
-        }
-    }
-    const int path_ok = (drive_st == GMMRRT_OK || drive_st == GMMRRT_ESCAPE) && d->path.num_points >= 2;
     LOG_DEBUG("cycle: run %.2f ms (%lld iterations), whole cycle so far %.2f ms", stats.time_ms,
               (long long)stats.iterations, (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3);
-    if (path_ok) {
-        d->no_path_cycles = 0;
-        d->status.last_error = st == GMMRRT_POOL_FULL ? (int32_t)st : 0;
-        remember_situation(d);
-        if (d->set.min_turn_radius_m > 0.0 && (d->drive_report.tight_turns > 0 || d->drive_report.turns_in_place > 0)) {
-            /* Published all the same (a stop would be worse), but never silently. */
-            d->status.tight_turn_plans++;
-            gmmrrtd_log_limited(&d->rl_tight, gmmrrtd_mono_us() / 1000, (int64_t)d->set.log_interval_ms,
-                                GMMRRTD_LOG_WARN,
-                                "plan turns tighter than min_turn_radius_m = %.2f m at %d corner(s), in place at %d: "
-                                "no free arc there (%lld such plans)",
-                                d->set.min_turn_radius_m, (int)d->drive_report.tight_turns,
-                                (int)d->drive_report.turns_in_place, (long long)d->status.tight_turn_plans);
-        }
-        publish_plan(d, &d->path, escaping ? GMMRRT_ESCAPE : GMMRRT_OK);
+
+    if (published == 0 && (st == GMMRRT_OK || st == GMMRRT_POOL_FULL)) {
+        const int r = publish_drivable(d, now_us, escaping, st, &published_cost);
+        if (r < 0)
+            return;
+        published += r;
+    }
+    if (published > 0) {
         publish_status(d, now_us, ST(STATE_PLANNING));
         return;
     }
-    if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL)
+    if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL || st == GMMRRT_TIMEOUT)
         st = GMMRRT_NO_PATH_YET;
     if (++d->no_path_cycles >= d->set.unreachable_after_cycles)
         reject_once_per_goal(d, ST(REJECT_GOAL_UNREACHABLE), st);

@@ -80,6 +80,8 @@ typedef struct {
     int64_t log_now_us;
     int64_t next_tick_us;        /* log mode: the next cycle's local time */
     int32_t stale_mask;          /* STALE_* bits of the last cycle */
+    int event_pending;           /* live, trigger = event: an input arrived that should start a cycle */
+    int64_t last_cycle_us;       /* local time the last cycle started */
 
     /* Models by task; loaded at start, replaced on SIGHUP only when the new file is good. */
     gmmrrt_model_t model_avoid, model_approach, model_scratch;

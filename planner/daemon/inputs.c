@@ -175,6 +175,9 @@ void gmmrrtd_inputs_apply(gmmrrtd_t *d)
     d->have[input] = 1;
     d->src[input] = st->clock;
     d->stale_counted[input] = 0; /* a new message ends the gap */
+    /* What starts an event-triggered cycle (main.c): a new pose or people list, a changed goal or
+     * world. A re-sent goal or obstacle list with the same content does not. */
+    const int64_t goal_version = d->goal_version, obstacles_version = d->obstacles_version;
     switch (input) {
     case GMMRRTD_IN_POSE: d->pose = st->m.pose; break;
     case GMMRRTD_IN_PEOPLE: d->people = st->m.people; break;
@@ -196,5 +199,8 @@ void gmmrrtd_inputs_apply(gmmrrtd_t *d)
         break;
     default: break;
     }
+    if (input == GMMRRTD_IN_POSE || input == GMMRRTD_IN_PEOPLE || goal_version != d->goal_version ||
+        obstacles_version != d->obstacles_version)
+        d->event_pending = 1;
     st->input = -1;
 }

@@ -56,6 +56,13 @@ static const key_t_ k_keys[] = {
         "directory of the 8 approach direction models <dir>/1-front.gmm ... 8-45_left.gmm (excludes approach)"),
     NUM("timing", "rate_hz", "rate-hz", K_F64, rate_hz, 0.1, 1000, "planning cycles per second"),
     NUM("timing", "budget_ms", "budget-ms", K_F64, budget_ms, 0, 1e6, "planning time per cycle, ms (0: none)"),
+    STR("timing", "trigger", "trigger", trigger, "tick | event: cycles at rate_hz only, or also on new input (live)"),
+    NUM("timing", "min_period_ms", "min-period-ms", K_F64, min_period_ms, 0, 1e6,
+        "event trigger: shortest time between cycle starts, ms"),
+    NUM("timing", "anytime_max_plans", "anytime-max-plans", K_I32, anytime_max_plans, 1, 64,
+        "plans published per cycle at most (the first at once, then better ones)"),
+    NUM("timing", "anytime_improvement", "anytime-improvement", K_F64, anytime_improvement, 0, 0.99,
+        "a further plan of a cycle only when its cost fell by this fraction"),
     NUM("timing", "budget_iterations", "budget-iterations", K_I64, budget_iterations, 0, 1e12,
         "samples per cycle (0: none); deterministic replays"),
     NUM("timing", "pose_timeout_ms", "pose-timeout-ms", K_F64, pose_timeout_ms, 1, 1e7, "stop when the pose is older, ms"),
@@ -149,6 +156,10 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->rate_hz = 10.0;
     s->budget_ms = 60.0;
     s->budget_iterations = 0;
+    snprintf(s->trigger, sizeof s->trigger, "tick");
+    s->min_period_ms = 20.0;
+    s->anytime_max_plans = 1;
+    s->anytime_improvement = 0.05;
     s->pose_timeout_ms = 500.0;
     s->unreachable_after_cycles = 5;
     s->people_timeout_ms = 1000.0;
@@ -439,6 +450,8 @@ int gmmrrtd_settings_validate(const gmmrrtd_settings_t *s, char *err, size_t err
                     period_ms, s->rate_hz);
     if (s->budget_ms <= 0.0 && s->budget_iterations <= 0)
         return fail(err, errcap, "budget_ms and budget_iterations are both 0: a cycle would never end");
+    if (strcmp(s->trigger, "tick") && strcmp(s->trigger, "event"))
+        return fail(err, errcap, "trigger = \"%s\": expected tick or event", s->trigger);
     if (s->model_approach[0] != '\0' && s->approach_set[0] != '\0')
         return fail(err, errcap, "models: approach = %s and approach_set = %s exclude each other (one approach model "
                     "or a set of 8)", s->model_approach, s->approach_set);

@@ -34,6 +34,10 @@ typedef struct {
     /* [timing] */
     double rate_hz;              /* cycles per second, (0, 1000] */
     double budget_ms;            /* planning time per cycle, >= 0, < period; 0 = no time limit */
+    char trigger[16];            /* "tick": cycles at rate_hz only; "event": also on new input (live clock) */
+    double min_period_ms;        /* event trigger: at least this long between cycle starts */
+    int32_t anytime_max_plans;   /* plans published per cycle at most, >= 1 (1: one at the end) */
+    double anytime_improvement;  /* a further plan of the cycle only when its cost fell by this fraction */
     int64_t budget_iterations;   /* samples per cycle, >= 0; 0 = no cap. Deterministic replays use this */
     double pose_timeout_ms;      /* > 0: no pose newer than this -> stop */
     int32_t unreachable_after_cycles; /* consecutive cycles without a path before the goal counts unreachable */
