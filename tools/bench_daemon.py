@@ -45,7 +45,8 @@ def percentile(values, q):
     return s[min(len(s) - 1, int(round(q / 100.0 * (len(s) - 1))))]
 
 
-EVENT_FLAGS = ["--trigger", "event", "--min-period-ms", "5", "--anytime-max-plans", "3", "--anytime-improvement", "0.05"]
+EVENT_FLAGS = ["--trigger", "event", "--min-period-ms", "5", "--anytime-max-plans", "3",
+               "--anytime-improvement", "0.05"]
 
 
 def bench(gmmrrtd, rate_hz, budget_ms, seconds, pose_hz, port, models, trigger="tick"):

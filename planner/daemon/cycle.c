@@ -517,6 +517,7 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
          * when its cost falls by anytime_improvement, at most anytime_max_plans per cycle. */
         const int64_t run_start_us = gmmrrtd_mono_us();
         int64_t iterations_left = budget.max_iterations;
+        double tried_tree_cost = INFINITY;
         for (;;) {
             gmmrrt_budget_t slice = budget;
             if (budget.time_ms > 0.0) {
@@ -538,8 +539,11 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
             if (st != GMMRRT_OK && st != GMMRRT_POOL_FULL && st != GMMRRT_NO_PATH_YET && st != GMMRRT_TIMEOUT)
                 break;
             if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL) {
+                /* The tree's cost decides when to try (the drivable path's is lower: shortcut),
+                 * the drivable path's whether to publish. */
                 if (published < d->set.anytime_max_plans &&
-                    stats.best_cost <= published_cost * (1.0 - d->set.anytime_improvement)) {
+                    stats.best_cost <= tried_tree_cost * (1.0 - d->set.anytime_improvement)) {
+                    tried_tree_cost = stats.best_cost;
                     const int r = publish_drivable(d, now_us, escaping, st, &published_cost);
                     if (r < 0)
                         return;
