@@ -195,6 +195,9 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_planner_status(const void *buf, size_t len
     if (out->state < GMMRRT_PLANNER_STATUS_T_STATE_IDLE || out->state > GMMRRT_PLANNER_STATUS_T_STATE_ERROR)
         return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "planner_status_t.state = %d is not a STATE_* value",
                       (int)out->state);
+    if (out->approach_model < -1 || out->approach_model > 7)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
+                      "planner_status_t.approach_model = %d is not -1 or a direction 0..7", (int)out->approach_model);
     return GMMRRT_MSG_OK;
 }
 

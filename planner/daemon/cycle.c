@@ -1,14 +1,19 @@
 /*
- * cycle.c - one gmmrrtd planning cycle: from the latest inputs to a
- * plan. Picks the model by the goal's task (avoid / approach, paper Sect. 4-5), plans from
- * the latest robot pose with gmmrrt_planner_set_problem + run, warm-starts from the last
- * published path when the situation has not changed much, and publishes PLAN and
- * PLANNER_STATUS. A stale pose or obstacle list, a missing model or target, an unusable goal
- * or no path publishes a stop (an empty plan whose status says why), never an old plan; every
- * stop is counted by reason (planner_status_t.stops) and logged rate-limited. A stale people
- * list is dropped: the plan no longer avoids people who may have left.
+ * cycle.c - one gmmrrtd planning cycle: from the latest inputs to a plan. Picks the model by
+ * the goal's task (avoid / approach, paper Sect. 4-5; for approach, the model set's direction
+ * the robot comes from when a set is configured), plans from the latest robot pose (walking
+ * people with their velocities) with gmmrrt_planner_set_problem + run, warm-starts from the
+ * last published path when the situation has not changed much, and publishes PLAN (the
+ * drivable path, drivable.h) and PLANNER_STATUS. A start in collision is not a stop: it plans
+ * an escape, published with status GMMRRT_ESCAPE and counted; only GMMRRT_ERR_FROZEN (no
+ * motion increases the clearance) stops, with the core's reason logged. A stale pose or
+ * obstacle list, a missing model or target, an unusable goal or no path publishes a stop (an
+ * empty plan whose status says why), never an old plan; every stop is counted by reason
+ * (planner_status_t.stops) and logged rate-limited. A stale people list is dropped: the plan
+ * no longer avoids people who may have left.
  */
 #include <math.h>
+#include <poll.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -16,6 +21,12 @@
 #include "daemon.h"
 
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
+
+/* Anytime cycles run the budget in slices this long (ms) or of this many samples, whichever
+ * the budget uses: short enough that a first path is published within about a slice of being
+ * found, long enough that the per-call overhead of gmmrrt_planner_run stays small. */
+#define GMMRRTD_ANYTIME_SLICE_MS 1.0
+#define GMMRRTD_ANYTIME_SLICE_ITERATIONS 50
 
 /* build_problem() copies wire counts (checked against the messages' MAX_*) into the core's
  * arrays (sized by limits.h, which a build may override), and publish_plan() copies a path
@@ -79,6 +90,7 @@ static void publish_plan(gmmrrtd_t *d, const gmmrrt_path_t *path, int status)
 
 static void clear_stats(gmmrrtd_t *d)
 {
+    d->status.approach_model = -1;
     d->status.iterations = 0;
     d->status.nodes = 0;
     d->status.first_solution_ms = -1.0;
@@ -99,6 +111,7 @@ static int stop_slot(int why)
     case GMMRRT_ERR_GOAL_IN_COLLISION:
     case GMMRRT_ERR_GOAL_OUT_OF_BOUNDS: return ST(STOP_GOAL_BLOCKED);
     case GMMRRT_NO_PATH_YET: return ST(STOP_NO_PATH);
+    case GMMRRT_ERR_FROZEN: return ST(STOP_FROZEN);
     default: return ST(STOP_SETUP);
     }
 }
@@ -161,10 +174,15 @@ static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_
     }
     if (people_usable(d)) {
         p->obstacles.num_people = d->people.num_people;
-        for (int32_t i = 0; i < d->people.num_people; ++i)
-            p->obstacles.people[i] =
-                (gmmrrt_pose_t){d->people.people[i].x, d->people.people[i].y, d->people.people[i].yaw};
+        for (int32_t i = 0; i < d->people.num_people; ++i) {
+            const gmmrrt_person_t *q = &d->people.people[i];
+            p->obstacles.people[i] = (gmmrrt_pose_t){q->x, q->y, q->yaw};
+            p->person_vx[i] = q->vx; /* bounded at input (inputs.c); slow ones count as standing */
+            p->person_vy[i] = q->vy;
+        }
     }
+    p->nominal_speed_m_s = d->set.nominal_speed_m_s;
+    p->prediction_horizon_s = d->set.prediction_horizon_s;
 }
 
 /* "Not changed much" (docs/daemon.md): same task and target, goal moved < warm_goal_shift_m,
@@ -201,10 +219,17 @@ static int32_t warm_start_seed(gmmrrtd_t *d)
     }
     if (best >= set->warm_robot_offset_m)
         return 0;
+    /* The published path is sampled every waypoint_spacing_m (its arcs as many short chords):
+     * seeded as it is, every sample would become a tree node and a collision check. One seed
+     * point per step_m (the tree's own edge length) and the path's end keep the route, not its
+     * sampling. */
     int32_t n = 0;
     d->seed_x[n] = d->pose.x;
     d->seed_y[n++] = d->pose.y;
     for (int32_t i = nearest + 1; i < lp->num_points; ++i) {
+        const int last = i == lp->num_points - 1;
+        if (!last && hypot(lp->x[i] - d->seed_x[n - 1], lp->y[i] - d->seed_y[n - 1]) < d->set.cfg.step_m)
+            continue;
         d->seed_x[n] = lp->x[i];
         d->seed_y[n++] = lp->y[i];
     }
@@ -227,6 +252,24 @@ static void remember_situation(gmmrrtd_t *d)
         s->people_y[i] = d->people.people[i].y;
     }
     d->last_path = d->path;
+}
+
+/* The published path's options (drivable.h) from [drive]: approach arrives facing the target
+ * (face_target) or on the goal's yaw (use_goal_yaw); other tasks on the goal's yaw when
+ * use_goal_yaw, else with any heading. */
+static gmmrrt_drive_options_t drive_options(const gmmrrtd_t *d)
+{
+    gmmrrt_drive_options_t opt;
+    gmmrrt_drive_options_default(&opt);
+    opt.min_turn_radius_m = d->set.min_turn_radius_m;
+    opt.goal_yaw_tolerance_rad = d->set.yaw_tolerance_deg * M_PI / 180.0;
+    opt.arrival_leg_m = d->set.arrival_leg_m;
+    opt.goal_yaw = d->goal.yaw;
+    if (d->problem.task == GMMRRT_TASK_APPROACH && d->problem.target_person >= 0 && d->set.face_target)
+        opt.arrival = GMMRRT_ARRIVAL_FACE_TARGET;
+    else
+        opt.arrival = d->set.use_goal_yaw ? GMMRRT_ARRIVAL_YAW : GMMRRT_ARRIVAL_ANY;
+    return opt;
 }
 
 /* Per-channel staleness at local time now_us (clock.h: each source's data time on the local
@@ -278,9 +321,60 @@ static void planning_box_too_large(gmmrrtd_t *d, int64_t now_us)
     publish_stop(d, now_us, GMMRRTD_STOP_PLANNING_BOX, ST(STATE_ERROR));
 }
 
+/* Live and event-triggered only: whether an LCM message is waiting to be read. A cycle that has
+ * published its first plan then ends early, so the next cycle starts from the newer input
+ * without waiting for this one's budget. Replays never look (their cycles follow message time). */
+static int input_waiting(const gmmrrtd_t *d)
+{
+    if (d->clock_mode != GMMRRTD_CLOCK_LIVE || strcmp(d->set.trigger, "event") != 0 || d->lcm_in == NULL)
+        return 0;
+    struct pollfd pfd = {.fd = lcm_get_fileno(d->lcm_in), .events = POLLIN};
+    return pfd.fd >= 0 && poll(&pfd, 1, 0) > 0 && (pfd.revents & POLLIN);
+}
+
+/* The planner's best path made drivable (drivable.h) and published as PLAN when its cost is
+ * below *published_cost (the cycle's last publication; INFINITY before the first), which it
+ * then becomes: the publications of one cycle never rise in cost. 1 published, 0 not (no path,
+ * or no better), -1 when the smoother refused its options (a stop was published). run_st: the
+ * run's status (POOL_FULL is kept in last_error). */
+static int publish_drivable(gmmrrtd_t *d, int64_t now_us, int escaping, gmmrrt_status_t run_st,
+                            double *published_cost)
+{
+    const gmmrrt_drive_options_t opt = drive_options(d);
+    const gmmrrt_status_t drive_st = gmmrrt_planner_drivable_path(d->planner, &opt, &d->path, &d->drive_report);
+    if (drive_st != GMMRRT_OK && drive_st != GMMRRT_ESCAPE && drive_st != GMMRRT_NO_PATH_YET) {
+        reject_once_per_goal(d, ST(REJECT_SETUP), drive_st); /* options out of range, a tree path too long */
+        publish_stop(d, now_us, drive_st, ST(STATE_ERROR));
+        return -1;
+    }
+    if (drive_st == GMMRRT_NO_PATH_YET || d->path.num_points < 2)
+        return 0;
+    if (*published_cost != INFINITY && !(d->path.cost < *published_cost))
+        return 0;
+    *published_cost = isnan(d->path.cost) ? -INFINITY : d->path.cost; /* no cost: nothing counts as better */
+    d->no_path_cycles = 0;
+    d->status.last_error = run_st == GMMRRT_POOL_FULL ? (int32_t)run_st : 0;
+    remember_situation(d);
+    const gmmrrt_drive_report_t *rep = &d->drive_report;
+    if (d->set.min_turn_radius_m > 0.0 && (rep->tight_turns > 0 || rep->turns_in_place > 0)) {
+        /* Published all the same (a stop would be worse), but never silently. */
+        d->status.tight_turn_plans++;
+        gmmrrtd_log_limited(&d->rl_tight, gmmrrtd_mono_us() / 1000, (int64_t)d->set.log_interval_ms,
+                            GMMRRTD_LOG_WARN,
+                            "plan turns tighter than min_turn_radius_m = %.2f m at %d corner(s), in place at %d: "
+                            "no free arc there (%lld such plans)",
+                            d->set.min_turn_radius_m, (int)rep->tight_turns, (int)rep->turns_in_place,
+                            (long long)d->status.tight_turn_plans);
+    }
+    publish_plan(d, &d->path, escaping ? GMMRRT_ESCAPE : GMMRRT_OK);
+    return 1;
+}
+
 void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
 {
     d->cycles++;
+    d->event_pending = 0; /* this cycle takes every input so far */
+    d->last_cycle_us = now_us;
     d->status.plan_time_ms = 0.0;
     d->status.setup_time_ms = 0.0;
     clear_stats(d);
@@ -310,8 +404,9 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     int target = -1;
     if (d->goal.task == GMMRRT_NAV_GOAL_T_TASK_AVOID || d->goal.task == GMMRRT_NAV_GOAL_T_TASK_APPROACH) {
         const int avoid = d->goal.task == GMMRRT_NAV_GOAL_T_TASK_AVOID;
-        if (!(avoid ? d->have_avoid : d->have_approach) && d->set.cfg.planner != GMMRRT_PLANNER_RRT_STAR) {
-            reject_once_per_goal(d, ST(REJECT_NO_MODEL), GMMRRTD_STOP_NO_MODEL);
+        if (!(avoid ? d->have_avoid : (d->have_approach || d->have_approach_set)) &&
+            d->set.cfg.planner != GMMRRT_PLANNER_RRT_STAR) {
+            reject_once_per_goal(d, ST(REJECT_NO_MODEL), (gmmrrt_status_t)GMMRRTD_STOP_NO_MODEL);
             publish_stop(d, now_us, GMMRRTD_STOP_NO_MODEL, ST(STATE_ERROR));
             return;
         }
@@ -325,8 +420,21 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
             return;
         }
     }
-    if (d->set.cfg.planner == GMMRRT_PLANNER_RRT_STAR)
+    if (target >= 0 && d->have_approach_set) {
+        /* The set's model of the direction the robot comes from (model_set.h), chosen every cycle. */
+        gmmrrt_model_set_t set;
+        for (int32_t k = 0; k < GMMRRT_APPROACH_DIRECTIONS; ++k)
+            set.model[k] = &d->approach_set[k];
+        const gmmrrt_person_t *q = &d->people.people[target];
+        const gmmrrt_pose_t person = {q->x, q->y, q->yaw};
+        int32_t direction = -1;
+        model = gmmrrt_model_set_select(&set, &person, d->pose.x, d->pose.y, &direction);
+        d->status.approach_model = (int8_t)direction;
+    }
+    if (d->set.cfg.planner == GMMRRT_PLANNER_RRT_STAR) {
         model = NULL;
+        d->status.approach_model = -1;
+    }
 
     const int64_t setup_start_us = gmmrrtd_mono_us();
     build_problem(d, model, target);
@@ -336,6 +444,26 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     gmmrrt_status_t st = gmmrrt_planner_set_problem(d->planner, &d->problem);
     gmmrrtd_watchdog_long_step(d, 0);
     d->status.setup_time_ms = (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3;
+    /* A start inside a person's disc or an inflated obstacle plans an escape (rrtstar.h): the
+     * plan first leaves along the shortest way out, then goes on to the goal. */
+    const int escaping = st == GMMRRT_ESCAPE;
+    if (escaping) {
+        d->status.escapes++;
+        gmmrrtd_log_limited(&d->rl_escape, gmmrrtd_mono_us() / 1000, (int64_t)d->set.log_interval_ms,
+                            GMMRRTD_LOG_INFO, "escaping (%lld escape cycles): %s", (long long)d->status.escapes,
+                            gmmrrt_planner_escape_reason(d->planner));
+        st = GMMRRT_OK;
+    }
+    if (st == GMMRRT_ERR_FROZEN) {
+        /* No motion increases the clearance: the only stop left for a start in collision. */
+        gmmrrtd_count_stop(d, ST(STOP_FROZEN), "frozen at (%.2f, %.2f): %s", d->pose.x, d->pose.y,
+                           gmmrrt_planner_escape_reason(d->planner));
+        d->last.valid = 0;
+        d->status.last_error = (int32_t)st;
+        publish_plan(d, NULL, st);
+        publish_status(d, now_us, ST(STATE_STOPPED));
+        return;
+    }
     if (st != GMMRRT_OK) {
         int8_t state = ST(STATE_STOPPED);
         if (st == GMMRRT_ERR_BUFFER_TOO_SMALL) {
@@ -359,7 +487,8 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     if (gmmrrt_world_grid_stats(gmmrrt_planner_world(d->planner), &grid) == GMMRRT_OK)
         d->grid_updates[grid.last]++;
 
-    const int32_t n_seed = warm_start_seed(d);
+    /* No warm start while escaping: the tree is rooted at the exit, not at the robot. */
+    const int32_t n_seed = escaping ? 0 : warm_start_seed(d);
     if (n_seed > 0) {
         if (gmmrrt_planner_seed_path(d->planner, d->seed_x, d->seed_y, n_seed) == GMMRRT_OK)
             d->warm_starts++;
@@ -378,27 +507,76 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
         .converge_rel = 0.0,
         .converge_window = 0,
     };
-    gmmrrt_plan_stats_t stats;
-    st = gmmrrt_planner_run(d->planner, &budget, &stats);
+    gmmrrt_plan_stats_t stats = {.first_solution_iteration = -1, .first_solution_ms = -1.0, .best_cost = INFINITY};
+    double published_cost = INFINITY;
+    int published = 0;
+    if (d->set.anytime_max_plans <= 1) {
+        st = gmmrrt_planner_run(d->planner, &budget, &stats);
+    } else {
+        /* Anytime: the budget in slices; the first path is published at once, a better one only
+         * when its cost falls by anytime_improvement, at most anytime_max_plans per cycle. */
+        const int64_t run_start_us = gmmrrtd_mono_us();
+        int64_t iterations_left = budget.max_iterations;
+        double tried_tree_cost = INFINITY;
+        for (;;) {
+            gmmrrt_budget_t slice = budget;
+            if (budget.time_ms > 0.0) {
+                const double left_ms = budget.time_ms - (double)(gmmrrtd_mono_us() - run_start_us) * 1e-3;
+                if (left_ms <= 0.0)
+                    break;
+                slice.time_ms = fmin(GMMRRTD_ANYTIME_SLICE_MS, left_ms);
+            }
+            if (budget.max_iterations > 0) {
+                if (iterations_left <= 0)
+                    break;
+                slice.max_iterations = iterations_left < GMMRRTD_ANYTIME_SLICE_ITERATIONS
+                                           ? iterations_left
+                                           : GMMRRTD_ANYTIME_SLICE_ITERATIONS;
+            }
+            const int64_t before = stats.iterations;
+            st = gmmrrt_planner_run(d->planner, &slice, &stats);
+            iterations_left -= stats.iterations - before;
+            if (st != GMMRRT_OK && st != GMMRRT_POOL_FULL && st != GMMRRT_NO_PATH_YET && st != GMMRRT_TIMEOUT)
+                break;
+            if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL) {
+                /* The tree's cost decides when to try (the drivable path's is lower: shortcut),
+                 * the drivable path's whether to publish. */
+                if (published < d->set.anytime_max_plans &&
+                    stats.best_cost <= tried_tree_cost * (1.0 - d->set.anytime_improvement)) {
+                    tried_tree_cost = stats.best_cost;
+                    const int r = publish_drivable(d, now_us, escaping, st, &published_cost);
+                    if (r < 0)
+                        return;
+                    published += r;
+                }
+            }
+            if (st == GMMRRT_POOL_FULL || published >= d->set.anytime_max_plans)
+                break;
+            if (published > 0 && input_waiting(d))
+                break; /* a newer pose (or world) is waiting: plan from it rather than polish this one */
+        }
+        if (published > 0)
+            st = GMMRRT_OK;
+    }
     d->status.iterations = stats.iterations;
     d->status.nodes = stats.nodes;
     d->status.first_solution_ms = stats.first_solution_ms;
     d->status.best_cost = isfinite(stats.best_cost) ? stats.best_cost : -1.0;
     d->status.plan_time_ms = stats.time_ms;
-
-    const int path_ok = (st == GMMRRT_OK || st == GMMRRT_POOL_FULL) &&
-                        gmmrrt_planner_best_path(d->planner, &d->path) == GMMRRT_OK && d->path.num_points >= 2;
     LOG_DEBUG("cycle: run %.2f ms (%lld iterations), whole cycle so far %.2f ms", stats.time_ms,
               (long long)stats.iterations, (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3);
-    if (path_ok) {
-        d->no_path_cycles = 0;
-        d->status.last_error = st == GMMRRT_POOL_FULL ? (int32_t)st : 0;
-        remember_situation(d);
-        publish_plan(d, &d->path, GMMRRT_OK);
+
+    if (published == 0 && (st == GMMRRT_OK || st == GMMRRT_POOL_FULL)) {
+        const int r = publish_drivable(d, now_us, escaping, st, &published_cost);
+        if (r < 0)
+            return;
+        published += r;
+    }
+    if (published > 0) {
         publish_status(d, now_us, ST(STATE_PLANNING));
         return;
     }
-    if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL)
+    if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL || st == GMMRRT_TIMEOUT)
         st = GMMRRT_NO_PATH_YET;
     if (++d->no_path_cycles >= d->set.unreachable_after_cycles)
         reject_once_per_goal(d, ST(REJECT_GOAL_UNREACHABLE), st);

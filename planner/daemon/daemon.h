@@ -18,7 +18,9 @@
 
 #include <lcm/lcm.h>
 
+#include "gmmrrt/drivable.h"
 #include "gmmrrt/model.h"
+#include "gmmrrt/model_set.h"
 #include "gmmrrt/msg_decode.h"
 #include "gmmrrt/rrtstar.h"
 #include "log.h"
@@ -78,10 +80,16 @@ typedef struct {
     int64_t log_now_us;
     int64_t next_tick_us;        /* log mode: the next cycle's local time */
     int32_t stale_mask;          /* STALE_* bits of the last cycle */
+    int event_pending;           /* live, trigger = event: an input arrived that should start a cycle */
+    int64_t last_cycle_us;       /* local time the last cycle started */
 
     /* Models by task; loaded at start, replaced on SIGHUP only when the new file is good. */
     gmmrrt_model_t model_avoid, model_approach, model_scratch;
     int have_avoid, have_approach;
+    /* The approach model set (model_set.h), used instead of model_approach when configured: all 8
+     * directions or none (a reload loads into the scratch set and swaps only when all are good). */
+    gmmrrt_model_t approach_set[GMMRRT_APPROACH_DIRECTIONS], approach_set_scratch[GMMRRT_APPROACH_DIRECTIONS];
+    int have_approach_set;
 
     /* The planner: one block, allocated once. */
     void *mem;
@@ -112,6 +120,9 @@ typedef struct {
     gmmrrtd_ratelimit_t rl[GMMRRTD_RL_ROWS][GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS];
     gmmrrtd_ratelimit_t rl_stop[GMMRRT_PLANNER_STATUS_T_NUM_STOP_REASONS];
     gmmrrtd_ratelimit_t rl_goal;  /* the "new goal" line */
+    gmmrrtd_ratelimit_t rl_escape; /* the "escaping" line */
+    gmmrrtd_ratelimit_t rl_tight;  /* the "turns tighter than the bound" line */
+    gmmrrt_drive_report_t drive_report; /* the last published path's (drivable.h) */
 } gmmrrtd_t;
 
 /* CLOCK_MONOTONIC in microseconds. */

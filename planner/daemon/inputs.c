@@ -96,6 +96,25 @@ static int accept_time(gmmrrtd_t *d, int input, int64_t utime, int64_t local_us)
         }                                                                                           \
     } while (0)
 
+/* Walking people are predicted from their velocity (rrtstar.h): a speed above
+ * GMMRRT_MAX_PERSON_SPEED_M_S (the core's bound; faster than a running person is a tracking
+ * error) refuses the whole list, counted as REJECT_PERSON_SPEED, and the last good list stays.
+ * A velocity that is not finite was already refused by the decoder (REJECT_NOT_FINITE). */
+static int people_speeds_ok(gmmrrtd_t *d, const gmmrrt_people_t *m)
+{
+    for (int32_t i = 0; i < m->num_people; ++i) {
+        const gmmrrt_person_t *q = &m->people[i];
+        const double speed = hypot(q->vx, q->vy);
+        if (!(speed <= GMMRRT_MAX_PERSON_SPEED_M_S)) {
+            gmmrrtd_reject(d, GMMRRTD_IN_PEOPLE, GMMRRT_PLANNER_STATUS_T_REJECT_PERSON_SPEED,
+                           "person id %d moves at %.2f m/s (vx %.2f, vy %.2f), above the %.1f m/s bound",
+                           (int)q->id, speed, q->vx, q->vy, GMMRRT_MAX_PERSON_SPEED_M_S);
+            return 0;
+        }
+    }
+    return 1;
+}
+
 int gmmrrtd_inputs_decode(gmmrrtd_t *d, int input, int64_t local_us, const void *buf, size_t len)
 {
     gmmrrtd_staged_t *st = &d->staged;
@@ -108,6 +127,8 @@ int gmmrrtd_inputs_decode(gmmrrtd_t *d, int input, int64_t local_us, const void 
         break;
     case GMMRRTD_IN_PEOPLE:
         DECODE_INPUT(d, input, gmmrrt_msg_decode_people, buf, len, &st->m.people);
+        if (!people_speeds_ok(d, &st->m.people))
+            return 0;
         utime = st->m.people.utime;
         break;
     case GMMRRTD_IN_GOAL:
@@ -128,7 +149,7 @@ int gmmrrtd_inputs_decode(gmmrrtd_t *d, int input, int64_t local_us, const void 
 
 static int same_goal(const gmmrrt_nav_goal_t *a, const gmmrrt_nav_goal_t *b)
 {
-    return a->x == b->x && a->y == b->y && a->tolerance_m == b->tolerance_m && a->task == b->task &&
+    return a->x == b->x && a->y == b->y && a->yaw == b->yaw && a->tolerance_m == b->tolerance_m && a->task == b->task &&
            a->target_person_id == b->target_person_id;
 }
 
@@ -154,6 +175,9 @@ void gmmrrtd_inputs_apply(gmmrrtd_t *d)
     d->have[input] = 1;
     d->src[input] = st->clock;
     d->stale_counted[input] = 0; /* a new message ends the gap */
+    /* What starts an event-triggered cycle (main.c): a new pose or people list, a changed goal or
+     * world. A re-sent goal or obstacle list with the same content does not. */
+    const int64_t goal_version = d->goal_version, obstacles_version = d->obstacles_version;
     switch (input) {
     case GMMRRTD_IN_POSE: d->pose = st->m.pose; break;
     case GMMRRTD_IN_PEOPLE: d->people = st->m.people; break;
@@ -175,5 +199,8 @@ void gmmrrtd_inputs_apply(gmmrrtd_t *d)
         break;
     default: break;
     }
+    if (input == GMMRRTD_IN_POSE || input == GMMRRTD_IN_PEOPLE || goal_version != d->goal_version ||
+        obstacles_version != d->obstacles_version)
+        d->event_pending = 1;
     st->input = -1;
 }

@@ -125,9 +125,11 @@ static void reload(gmmrrtd_t *d, int argc, char **argv)
     d->set.cfg = s.cfg;
     memcpy(d->set.model_avoid, s.model_avoid, sizeof s.model_avoid);
     memcpy(d->set.model_approach, s.model_approach, sizeof s.model_approach);
+    memcpy(d->set.approach_set, s.approach_set, sizeof s.approach_set);
     (void)gmmrrtd_models_load(d, 1);
     memcpy(s.model_avoid, d->set.model_avoid, sizeof s.model_avoid);
     memcpy(s.model_approach, d->set.model_approach, sizeof s.model_approach);
+    memcpy(s.approach_set, d->set.approach_set, sizeof s.approach_set);
     d->set = s;
     gmmrrtd_log_level_t lvl;
     if (gmmrrtd_log_level_parse(d->set.log_level, &lvl) == 0)
@@ -183,7 +185,19 @@ static int run(gmmrrtd_t *d, int argc, char **argv)
         int timeout_ms;
         int64_t now = gmmrrtd_mono_us();
         if (d->clock_mode == GMMRRTD_CLOCK_LIVE) {
-            if (now >= next_tick) {
+            /* trigger = event: new input starts a cycle at once, at most one per min_period_ms; the
+             * ticks stay as the fallback (staleness, status) and restart a period after it. */
+            const int event = d->event_pending && !strcmp(d->set.trigger, "event");
+            const int64_t earliest = d->last_cycle_us + (int64_t)llround(d->set.min_period_ms * 1e3);
+            if (event && now >= earliest && now < next_tick) {
+                gmmrrtd_cycle(d, now);
+                gmmrrtd_watchdog_ping(d);
+                const int64_t done = gmmrrtd_mono_us();
+                if (done > now + period_us)
+                    d->status.missed_deadlines++;
+                next_tick = done + period_us;
+                now = done;
+            } else if (now >= next_tick) {
                 const int64_t tick = next_tick;
                 gmmrrtd_cycle(d, now);
                 gmmrrtd_watchdog_ping(d);
@@ -197,7 +211,13 @@ static int run(gmmrrtd_t *d, int argc, char **argv)
                     next_tick = done + period_us - (done - next_tick) % period_us;
                 now = done;
             }
-            timeout_ms = (int)((next_tick - now + 999) / 1000);
+            int64_t wake = next_tick;
+            if (d->event_pending && !strcmp(d->set.trigger, "event")) {
+                const int64_t earliest_next = d->last_cycle_us + (int64_t)llround(d->set.min_period_ms * 1e3);
+                if (earliest_next < wake)
+                    wake = earliest_next > now ? earliest_next : now;
+            }
+            timeout_ms = (int)((wake - now + 999) / 1000);
         } else {
             timeout_ms = 500; /* log clock: cycles run from the input handlers */
             gmmrrtd_watchdog_ping(d);
@@ -238,10 +258,10 @@ static void summarize(const gmmrrtd_t *d, char *rej, size_t rcap, char *stp, siz
     static const char *const k_rej[GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS] = {
         "decode", "count", "not_finite", "backwards", "goal_coll", "unreachable", "pose_stale", "bad_value",
         "unknown_target", "start_coll", "model_reload", "time_future", "clock_resync", "people_stale",
-        "obstacles_stale", "planning_box", "scan_stale", "grid_stale", "setup", "no_model"};
+        "obstacles_stale", "planning_box", "scan_stale", "grid_stale", "setup", "no_model", "person_speed"};
     static const char *const k_stop[GMMRRT_PLANNER_STATUS_T_NUM_STOP_REASONS] = {
         "pose_stale", "no_model", "unknown_target", "obstacles_stale", "start_blocked", "goal_blocked", "no_path",
-        "planning_box", "setup", "scan_stale", "grid_stale"};
+        "planning_box", "setup", "scan_stale", "grid_stale", "frozen"};
     size_t off = 0;
     rej[0] = stp[0] = '\0';
     for (int i = 0; i < GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS && off < rcap; ++i)
@@ -321,9 +341,10 @@ int main(int argc, char **argv)
     NOTIFY("STOPPING=1");
     char summary[1024], stops[512];
     summarize(d, summary, sizeof summary, stops, sizeof stops);
-    LOG_INFO("exiting: %lld cycles, %lld plans, %lld warm starts, %lld missed deadlines; rejected:%s; stops:%s",
+    LOG_INFO("exiting: %lld cycles, %lld plans, %lld warm starts, %lld missed deadlines, %lld escapes; rejected:%s; "
+             "stops:%s",
              (long long)d->cycles, (long long)d->status.plans_published, (long long)d->warm_starts,
-             (long long)d->status.missed_deadlines, summary, stops);
+             (long long)d->status.missed_deadlines, (long long)d->status.escapes, summary, stops);
     LOG_INFO("clearance grid: %lld built, %lld shifted, %lld kept", (long long)d->grid_updates[GMMRRT_GRID_BUILT],
              (long long)d->grid_updates[GMMRRT_GRID_SHIFTED], (long long)d->grid_updates[GMMRRT_GRID_KEPT]);
     if (d->lcm_out != d->lcm_in)

@@ -83,9 +83,47 @@ static int load_one(gmmrrtd_t *d, const char *path, int32_t want_task, gmmrrt_mo
     return 0;
 }
 
+/* The approach model set: <dir>/<direction name>.gmm for each of the 8 directions
+ * (model_set.h), each loaded and checked like a single model into the scratch set, then the set
+ * as a whole (gmmrrt_model_set_validate); only a complete, valid set replaces the one in use. A
+ * missing or bad file refuses the set with that file named. */
+static int load_set(gmmrrtd_t *d, int reload)
+{
+    const char *dir = d->set.approach_set;
+    if (dir[0] == '\0') {
+        if (d->have_approach_set)
+            LOG_INFO("approach model set removed by the new configuration");
+        d->have_approach_set = 0;
+        return 0;
+    }
+    gmmrrt_model_set_t set;
+    for (int32_t k = 0; k < GMMRRT_APPROACH_DIRECTIONS; ++k) {
+        char file[GMMRRTD_PATH_MAX + 32];
+        snprintf(file, sizeof file, "%s/%s.gmm", dir, gmmrrt_approach_direction_name(k));
+        int have = 0;
+        if (load_one(d, file, GMMRRT_TASK_APPROACH, &d->approach_set_scratch[k], &have, reload) != 0) {
+            LOG_ERROR("approach model set %s refused: direction %s (%s) did not load%s", dir,
+                      gmmrrt_approach_direction_name(k), file, d->have_approach_set ? " (old set kept)" : "");
+            return -1;
+        }
+        set.model[k] = &d->approach_set_scratch[k];
+    }
+    char err[256], what[GMMRRTD_PATH_MAX + 320];
+    const gmmrrt_status_t st = gmmrrt_model_set_validate(&set, err, sizeof err);
+    if (st != GMMRRT_OK) {
+        snprintf(what, sizeof what, "approach model set %s: %s", dir, err);
+        return refuse(d, reload, d->have_approach_set, st, what);
+    }
+    memcpy(d->approach_set, d->approach_set_scratch, sizeof d->approach_set);
+    d->have_approach_set = 1;
+    LOG_INFO("approach model set %s: %d directions", dir, GMMRRT_APPROACH_DIRECTIONS);
+    return 0;
+}
+
 int gmmrrtd_models_load(gmmrrtd_t *d, int reload)
 {
     const int a = load_one(d, d->set.model_avoid, GMMRRT_TASK_AVOID, &d->model_avoid, &d->have_avoid, reload);
     const int b = load_one(d, d->set.model_approach, GMMRRT_TASK_APPROACH, &d->model_approach, &d->have_approach, reload);
-    return (a == 0 && b == 0) ? 0 : -1;
+    const int c = load_set(d, reload);
+    return (a == 0 && b == 0 && c == 0) ? 0 : -1;
 }

@@ -16,6 +16,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "gmmrrt/drivable.h"
+#include "gmmrrt/rrtstar.h"
 #include "log.h"
 
 #ifndef GMMRRT_VERSION_STRING
@@ -50,8 +52,17 @@ static const key_t_ k_keys[] = {
     STR("channels", "status", "channel-status", ch_status, "status output channel (planner_status_t)"),
     STR("models", "avoid", "model-avoid", model_avoid, "model file for TASK_AVOID"),
     STR("models", "approach", "model-approach", model_approach, "model file for TASK_APPROACH"),
+    STR("models", "approach_set", "approach-models", approach_set,
+        "directory of the 8 approach direction models <dir>/1-front.gmm ... 8-45_left.gmm (excludes approach)"),
     NUM("timing", "rate_hz", "rate-hz", K_F64, rate_hz, 0.1, 1000, "planning cycles per second"),
     NUM("timing", "budget_ms", "budget-ms", K_F64, budget_ms, 0, 1e6, "planning time per cycle, ms (0: none)"),
+    STR("timing", "trigger", "trigger", trigger, "tick | event: cycles at rate_hz only, or also on new input (live)"),
+    NUM("timing", "min_period_ms", "min-period-ms", K_F64, min_period_ms, 0, 1e6,
+        "event trigger: shortest time between cycle starts, ms"),
+    NUM("timing", "anytime_max_plans", "anytime-max-plans", K_I32, anytime_max_plans, 1, 64,
+        "plans published per cycle at most (the first at once, then better ones)"),
+    NUM("timing", "anytime_improvement", "anytime-improvement", K_F64, anytime_improvement, 0, 0.99,
+        "a further plan of a cycle only when its cost fell by this fraction"),
     NUM("timing", "budget_iterations", "budget-iterations", K_I64, budget_iterations, 0, 1e12,
         "samples per cycle (0: none); deterministic replays"),
     NUM("timing", "pose_timeout_ms", "pose-timeout-ms", K_F64, pose_timeout_ms, 1, 1e7, "stop when the pose is older, ms"),
@@ -81,6 +92,20 @@ static const key_t_ k_keys[] = {
         "warm start: each person moved less, m"),
     NUM("warm_start", "robot_offset_m", "warm-robot-offset", K_F64, warm_robot_offset_m, 0, 1e4,
         "warm start: robot within this of the last path, m"),
+    NUM("people", "nominal_speed_m_s", "nominal-speed", K_F64, nominal_speed_m_s, 0.01, 10,
+        "robot speed that times the path against walking people, m/s"),
+    NUM("people", "prediction_horizon_s", "prediction-horizon", K_F64, prediction_horizon_s, 0.01, 60,
+        "how far walking people are predicted at constant velocity, s"),
+    NUM("drive", "min_turn_radius_m", "min-turn-radius", K_F64, min_turn_radius_m, 0, 100,
+        "smallest turning radius of the published path, m (0: turning in place)"),
+    NUM("drive", "use_goal_yaw", "use-goal-yaw", K_BOOL, use_goal_yaw, 0, 1,
+        "arrive on nav_goal_t.yaw (flag: no value)"),
+    NUM("drive", "face_target", "face-target", K_BOOL, face_target, 0, 1,
+        "approach arrives facing the target person"),
+    NUM("drive", "yaw_tolerance_deg", "goal-yaw-tolerance", K_F64, yaw_tolerance_deg, 0.01, 180,
+        "arrival heading tolerance, degrees"),
+    NUM("drive", "arrival_leg_m", "arrival-leg", K_F64, arrival_leg_m, 0.001, 100,
+        "shortest straight final leg on the arrival heading, m"),
     NUM("planner", "planner", "planner", K_PLANNER, cfg.planner, 0, 0, "gmm-rrt-star | rrt-star | gmm-rrt"),
     NUM("planner", "seed", "seed", K_U64, cfg.seed, 0, 18446744073709551615.0, "RNG seed"),
     NUM("planner", "max_nodes", "max-nodes", K_I32, cfg.max_nodes, 2, 4194304, "tree node pool (memory)"),
@@ -131,6 +156,10 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->rate_hz = 10.0;
     s->budget_ms = 60.0;
     s->budget_iterations = 0;
+    snprintf(s->trigger, sizeof s->trigger, "tick");
+    s->min_period_ms = 20.0;
+    s->anytime_max_plans = 1;
+    s->anytime_improvement = 0.05;
     s->pose_timeout_ms = 500.0;
     s->unreachable_after_cycles = 5;
     s->people_timeout_ms = 1000.0;
@@ -146,6 +175,15 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->warm_goal_shift_m = 0.25;
     s->warm_people_shift_m = 0.3;
     s->warm_robot_offset_m = 0.5;
+    s->nominal_speed_m_s = GMMRRT_DEFAULT_NOMINAL_SPEED_M_S;
+    s->prediction_horizon_s = GMMRRT_DEFAULT_PREDICTION_HORIZON_S;
+    gmmrrt_drive_options_t drive;
+    gmmrrt_drive_options_default(&drive);
+    s->min_turn_radius_m = drive.min_turn_radius_m;
+    s->use_goal_yaw = 0;
+    s->face_target = 1;
+    s->yaw_tolerance_deg = drive.goal_yaw_tolerance_rad * 180.0 / M_PI;
+    s->arrival_leg_m = drive.arrival_leg_m;
     gmmrrt_planner_config_default(&s->cfg);
     snprintf(s->log_level, sizeof s->log_level, "info");
     s->log_interval_ms = 5000.0;
@@ -415,6 +453,11 @@ int gmmrrtd_settings_validate(const gmmrrtd_settings_t *s, char *err, size_t err
                     period_ms, s->rate_hz);
     if (s->budget_ms <= 0.0 && s->budget_iterations <= 0)
         return fail(err, errcap, "budget_ms and budget_iterations are both 0: a cycle would never end");
+    if (strcmp(s->trigger, "tick") && strcmp(s->trigger, "event"))
+        return fail(err, errcap, "trigger = \"%s\": expected tick or event", s->trigger);
+    if (s->model_approach[0] != '\0' && s->approach_set[0] != '\0')
+        return fail(err, errcap, "models: approach = %s and approach_set = %s exclude each other (one approach model "
+                    "or a set of 8)", s->model_approach, s->approach_set);
     char why[200];
     if (gmmrrt_planner_config_validate(&s->cfg, why, sizeof why) != GMMRRT_OK)
         return fail(err, errcap, "planner settings: %s", why);

@@ -30,9 +30,14 @@ typedef struct {
     /* [models] paths; "" = none (tasks that need it publish a stop) */
     char model_avoid[GMMRRTD_PATH_MAX];
     char model_approach[GMMRRTD_PATH_MAX];
+    char approach_set[GMMRRTD_PATH_MAX]; /* directory of 8 direction models (model_set.h); excludes model_approach */
     /* [timing] */
     double rate_hz;              /* cycles per second, (0, 1000] */
     double budget_ms;            /* planning time per cycle, >= 0, < period; 0 = no time limit */
+    char trigger[16];            /* "tick": cycles at rate_hz only; "event": also on new input (live clock) */
+    double min_period_ms;        /* event trigger: at least this long between cycle starts */
+    int32_t anytime_max_plans;   /* plans published per cycle at most, >= 1 (1: one at the end) */
+    double anytime_improvement;  /* a further plan of the cycle only when its cost fell by this fraction */
     int64_t budget_iterations;   /* samples per cycle, >= 0; 0 = no cap. Deterministic replays use this */
     double pose_timeout_ms;      /* > 0: no pose newer than this -> stop */
     int32_t unreachable_after_cycles; /* consecutive cycles without a path before the goal counts unreachable */
@@ -52,6 +57,15 @@ typedef struct {
     double warm_goal_shift_m;    /* goal moved less than this, same task and target */
     double warm_people_shift_m;  /* same tracked ids, each moved less than this */
     double warm_robot_offset_m;  /* robot within this of the last path */
+    /* [people]: walking people (rrtstar.h, "Walking people") */
+    double nominal_speed_m_s;    /* robot speed that times the path against walkers, (0, 10] */
+    double prediction_horizon_s; /* constant-velocity prediction horizon, (0, 60] */
+    /* [drive]: the published path (drivable.h) */
+    double min_turn_radius_m;    /* >= 0: smallest turning radius; 0 allows turning in place */
+    int32_t use_goal_yaw;        /* 1: arrive on nav_goal_t.yaw (avoid / none tasks; approach unless face_target) */
+    int32_t face_target;         /* 1: approach arrives facing the target person */
+    double yaw_tolerance_deg;    /* (0, 180]: arrival heading tolerance */
+    double arrival_leg_m;        /* > 0: shortest straight final leg on the arrival heading */
     /* [planner]: the core's configuration (config.h); memory fields fixed at start-up */
     gmmrrt_planner_config_t cfg;
     /* [log] */

@@ -35,6 +35,7 @@
 #define GMMRRT_ARC_CHORD_M 0.05
 #define GMMRRT_MIN_ARC_RADIUS_M 1e-3
 #define GMMRRT_STRAIGHT_RAD 1e-6
+#define GMMRRT_COLLINEAR_M 1e-6 /* a tree vertex this close to the chord over it is not a corner */
 #define MAXV GMMRRT_DRIVE_MAX_VERTICES
 
 void gmmrrt_drive_options_default(gmmrrt_drive_options_t *opt)
@@ -66,38 +67,62 @@ static int seg_free(const struct gmmrrt_planner *p, double x0, double y0, double
     return gmmrrt_planner_segment_free(p, x0, y0, x1, y1);
 }
 
+/* Appends (x, y, c) to the leaf-first list r[0..*m); `merge`: when the last vertex lies on the
+ * chord from the one before it to the new vertex (within GMMRRT_COLLINEAR_M) and that chord is
+ * free, the new vertex replaces it. RRT*'s rewiring strings runs of nearly collinear nodes along
+ * a straight stretch (each rewire saving only rounding), so a tree path can hold far more vertices
+ * than corners; dropping them keeps the polyline (and the cost of every kept vertex) as it was. */
+static int push_vertex(const struct gmmrrt_planner *p, polyline_t *r, int32_t *m, double x, double y, double c,
+                       int merge)
+{
+    if (merge && *m >= 2) {
+        const double ax = r->x[*m - 2], ay = r->y[*m - 2], bx = r->x[*m - 1], by = r->y[*m - 1];
+        const double len = hypot(x - ax, y - ay);
+        const double cross = fabs((x - ax) * (by - ay) - (y - ay) * (bx - ax));
+        const double off = len > 0.0 ? cross / len : hypot(bx - ax, by - ay);
+        const double along = (bx - ax) * (x - ax) + (by - ay) * (y - ay);
+        if (off <= GMMRRT_COLLINEAR_M && along >= 0.0 && along <= len * len && seg_free(p, ax, ay, x, y)) {
+            r->x[*m - 1] = x;
+            r->y[*m - 1] = y;
+            r->c[*m - 1] = c;
+            return 1;
+        }
+    }
+    if (*m >= MAXV - 2) /* two slots left for the arrival leg */
+        return 0;
+    r->x[*m] = x;
+    r->y[*m] = y;
+    r->c[*m] = c;
+    ++*m;
+    return 1;
+}
+
 static gmmrrt_status_t extract(const struct gmmrrt_planner *p, polyline_t *v, int32_t *first_free)
 {
     const int32_t leaf = p->goal_idx[p->best_goal];
-    int32_t depth = 1;
-    for (int32_t i = leaf; p->pool.link[i].parent >= 0; i = p->pool.link[i].parent)
-        ++depth;
     const int esc = p->escape.active;
     const gmmrrt_problem_t *pr = &p->problem;
     const int goal_is_leaf = hypot(pr->goal_x - p->pool.xy[leaf].x, pr->goal_y - p->pool.xy[leaf].y) <= 1e-9;
-    const int32_t n = depth + esc + (goal_is_leaf ? 0 : 1);
-    if (n > MAXV - 2) /* two slots left for the arrival leg */
+    /* Leaf first, then reversed: [escape start,] root (the first free vertex), ..., leaf[, goal]. */
+    int32_t m = 0;
+    if (!goal_is_leaf && !push_vertex(p, v, &m, pr->goal_x, pr->goal_y, p->best_cost, 0))
         return GMMRRT_ERR_BUFFER_TOO_SMALL;
-    v->n = n;
-    int32_t k = n - 1;
-    if (!goal_is_leaf) {
-        v->x[k] = pr->goal_x;
-        v->y[k] = pr->goal_y;
-        v->c[k] = p->best_cost;
-        --k;
+    for (int32_t i = leaf; i >= 0; i = p->pool.link[i].parent)
+        if (!push_vertex(p, v, &m, p->pool.xy[i].x, p->pool.xy[i].y, i == leaf && goal_is_leaf ? p->best_cost
+                                                                                             : p->pool.cost[i], 1))
+            return GMMRRT_ERR_BUFFER_TOO_SMALL;
+    if (esc && !push_vertex(p, v, &m, p->escape.start_x, p->escape.start_y, NAN, 0))
+        return GMMRRT_ERR_BUFFER_TOO_SMALL;
+    for (int32_t a = 0, b = m - 1; a < b; ++a, --b) {
+        const double tx = v->x[a], ty = v->y[a], tc = v->c[a];
+        v->x[a] = v->x[b];
+        v->y[a] = v->y[b];
+        v->c[a] = v->c[b];
+        v->x[b] = tx;
+        v->y[b] = ty;
+        v->c[b] = tc;
     }
-    for (int32_t i = leaf; i >= 0; i = p->pool.link[i].parent, --k) {
-        v->x[k] = p->pool.xy[i].x;
-        v->y[k] = p->pool.xy[i].y;
-        v->c[k] = p->pool.cost[i];
-    }
-    if (goal_is_leaf)
-        v->c[n - 1] = p->best_cost;
-    if (esc) {
-        v->x[0] = p->escape.start_x;
-        v->y[0] = p->escape.start_y;
-        v->c[0] = NAN;
-    }
+    v->n = m;
     *first_free = esc;
     return GMMRRT_OK;
 }

@@ -87,6 +87,8 @@ def lib() -> ctypes.CDLL:
         _lib.gmmrrt_model_decode.restype = ctypes.c_int
         _lib.gmmrrt_model_save_file.argtypes = [ctypes.c_char_p, ctypes.c_void_p, ctypes.c_char_p, ctypes.c_size_t]
         _lib.gmmrrt_model_save_file.restype = ctypes.c_int
+        _lib.gmmrrt_approach_direction_name.argtypes = [ctypes.c_int32]
+        _lib.gmmrrt_approach_direction_name.restype = ctypes.c_char_p
     return _lib
 
 
@@ -107,6 +109,15 @@ def _pair(fn, person: Tuple[float, float, float], a: float, b: float) -> Tuple[f
     out1, out2 = ctypes.c_double(), ctypes.c_double()
     fn(ctypes.byref(p), float(a), float(b), ctypes.byref(out1), ctypes.byref(out2))
     return out1.value, out2.value
+
+
+def approach_direction_name(direction: int) -> str:
+    """Name of approach direction 0..7 ("1-front" ... "8-45_left"), the file stem of a model set's
+    member (gmmrrt_approach_direction_name, model_set.h); ValueError outside 0..7."""
+    name = lib().gmmrrt_approach_direction_name(int(direction))
+    if name is None:
+        raise ValueError("approach direction %r is not in 0..7" % (direction,))
+    return name.decode()
 
 
 def wrap_angle(a: float) -> float:

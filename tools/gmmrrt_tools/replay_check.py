@@ -37,6 +37,17 @@ from gmmrrt_tools import core
 REASONS = {getattr(planner_status_t, n): n for n in dir(planner_status_t) if n.startswith("REJECT_")}
 # Rounding between this Python and the planner's C, m; not a safety margin (module comment).
 CLEARANCE_SLACK_M = 1e-6
+# waypoints_t.status of an escape: GMMRRT_ESCAPE of planner/include/gmmrrt/status.h, a wire-stable code.
+ESCAPE_STATUS = 43
+# How much an escape's sampled clearance may dip (the core keeps the exact clearance from falling
+# along its straight exit; samples of the smoothed path near the exit's end may differ by rounding).
+ESCAPE_SLACK_M = 1e-3
+# Walking people as gmmrrtd predicts them with its defaults: GMMRRT_STANDING_SPEED_M_S and
+# GMMRRT_DEFAULT_NOMINAL_SPEED_M_S / GMMRRT_DEFAULT_PREDICTION_HORIZON_S of rrtstar.h, which the
+# replays do not override.
+STANDING_SPEED_M_S = 0.2
+NOMINAL_SPEED_M_S = 0.5
+PREDICTION_HORIZON_S = 5.0
 LIVE_INPUTS = ("ROBOT_POSE", "PEOPLE", "NAV_GOAL", "OBSTACLES")
 
 
@@ -123,14 +134,31 @@ def _dist_point_box(px, py, b):
     return math.hypot(ex, ey)
 
 
-def plan_clearance(plan, obstacles, people, robot_radius, person_radius, step=0.02):
-    """Smallest clearance (m) of the robot disc along the plan: (static, people)."""
+def _person_gap(px, py, q, t):
+    """Centre distance from (px, py) to person q = (x, y, vx, vy) when the robot is there at t s: a
+    standing person where they are; a walker where constant velocity takes them (gmmrrtd plans
+    against that, rrtstar.h "Walking people"), not judged beyond the prediction horizon."""
+    qx, qy, vx, vy = q
+    if math.hypot(vx, vy) < STANDING_SPEED_M_S:
+        return math.hypot(px - qx, py - qy)
+    if t > PREDICTION_HORIZON_S:
+        return math.inf
+    return math.hypot(px - (qx + vx * t), py - (qy + vy * t))
+
+
+def plan_clearance(plan, obstacles, people, robot_radius, person_radius, step=0.02, escape=False):
+    """Smallest clearance (m) of the robot disc along the plan: (static, people).
+
+    An escape (waypoints_t.status == ESCAPE_STATUS: the robot starts inside a person's disc or an
+    inflated obstacle) is judged from where it is out: before that, the clearance may only grow
+    (a sample lower than the one before is returned as the worst, so it fails like a collision)."""
     circles = [(obstacles.circle_x[i], obstacles.circle_y[i], obstacles.circle_radius[i])
                for i in range(obstacles.num_circles)] if obstacles else []
     boxes = [(obstacles.box_x[i], obstacles.box_y[i], obstacles.box_width[i], obstacles.box_height[i],
               obstacles.box_yaw[i]) for i in range(obstacles.num_boxes)] if obstacles else []
-    persons = [(p.x, p.y) for p in people.people[:people.num_people]] if people else []
-    worst_static, worst_people = math.inf, math.inf
+    persons = [(p.x, p.y, p.vx, p.vy) for p in people.people[:people.num_people]] if people else []
+    samples = []
+    s_m = 0.0  # arc length of the sample along the plan
     n = plan.num_waypoints
     for i in range(max(n - 1, 1)):
         x0, y0 = plan.x[i], plan.y[i]
@@ -138,12 +166,25 @@ def plan_clearance(plan, obstacles, people, robot_radius, person_radius, step=0.
         k = max(1, int(math.ceil(math.hypot(x1 - x0, y1 - y0) / step)))
         for j in range(k + 1):
             px, py = x0 + (x1 - x0) * j / k, y0 + (y1 - y0) * j / k
-            for cx, cy, r in circles:
-                worst_static = min(worst_static, math.hypot(px - cx, py - cy) - r - robot_radius)
-            for b in boxes:
-                worst_static = min(worst_static, _dist_point_box(px, py, b) - robot_radius)
-            for qx, qy in persons:
-                worst_people = min(worst_people, math.hypot(px - qx, py - qy) - person_radius - robot_radius)
+            s_j = s_m + math.hypot(x1 - x0, y1 - y0) * j / k
+            cs = min([math.hypot(px - cx, py - cy) - r - robot_radius for cx, cy, r in circles] +
+                     [_dist_point_box(px, py, b) - robot_radius for b in boxes] + [math.inf])
+            cp = min([_person_gap(px, py, q, s_j / NOMINAL_SPEED_M_S) - person_radius - robot_radius
+                      for q in persons] + [math.inf])
+            samples.append((cs, cp))
+        s_m += math.hypot(x1 - x0, y1 - y0)
+    worst_static, worst_people = math.inf, math.inf
+    first = 0
+    if escape:
+        prev = -math.inf
+        while first < len(samples) and min(samples[first]) < 0.0:
+            c = min(samples[first])
+            if c < prev - ESCAPE_SLACK_M:  # the way out went deeper: report that depth
+                return (c, math.inf) if samples[first][0] <= samples[first][1] else (math.inf, c)
+            prev = max(prev, c)
+            first += 1
+    for cs, cp in samples[first:]:
+        worst_static, worst_people = min(worst_static, cs), min(worst_people, cp)
     return worst_static, worst_people
 
 
@@ -222,8 +263,9 @@ def check(in_log, out_log, rate_hz=10.0, robot_radius=0.3, person_radius=0.25, e
                 failures.append("plan seq %d ends %.3f m from the goal (%.2f, %.2f), tolerance %.2f"
                                 % (plan.seq, d, goal.x, goal.y, goal.tolerance_m))
         # The plan must be clear of the inputs it was made with: of one candidate each (one only, log).
-        cs = max(plan_clearance(plan, o, None, robot_radius, person_radius)[0] for o in obst_c)
-        cp = max(plan_clearance(plan, None, q, robot_radius, person_radius)[1] for q in ppl_c)
+        esc = plan.status == ESCAPE_STATUS
+        cs = max(plan_clearance(plan, o, None, robot_radius, person_radius, escape=esc)[0] for o in obst_c)
+        cp = max(plan_clearance(plan, None, q, robot_radius, person_radius, escape=esc)[1] for q in ppl_c)
         worst_static, worst_people = min(worst_static, cs), min(worst_people, cp)
         if cs < -static_slack:
             failures.append("plan seq %d goes %.4f m into an obstacle" % (plan.seq, -cs))

@@ -49,6 +49,22 @@ def write_models(out_dir):
     return paths
 
 
+def write_approach_set(out_dir):
+    """Writes an approach model set into out_dir (gmmrrtd's [models] approach_set, model_set.h):
+    one file per direction, named by the core, each with its mass 1.0 m away at its own bearing
+    (direction k at theta = -k * 45 degrees), so which member planned shows in the plan.
+    Returns the directory."""
+    from gmmrrt_tools import core
+    os.makedirs(out_dir, exist_ok=True)
+    for k in range(8):
+        theta = math.remainder(-k * math.pi / 4.0, 2.0 * math.pi)
+        path = os.path.join(out_dir, core.approach_direction_name(k) + ".gmm")
+        with open(path + ".tmp", "wb") as f:
+            f.write(encode_features_model(TASK_APPROACH, [(1.0, 1.0, theta, 0.25, 0.3)]))
+        os.replace(path + ".tmp", path)
+    return out_dir
+
+
 if __name__ == "__main__":
     if len(sys.argv) != 2 or sys.argv[1] in ("-h", "--help"):
         print(__doc__)

@@ -125,6 +125,8 @@ static void fill_status(gmmrrt_planner_status_t *m)
     m->missed_deadlines = 2;
     for (int i = 0; i < GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS; ++i)
         m->rejected[i] = 1000 + i;
+    m->escapes = 17;
+    m->approach_model = 4;
 }
 
 static void fill_demo(gmmrrt_demo_info_t *m)

@@ -5,6 +5,7 @@
  * chords checked with the collision world), the exact time along the path for walkers, and a
  * standing person given a sub-threshold velocity planned bit for bit as one without.
  */
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -133,6 +134,39 @@ static void test_zero_radius_turns_in_place(void **state)
     assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_OK);
     assert_true(rep.turns_in_place > 0);
     assert_true(rep.max_curvature == 0.0);
+    assert_chords_free(t.p, &path, 0);
+    test_planner_free(&t);
+}
+
+/* A tree path of far more vertices than GMMRRT_DRIVE_MAX_VERTICES, all but one of them on two
+ * straight legs (what rewiring along a straight stretch leaves, off the line by rounding only):
+ * the smoother takes it as the three-vertex polyline it is. */
+static void test_long_collinear_tree_path_is_taken(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = empty_problem(-5.0, 0.0, 5.0, 0.0);
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    enum { LEG = 400 };
+    static double x[2 * LEG + 1], y[2 * LEG + 1];
+    for (int i = 0; i <= 2 * LEG; ++i) {
+        const double f = (double)(i % LEG) / LEG;
+        const double jitter = (i % 2 ? 1e-9 : -1e-9); /* rounding-size offsets from the line */
+        x[i] = i < LEG ? -5.0 + 5.0 * f : (i == 2 * LEG ? 5.0 : 5.0 * f);
+        y[i] = (i < LEG ? 1.0 * f : (i == 2 * LEG ? 0.0 : 1.0 - f)) + (i % LEG ? jitter : 0.0);
+    }
+    assert_int_equal(gmmrrt_planner_seed_path(t.p, x, y, 2 * LEG + 1), GMMRRT_OK);
+    assert_true(gmmrrt_planner_node_count(t.p) > GMMRRT_DRIVE_MAX_VERTICES);
+    gmmrrt_drive_options_t opt;
+    gmmrrt_drive_options_default(&opt);
+    gmmrrt_path_t path;
+    gmmrrt_drive_report_t rep;
+    assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_OK);
+    assert_true(rep.vertices_in <= 4);
+    assert_true(path.num_points >= 2);
+    assert_true(fabs(path.x[path.num_points - 1] - 5.0) < 1e-6 && fabs(path.y[path.num_points - 1]) < 1e-6);
     assert_chords_free(t.p, &path, 0);
     test_planner_free(&t);
 }
@@ -420,6 +454,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_no_output_turn_exceeds_the_bound),
         cmocka_unit_test(test_zero_radius_turns_in_place),
+        cmocka_unit_test(test_long_collinear_tree_path_is_taken),
         cmocka_unit_test(test_approach_from_behind_arrives_facing),
         cmocka_unit_test(test_arrival_yaw_is_honoured_and_options_checked),
         cmocka_unit_test(test_person_stepping_into_the_disc_is_escaped),
