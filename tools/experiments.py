@@ -61,6 +61,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                     help="folder of the real episodes (default $GMMRRT_REAL_DATA or ../shared/data/real)")
     ap.add_argument("--split", default="test", help="real data: the split evaluated (default test)")
     ap.add_argument("--train-split", default="train", help="real data: the split models are learned on (default train)")
+    ap.add_argument("--drivable", action="store_true",
+                    help="score the drivable path gmmrrtd publishes instead of the tree's path (the paper's)")
     ap.add_argument("--real-sets", default="upo_avoid,ucy_avoid,ucy_approach",
                     help="real data: comma-separated studies of `real` (upo_avoid, ucy_avoid, ucy_approach)")
     args = ap.parse_args(argv)

@@ -71,6 +71,10 @@ class Settings:
     seed: int = 1
     jobs: int = 1
     quick: bool = False
+    # The paper scores the planner's trajectory: the tree's path (gmmrrt-plan --raw-path). With
+    # --drivable the studies score what gmmrrtd publishes instead (shortcuts, turning-radius arcs,
+    # the arrival heading; docs/planner.md), which moves some cells (docs/experiments.md).
+    drivable: bool = False
 
 
 QUICK = dict(trials=5, iterations=1500, gmm_rrt_iterations=1500, fig1_iterations=2000,
@@ -88,6 +92,7 @@ class Ctx:
             s.quick = True
         if getattr(args, "max_episodes", None) is not None:
             s.real_max_episodes = args.max_episodes
+        s.drivable = bool(getattr(args, "drivable", False))
         for k in ("trials", "iterations", "seed", "jobs"):
             v = getattr(args, k, None)
             if v is not None:
@@ -138,7 +143,8 @@ class Ctx:
              extra: Sequence[str] = ()) -> List[str]:
         return R.plan_argv(scene, planner, seed, model=str(model) if model else None,
                            iterations=iterations or self.s.iterations, budget_ms=self.s.budget_ms,
-                           bias=bias, robot_radius_m=ROBOT_RADIUS_M, extra=extra, bin_dir=self.bin_dir)
+                           bias=bias, robot_radius_m=ROBOT_RADIUS_M,
+                           extra=list(extra) + ([] if self.s.drivable else ["--raw-path"]), bin_dir=self.bin_dir)
 
     # ---------------------------------------------------------------- outputs
     def header(self, title: str, what: str) -> str:
