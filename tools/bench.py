@@ -205,11 +205,13 @@ def main(argv=None) -> int:
             res["ompl"]["figure_error"] = proc.stderr.strip()[-300:]
 
     def planners():
-        try:  # the social scene needs the avoid model; the geometric problems do not
-            avoid = get_models()["avoid"]
+        try:  # the social scenes need the models; the geometric problems and the map do not
+            m = get_models()
+            avoid, approach = m["avoid"], m["approach"]
         except (bp.BenchError, subprocess.SubprocessError, OSError):
-            avoid = None
-        return bp.run_all_planners(bin_dir, args.quick, raw / "all_planners.jsonl", avoid)
+            avoid = approach = None
+        return bp.run_all_planners(bin_dir, args.quick, raw / "all_planners.jsonl", avoid, approach,
+                                   ROOT / "logs" / "maps" / "floor.yaml", build / "bench-arena")
     section("planners", planners)
 
     def social():
