@@ -115,13 +115,14 @@ def _planner_targets_summary(res: dict, pl: dict) -> List[str]:
          "|---|---|---|---|---|---|"]
     for name, pr in sorted(probs.items()):
         ratio_ = pr.get("first_ratio")
-        met_at = [b for b, c in pr.get("cost", {}).items() if c.get("met")]
+        met_at = [b + " ms" + (" (neither has a path)" if c.get("ours") is None and c.get("best_ompl") is None else "")
+                  for b, c in pr.get("cost", {}).items() if c.get("met")]
         miss = [f"{b} ms ({fmt(c.get('ours'), 4) if c.get('ours') is not None else 'none'} vs {c.get('best_ompl_planner')} {fmt(c.get('best_ompl'), 4)})"
                 for b, c in pr.get("cost", {}).items() if not c.get("met")]
         L.append(f"| {name} | {fmt(pr.get('first_ms'), 3, ' ms')} / {pr.get('fastest_ompl')} "
                  f"{fmt(pr.get('fastest_ompl_first_ms'), 3, ' ms')} | {fmt(ratio_, 2, 'x')} | "
                  f"{'yes' if ratio_ is not None and ratio_ <= 0.5 else 'no'} | "
-                 f"{', '.join(b + ' ms' for b in met_at) or '-'} | {'; '.join(miss) or '-'} |")
+                 f"{', '.join(met_at) or '-'} | {'; '.join(miss) or '-'} |")
     # The other speed targets of the same set, measured by other sections (maybe in an earlier run).
     carried = res.get("carried_over") or {}
     others = []
