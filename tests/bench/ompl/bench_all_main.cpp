@@ -17,8 +17,9 @@
  * (problem.hpp: a person of radius 2 m at the origin facing the start, (-5, 0) -> (5, 0), cost
  * the integral of 1 + c(f) along the path, OMPL through GmmTaskCostObjective): every planner that
  * accepts that objective (those that throw are reported as such), ours as GMM-RRT* with uniform
- * sampling (bias 0), both sides' cost the same integral (ours by the midpoint rule at OMPL's
- * motion-check resolution, OMPL's by its trapezoid rule).
+ * sampling (bias 0). Both sides' cost is the same function of the path each returns: OMPL's
+ * objective (its trapezoid rule at its motion-check resolution) on OMPL's path and on ours (our
+ * planner searches with its own midpoint rule; recheck_our_path evaluates the returned path).
  *
  * With --approach-model FILE (a features approach model), also AP, the social approach scene of
  * gmmrrt-bench-social (bounds [-6,6] x [-5,5], a person at the origin facing +x, start (-4, 0.5)
@@ -337,6 +338,46 @@ static Run run_ompl(const Problem &p, const std::string &name, double budget_ms,
     return r;
 }
 
+/* Our returned path (gmmrrt_planner_best_path: the best tree path resampled at the waypoint
+ * spacing, start and goal included) re-checked exactly like OMPL's, segment by segment
+ * (path_cost_if_free): INFINITY when any segment is not free. Its cost: for path length the
+ * planner's own best cost (the tree path's length); for a task cost OMPL's objective
+ * (GmmTaskCostObjective, its trapezoid rule at its motion-check resolution) evaluated on this
+ * path, so that both sides' costs are the same function of the path each returns. Runs after
+ * the clocks stop. */
+static double recheck_our_path(const Problem &p, const gmmrrt_planner_t *pl, double best_cost)
+{
+    gmmrrt_path_t path;
+    if (gmmrrt_planner_best_path(pl, &path) != GMMRRT_OK)
+        return INFINITY;
+    std::vector<std::array<double, 2>> pts;
+    for (int32_t k = 0; k < path.num_points; ++k)
+        pts.push_back({path.x[k], path.y[k]});
+    if (!std::isfinite(path_cost_if_free(p, pts, p.gx, p.gy)))
+        return INFINITY;
+    if (!p.task_settings)
+        return best_cost;
+    auto space = std::make_shared<ob::RealVectorStateSpace>(2);
+    ob::RealVectorBounds bounds(2);
+    bounds.setLow(0, p.xmin);
+    bounds.setLow(1, p.ymin);
+    bounds.setHigh(0, p.xmax);
+    bounds.setHigh(1, p.ymax);
+    space->setBounds(bounds);
+    auto si = std::make_shared<ob::SpaceInformation>(space);
+    si->setStateValidityChecker(std::make_shared<ExactValidity>(si, p));
+    si->setup();
+    const ob::OptimizationObjectivePtr obj = gmmrrt_bench::make_objective(si, "task", p.task_settings);
+    og::PathGeometric g(si);
+    ob::ScopedState<> s(space);
+    for (const auto &q : pts) {
+        s[0] = q[0];
+        s[1] = q[1];
+        g.append(s.get());
+    }
+    return g.cost(obj).value();
+}
+
 static Run run_ours(const Problem &p, double budget_ms, uint64_t seed, std::vector<unsigned char> *block)
 {
     Run r;
@@ -387,23 +428,8 @@ static Run run_ours(const Problem &p, double budget_ms, uint64_t seed, std::vect
     r.solve_ms = ms_since(t_run);
     if (st.first_solution_ms >= 0.0)
         r.first_ms = r.setup_ms + st.first_solution_ms;
-    /* The tree's path, re-checked exactly like OMPL's. */
-    std::vector<std::array<double, 2>> pts;
-    if (std::isfinite(st.best_cost)) {
-        /* Walk from the node nearest the goal on the best path: best_path resamples, so use the
-         * tree's nodes: find the goal-reaching node whose cost + edge equals the best cost. */
-        gmmrrt_path_t path;
-        if (gmmrrt_planner_best_path(pl, &path) == GMMRRT_OK) {
-            r.cost = st.best_cost;
-            /* The resampled points lie on the tree's edges; the edges were checked by the
-             * planner's exact-where-needed test, re-checked here segment by segment. */
-            for (int32_t k = 0; k < path.num_points; ++k)
-                pts.push_back({path.x[k], path.y[k]});
-            for (size_t k = 0; k < pts.size(); ++k)
-                if (!point_free(p, pts[k][0], pts[k][1]))
-                    r.cost = INFINITY;
-        }
-    }
+    if (std::isfinite(st.best_cost))
+        r.cost = recheck_our_path(p, pl, st.best_cost);
     return r;
 }
 
@@ -449,7 +475,8 @@ static Run run_ours_task(const Problem &p, double budget_ms, uint64_t seed, std:
     r.solve_ms = ms_since(t_run);
     if (st.first_solution_ms >= 0.0)
         r.first_ms = r.setup_ms + st.first_solution_ms;
-    r.cost = st.best_cost;
+    if (std::isfinite(st.best_cost))
+        r.cost = recheck_our_path(p, pl, st.best_cost);
     return r;
 }
 

@@ -323,7 +323,10 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
               "the cost a run of budget t returns (median over trials, `none`: no exactly free path); first "
               "path = set-up + time to the first solution (OMPL's intermediate-solution callback, or the "
               "solve's duration when it stopped early; `-`: the planner reports neither). OMPL checks motions "
-              "exactly (circles, boxes, raster) like ours.", "",
+              "exactly (circles, boxes, raster) like ours, and every returned path of both sides is re-checked "
+              "segment by segment (ours: the best path as `gmmrrt_planner_best_path` returns it). In S and AP "
+              "both sides' cost is OMPL's objective (its trapezoid rule at its motion-check resolution) "
+              "evaluated on the path each side returns; our planner searches with its own midpoint rule.", "",
               pl.get("text", ""), ""]
         if pl.get("note"):
             L += [pl["note"], ""]
