@@ -24,6 +24,7 @@ import argparse  # noqa: E402
 import datetime  # noqa: E402
 import json  # noqa: E402
 import platform  # noqa: E402
+import shutil  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
 import tempfile  # noqa: E402
@@ -205,11 +206,22 @@ def main(argv=None) -> int:
             res["ompl"]["figure_error"] = proc.stderr.strip()[-300:]
 
     def planners():
-        try:  # the social scene needs the avoid model; the geometric problems do not
-            avoid = get_models()["avoid"]
+        try:  # the social scenes need the models; the geometric problems and the map do not
+            m = get_models()
+            avoid, approach = m["avoid"], m["approach"]
         except (bp.BenchError, subprocess.SubprocessError, OSError):
-            avoid = None
-        return bp.run_all_planners(bin_dir, args.quick, raw / "all_planners.jsonl", avoid)
+            avoid = approach = None
+        out = bp.run_all_planners(bin_dir, args.quick, raw / "all_planners.jsonl", avoid, approach,
+                                  ROOT / "logs" / "maps" / "floor.yaml", build / "bench-arena")
+        if not args.quick:  # one scene's Planner Arena logs kept as the committed example (a few KB)
+            example = ROOT / "bench" / "arena"
+            example.mkdir(exist_ok=True)
+            for old in example.glob("*.log"):
+                old.unlink()
+            for log in sorted((build / "bench-arena").glob("MAP_*.log")):
+                shutil.copyfile(log, example / log.name)
+            out["arena_example"] = "bench/arena/" + ", ".join(sorted(p.name for p in example.glob("*.log")))
+        return out
     section("planners", planners)
 
     def social():

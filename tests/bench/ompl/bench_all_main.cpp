@@ -17,11 +17,28 @@
  * (problem.hpp: a person of radius 2 m at the origin facing the start, (-5, 0) -> (5, 0), cost
  * the integral of 1 + c(f) along the path, OMPL through GmmTaskCostObjective): every planner that
  * accepts that objective (those that throw are reported as such), ours as GMM-RRT* with uniform
- * sampling (bias 0), both sides' cost the same integral (ours by the midpoint rule at OMPL's
- * motion-check resolution, OMPL's by its trapezoid rule).
+ * sampling (bias 0). Both sides' cost is the same function of the path each returns: OMPL's
+ * objective (its trapezoid rule at its motion-check resolution) on OMPL's path and on ours (our
+ * planner searches with its own midpoint rule; recheck_our_path evaluates the returned path).
+ *
+ * With --approach-model FILE (a features approach model), also AP, the social approach scene of
+ * gmmrrt-bench-social (bounds [-6,6] x [-5,5], a person at the origin facing +x, start (-4, 0.5)
+ * behind them, goal (1.2, 0) in front of them; the person a disc of 0.55 m = the default person
+ * radius 0.25 m plus robot radius 0.3 m around a point robot), task cost as S with the person as
+ * the target (GMMRRT_TASK_APPROACH), OMPL through the same GmmTaskCostObjective.
+ *
+ * With --map FILE.yaml (map_server format, docs/world.md), also MAP: the map's whole extent,
+ * start (-9, -2), goal (8, 4) (the floor plan of logs/maps/), a robot disc of 0.3 m, path length.
+ * Ours reads the map through its raster layer (the distance field, conservative by up to about a
+ * cell); OMPL gets raster_exact.hpp's exact disc-against-blocked-squares state and motion
+ * validators over the same raster, and every returned path of both sides is re-checked with
+ * them. The blocked cells mean the same on both sides; OMPL's free space is the larger one.
+ *
+ * With --arena DIR, one ompl::tools::Benchmark-format log per problem and budget,
+ * DIR/<problem>_<budget>ms.log (arena_log.hpp), for Planner Arena.
  *
  * Usage: gmmrrt-bench-all --problems DIR [--trials N] [--budgets 1,10,100,1000] [--json FILE]
- *        [--model FILE]
+ *        [--model FILE] [--approach-model FILE] [--map FILE.yaml] [--arena DIR]
  * Prints a markdown table per problem (medians over trials).
  */
 #include <algorithm>
@@ -57,10 +74,14 @@
 #include <ompl/geometric/planners/rrt/SORRTstar.h>
 #include <ompl/util/Console.h>
 
+#include "arena_log.hpp"
+#include "gmmrrt/map_file.h"
+#include "gmmrrt/raster.h"
 #include "gmmrrt/rrtstar.h"
 #include "gmmrrt_runner.hpp"
 #include "ompl_runner.hpp"
 #include "problem.hpp"
+#include "raster_exact.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -76,6 +97,13 @@ struct Problem {
     double xmin = 0, ymin = 0, xmax = 0, ymax = 0, sx = 0, sy = 0, gx = 0, gy = 0;
     std::vector<std::array<double, 3>> circles;
     std::vector<std::array<double, 5>> boxes; /* cx, cy, w, h, yaw */
+    /* The map scene: a raster whose blocked cells hold a robot disc of robot_radius off. */
+    const gmmrrt_raster_t *raster = nullptr;
+    double robot_radius = 0.0;
+    /* The social scenes: the task (AVOID, APPROACH with person 0 the target) and its settings;
+     * the person is also circles[0] (its disc around a point robot). */
+    gmmrrt_task_t task = GMMRRT_TASK_NONE;
+    const gmmrrt_bench::TaskSettings *task_settings = nullptr;
 };
 
 static bool read_problem(const std::string &path, Problem *p)
@@ -112,6 +140,8 @@ static bool read_problem(const std::string &path, Problem *p)
 /* Exact geometry of a point robot among closed circles and boxes. */
 static bool point_free(const Problem &p, double x, double y)
 {
+    if (p.raster && !gmmrrt_bench::raster_disc_free(*p.raster, p.robot_radius, x, y))
+        return false;
     for (const auto &c : p.circles)
         if ((x - c[0]) * (x - c[0]) + (y - c[1]) * (y - c[1]) <= c[2] * c[2])
             return false;
@@ -125,6 +155,8 @@ static bool point_free(const Problem &p, double x, double y)
 
 static bool segment_free(const Problem &p, double x0, double y0, double x1, double y1)
 {
+    if (p.raster && !gmmrrt_bench::raster_motion_free(*p.raster, p.robot_radius, x0, y0, x1, y1))
+        return false;
     const double vx = x1 - x0, vy = y1 - y0, l2 = vx * vx + vy * vy;
     for (const auto &c : p.circles) {
         double t = l2 > 0 ? ((c[0] - x0) * vx + (c[1] - y0) * vy) / l2 : 0.0;
@@ -214,7 +246,7 @@ private:
 };
 
 struct Run {
-    double setup_ms = 0, first_ms = NAN, cost = INFINITY;
+    double setup_ms = 0, first_ms = NAN, solve_ms = NAN, cost = INFINITY;
 };
 
 static std::shared_ptr<ob::Planner> make_planner(const std::string &name, const ob::SpaceInformationPtr &si)
@@ -287,6 +319,7 @@ static Run run_ompl(const Problem &p, const std::string &name, double budget_ms,
     t0 = Clock::now();
     const ob::PlannerStatus st = planner->solve(ob::timedPlannerTerminationCondition(budget_ms / 1000.0));
     const double solve_ms = ms_since(t0);
+    r.solve_ms = solve_ms;
     if (st == ob::PlannerStatus::EXACT_SOLUTION && pdef->getSolutionPath()) {
         auto *path = pdef->getSolutionPath()->as<og::PathGeometric>();
         std::vector<std::array<double, 2>> pts;
@@ -305,6 +338,46 @@ static Run run_ompl(const Problem &p, const std::string &name, double budget_ms,
     return r;
 }
 
+/* Our returned path (gmmrrt_planner_best_path: the best tree path resampled at the waypoint
+ * spacing, start and goal included) re-checked exactly like OMPL's, segment by segment
+ * (path_cost_if_free): INFINITY when any segment is not free. Its cost: for path length the
+ * planner's own best cost (the tree path's length); for a task cost OMPL's objective
+ * (GmmTaskCostObjective, its trapezoid rule at its motion-check resolution) evaluated on this
+ * path, so that both sides' costs are the same function of the path each returns. Runs after
+ * the clocks stop. */
+static double recheck_our_path(const Problem &p, const gmmrrt_planner_t *pl, double best_cost)
+{
+    gmmrrt_path_t path;
+    if (gmmrrt_planner_best_path(pl, &path) != GMMRRT_OK)
+        return INFINITY;
+    std::vector<std::array<double, 2>> pts;
+    for (int32_t k = 0; k < path.num_points; ++k)
+        pts.push_back({path.x[k], path.y[k]});
+    if (!std::isfinite(path_cost_if_free(p, pts, p.gx, p.gy)))
+        return INFINITY;
+    if (!p.task_settings)
+        return best_cost;
+    auto space = std::make_shared<ob::RealVectorStateSpace>(2);
+    ob::RealVectorBounds bounds(2);
+    bounds.setLow(0, p.xmin);
+    bounds.setLow(1, p.ymin);
+    bounds.setHigh(0, p.xmax);
+    bounds.setHigh(1, p.ymax);
+    space->setBounds(bounds);
+    auto si = std::make_shared<ob::SpaceInformation>(space);
+    si->setStateValidityChecker(std::make_shared<ExactValidity>(si, p));
+    si->setup();
+    const ob::OptimizationObjectivePtr obj = gmmrrt_bench::make_objective(si, "task", p.task_settings);
+    og::PathGeometric g(si);
+    ob::ScopedState<> s(space);
+    for (const auto &q : pts) {
+        s[0] = q[0];
+        s[1] = q[1];
+        g.append(s.get());
+    }
+    return g.cost(obj).value();
+}
+
 static Run run_ours(const Problem &p, double budget_ms, uint64_t seed, std::vector<unsigned char> *block)
 {
     Run r;
@@ -312,7 +385,7 @@ static Run run_ours(const Problem &p, double budget_ms, uint64_t seed, std::vect
     gmmrrt_planner_config_default(&cfg);
     cfg.planner = GMMRRT_PLANNER_RRT_STAR;
     cfg.seed = seed;
-    cfg.robot_radius_m = 0.0;
+    cfg.robot_radius_m = p.robot_radius;
     cfg.history_capacity = 1 << 16;
     /* OMPL RRTstar's defaults on this space (as gmmrrt-bench-ompl, problem.hpp): range and
      * motion-check resolution from the space's extent, goal bias 0.05, uniform sampling. */
@@ -321,6 +394,10 @@ static Run run_ours(const Problem &p, double budget_ms, uint64_t seed, std::vect
     cfg.edge_resolution_m = 0.01 * extent;
     cfg.goal_bias = 0.05;
     cfg.gmm_bias = 0.0;
+    /* The clearance grid must cover the whole bounds at its resolution. */
+    const double cells = (std::ceil((p.xmax - p.xmin) / cfg.grid_resolution_m) + 2.0) *
+                         (std::ceil((p.ymax - p.ymin) / cfg.grid_resolution_m) + 2.0);
+    cfg.grid_max_cells = std::max(cfg.grid_max_cells, static_cast<int32_t>(cells));
     const size_t size = gmmrrt_planner_mem_size(&cfg);
     if (block->size() < size + 8)
         block->assign(size + 8, 0); /* allocated once, outside the clocks */
@@ -338,6 +415,7 @@ static Run run_ours(const Problem &p, double budget_ms, uint64_t seed, std::vect
         pr.obstacles.circles[pr.obstacles.num_circles++] = {c[0], c[1], c[2]};
     for (const auto &b : p.boxes)
         pr.obstacles.boxes[pr.obstacles.num_boxes++] = {b[0], b[1], b[2], b[3], b[4]};
+    pr.obstacles.raster = p.raster;
     const Clock::time_point t_setup = Clock::now();
     gmmrrt_planner_t *pl = nullptr;
     if (gmmrrt_planner_init(&pl, mem, size, &cfg) != GMMRRT_OK || gmmrrt_planner_set_problem(pl, &pr) != GMMRRT_OK)
@@ -345,39 +423,46 @@ static Run run_ours(const Problem &p, double budget_ms, uint64_t seed, std::vect
     r.setup_ms = ms_since(t_setup);
     gmmrrt_budget_t budget{budget_ms, 0, 0.0, 0};
     gmmrrt_plan_stats_t st;
+    const Clock::time_point t_run = Clock::now();
     gmmrrt_planner_run(pl, &budget, &st);
+    r.solve_ms = ms_since(t_run);
     if (st.first_solution_ms >= 0.0)
         r.first_ms = r.setup_ms + st.first_solution_ms;
-    /* The tree's path, re-checked exactly like OMPL's. */
-    std::vector<std::array<double, 2>> pts;
-    if (std::isfinite(st.best_cost)) {
-        /* Walk from the node nearest the goal on the best path: best_path resamples, so use the
-         * tree's nodes: find the goal-reaching node whose cost + edge equals the best cost. */
-        gmmrrt_path_t path;
-        if (gmmrrt_planner_best_path(pl, &path) == GMMRRT_OK) {
-            r.cost = st.best_cost;
-            /* The resampled points lie on the tree's edges; the edges were checked by the
-             * planner's exact-where-needed test, re-checked here segment by segment. */
-            for (int32_t k = 0; k < path.num_points; ++k)
-                pts.push_back({path.x[k], path.y[k]});
-            for (size_t k = 0; k < pts.size(); ++k)
-                if (!point_free(p, pts[k][0], pts[k][1]))
-                    r.cost = INFINITY;
-        }
-    }
+    if (std::isfinite(st.best_cost))
+        r.cost = recheck_our_path(p, pl, st.best_cost);
     return r;
 }
 
-static Run run_ours_task(const gmmrrt_bench::TaskSettings &task, double budget_ms, uint64_t seed,
-                         std::vector<unsigned char> *block)
+/* GMM-RRT* with uniform sampling on a social scene (S or AP): gmmrrt_bench_config's settings
+ * (OMPL RRTstar's defaults, problem.hpp) taken from this scene's bounds, the person a disc of the
+ * scene's circle radius. For S this is exactly gmmrrt_bench_config / gmmrrt_bench_problem. */
+static Run run_ours_task(const Problem &p, double budget_ms, uint64_t seed, std::vector<unsigned char> *block)
 {
     Run r;
-    const gmmrrt_planner_config_t cfg = gmmrrt_bench::gmmrrt_bench_config("task", &task, 2000000, seed);
+    const gmmrrt_bench::TaskSettings &task = *p.task_settings;
+    gmmrrt_planner_config_t cfg = gmmrrt_bench::gmmrrt_bench_config("task", &task, 2000000, seed);
+    const double extent = std::hypot(p.xmax - p.xmin, p.ymax - p.ymin);
+    cfg.step_m = 0.2 * extent;
+    cfg.edge_resolution_m = 0.01 * extent;
+    cfg.rewire_gamma = 1.1 * 2.0 * std::sqrt(1.5) * std::sqrt((p.xmax - p.xmin) * (p.ymax - p.ymin) / M_PI);
+    cfg.person_influence_m = 2.0 * extent;
+    cfg.person_radius_m = p.circles.at(0)[2];
     const size_t size = gmmrrt_planner_mem_size(&cfg);
     if (block->size() < size + 8)
         block->assign(size + 8, 0);
     void *mem = reinterpret_cast<void *>((reinterpret_cast<uintptr_t>(block->data()) + 7u) & ~uintptr_t(7));
-    const gmmrrt_problem_t pr = gmmrrt_bench::gmmrrt_bench_problem("task", &task);
+    gmmrrt_problem_t pr{};
+    pr.start_x = p.sx;
+    pr.start_y = p.sy;
+    pr.goal_x = p.gx;
+    pr.goal_y = p.gy;
+    pr.goal_tolerance_m = gmmrrt_bench::kGoalTolerance;
+    pr.task = p.task;
+    pr.target_person = p.task == GMMRRT_TASK_APPROACH ? 0 : -1;
+    pr.model = task.model;
+    pr.obstacles.bounds = {p.xmin, p.ymin, p.xmax, p.ymax};
+    pr.obstacles.num_people = 1;
+    pr.obstacles.people[0] = task.person;
     const Clock::time_point t_setup = Clock::now();
     gmmrrt_planner_t *pl = nullptr;
     if (gmmrrt_planner_init(&pl, mem, size, &cfg) != GMMRRT_OK || gmmrrt_planner_set_problem(pl, &pr) != GMMRRT_OK)
@@ -385,10 +470,13 @@ static Run run_ours_task(const gmmrrt_bench::TaskSettings &task, double budget_m
     r.setup_ms = ms_since(t_setup);
     gmmrrt_budget_t budget{budget_ms, 0, 0.0, 0};
     gmmrrt_plan_stats_t st;
+    const Clock::time_point t_run = Clock::now();
     gmmrrt_planner_run(pl, &budget, &st);
+    r.solve_ms = ms_since(t_run);
     if (st.first_solution_ms >= 0.0)
         r.first_ms = r.setup_ms + st.first_solution_ms;
-    r.cost = st.best_cost;
+    if (std::isfinite(st.best_cost))
+        r.cost = recheck_our_path(p, pl, st.best_cost);
     return r;
 }
 
@@ -414,7 +502,7 @@ static std::string fmt(double v, const char *f = "%.3f")
 
 int main(int argc, char **argv)
 {
-    std::string dir = "tests/data/bench_problems", json, model_path;
+    std::string dir = "tests/data/bench_problems", json, model_path, approach_path, map_path, arena_dir;
     int trials = 3;
     std::vector<double> budgets = {1, 10, 100, 1000};
     std::vector<std::string> only;
@@ -436,9 +524,16 @@ int main(int argc, char **argv)
             json = argv[++i];
         else if (a == "--model" && i + 1 < argc)
             model_path = argv[++i];
+        else if (a == "--approach-model" && i + 1 < argc)
+            approach_path = argv[++i];
+        else if (a == "--map" && i + 1 < argc)
+            map_path = argv[++i];
+        else if (a == "--arena" && i + 1 < argc)
+            arena_dir = argv[++i];
         else {
             std::fprintf(stderr, "usage: gmmrrt-bench-all [--problems DIR] [--trials N] [--budgets 1,10,100,1000] "
-                                 "[--only PROBLEM] [--json FILE] [--model FILE]\n");
+                                 "[--only PROBLEM] [--json FILE] [--model FILE] [--approach-model FILE] "
+                                 "[--map FILE.yaml] [--arena DIR]\n");
             return 2;
         }
     }
@@ -462,13 +557,68 @@ int main(int argc, char **argv)
         }
         task.model = &model;
     }
+    static gmmrrt_model_t approach_model;
+    gmmrrt_bench::TaskSettings approach;
+    approach.person = {0.0, 0.0, 0.0}; /* facing +x; the robot comes from behind */
+    if (!approach_path.empty()) {
+        std::string err;
+        if (!gmmrrt_bench::load_model_file(approach_path, &approach_model, &err)) {
+            std::fprintf(stderr, "gmmrrt-bench-all: --approach-model: %s\n", err.c_str());
+            return 1;
+        }
+        approach.model = &approach_model;
+    }
+    /* The map: at most 2^20 cells (9 MiB of raster); a larger one is refused with its sizes. */
+    static gmmrrt_raster_t raster;
+    std::vector<unsigned char> raster_mem;
+    if (!map_path.empty()) {
+        const int32_t max_cells = 1 << 20, max_side = 4096;
+        raster_mem.assign(gmmrrt_raster_mem_size(max_cells, max_side) + 8, 0);
+        void *mem = reinterpret_cast<void *>((reinterpret_cast<uintptr_t>(raster_mem.data()) + 7u) & ~uintptr_t(7));
+        char err[512] = "";
+        if (gmmrrt_raster_init(&raster, mem, raster_mem.size() - 8, max_cells, max_side) != GMMRRT_OK ||
+            gmmrrt_map_load_file(map_path.c_str(), 1, &raster, err, sizeof err) != GMMRRT_OK) {
+            std::fprintf(stderr, "gmmrrt-bench-all: --map: %s\n", err[0] ? err : "cannot set up the raster");
+            return 1;
+        }
+        if (raster.origin_yaw != 0.0) {
+            std::fprintf(stderr, "gmmrrt-bench-all: --map %s: the scene's bounds are the map's extent, which needs "
+                                 "origin yaw 0 (it is %g)\n", map_path.c_str(), raster.origin_yaw);
+            return 1;
+        }
+    }
     std::vector<std::string> files = {"problem_A.txt", "problem_B.txt", "problem_C.txt"};
     if (task.model)
         files.push_back("social");
+    if (approach.model)
+        files.push_back("approach");
+    if (!map_path.empty())
+        files.push_back("map");
+    const unsigned first_seed = 1;
     for (const std::string &file : files) {
         Problem p;
-        const bool social = file == "social";
-        if (social) {
+        const bool social = file == "social" || file == "approach";
+        if (file == "approach") {
+            p.name = "AP";
+            p.xmin = -6.0, p.ymin = -5.0, p.xmax = 6.0, p.ymax = 5.0;
+            p.sx = -4.0, p.sy = 0.5, p.gx = 1.2, p.gy = 0.0;
+            p.circles.push_back({0.0, 0.0, 0.25 + 0.3});
+            p.task = GMMRRT_TASK_APPROACH;
+            p.task_settings = &approach;
+        } else if (file == "map") {
+            p.name = "MAP";
+            p.raster = &raster;
+            p.robot_radius = 0.3;
+            p.xmin = raster.origin_x, p.ymin = raster.origin_y;
+            p.xmax = raster.origin_x + raster.width * raster.resolution_m;
+            p.ymax = raster.origin_y + raster.height * raster.resolution_m;
+            p.sx = -9.0, p.sy = -2.0, p.gx = 8.0, p.gy = 4.0;
+            if (!point_free(p, p.sx, p.sy) || !point_free(p, p.gx, p.gy)) {
+                std::fprintf(stderr, "gmmrrt-bench-all: --map %s: start (-9, -2) or goal (8, 4) is not free for a "
+                                     "0.3 m disc\n", map_path.c_str());
+                return 1;
+            }
+        } else if (social) {
             p.name = "S";
             p.xmin = p.ymin = gmmrrt_bench::kBoundLo;
             p.xmax = p.ymax = gmmrrt_bench::kBoundHi;
@@ -477,6 +627,8 @@ int main(int argc, char **argv)
             p.gx = gmmrrt_bench::kGoalX;
             p.gy = gmmrrt_bench::kGoalY;
             p.circles.push_back({0.0, 0.0, gmmrrt_bench::kDiscRadius});
+            p.task = GMMRRT_TASK_AVOID;
+            p.task_settings = &task;
         } else if (!read_problem(dir + "/" + file, &p)) {
             std::fprintf(stderr, "gmmrrt-bench-all: cannot read %s/%s\n", dir.c_str(), file.c_str());
             return 1;
@@ -484,23 +636,30 @@ int main(int argc, char **argv)
         if (!only.empty() && std::find(only.begin(), only.end(), p.name) == only.end())
             continue;
         std::printf("\n### Problem %s (%s, %d trials)\n\n| planner | set-up ms | first path incl. set-up ms |", p.name.c_str(),
-                    social ? "social avoid, task cost" : file.c_str(), trials);
+                    file == "social" ? "social avoid, task cost"
+                    : file == "approach" ? "social approach, task cost"
+                    : file == "map" ? "floor plan, robot radius 0.3 m, path length" : file.c_str(),
+                    trials);
         for (double b : budgets)
             std::printf(" cost @ %g ms |", b);
         std::printf("\n|---|---|---|");
         for (size_t k = 0; k < budgets.size(); ++k)
             std::printf("---|");
         std::printf("\n");
+        const Clock::time_point t_problem = Clock::now();
+        std::vector<std::vector<gmmrrt_bench::ArenaPlanner>> arena(budgets.size());
         for (const std::string &name : planners) {
+            for (auto &per_budget : arena)
+                per_budget.push_back({name, {}});
             std::vector<double> setup, first;
             std::vector<std::vector<double>> cost(budgets.size());
             for (int t = 0; t < trials; ++t)
                 for (size_t k = 0; k < budgets.size(); ++k) {
                     Run r;
                     try {
-                        r = name == "gmmrrt" ? (social ? run_ours_task(task, budgets[k], 1 + (uint64_t)t, &block)
-                                                       : run_ours(p, budgets[k], 1 + (uint64_t)t, &block))
-                                             : run_ompl(p, name, budgets[k], social ? &task : nullptr);
+                        r = name == "gmmrrt" ? (social ? run_ours_task(p, budgets[k], first_seed + (uint64_t)t, &block)
+                                                       : run_ours(p, budgets[k], first_seed + (uint64_t)t, &block))
+                                             : run_ompl(p, name, budgets[k], p.task_settings);
                     } catch (const std::exception &e) { /* a planner that refuses the objective */
                         r = Run{};
                         r.setup_ms = NAN;
@@ -511,6 +670,7 @@ int main(int argc, char **argv)
                     setup.push_back(r.setup_ms);
                     first.push_back(r.first_ms); /* every run times its first solution */
                     cost[k].push_back(r.cost);
+                    arena[k].back().runs.push_back({r.setup_ms, r.first_ms, r.solve_ms, r.cost});
                     if (jf)
                         std::fprintf(jf,
                                      "{\"problem\": \"%s\", \"planner\": \"%s\", \"trial\": %d, \"budget_ms\": %g, "
@@ -525,6 +685,25 @@ int main(int argc, char **argv)
                 std::printf(" %s |", fmt(median(cost[k]), "%.4f").c_str());
             std::printf("\n");
             std::fflush(stdout);
+        }
+        if (!arena_dir.empty()) {
+            const double seconds = ms_since(t_problem) / 1000.0;
+            std::string setup = "gmmrrt-bench-all problem " + p.name + " (" + file + "): bounds [" +
+                                fmt(p.xmin, "%g") + ", " + fmt(p.xmax, "%g") + "] x [" + fmt(p.ymin, "%g") + ", " +
+                                fmt(p.ymax, "%g") + "], start (" + fmt(p.sx, "%g") + ", " + fmt(p.sy, "%g") +
+                                "), goal (" + fmt(p.gx, "%g") + ", " + fmt(p.gy, "%g") + "); " +
+                                (social ? "task cost" : "path length") +
+                                "; one fresh planner per run, set-up counted, motions checked exactly on both "
+                                "sides; the budgets' runs are interleaved, so 'seconds spent' covers all budgets";
+            for (size_t k = 0; k < budgets.size(); ++k) {
+                std::string err;
+                const std::string path = arena_dir + "/" + p.name + "_" + fmt(budgets[k], "%g") + "ms.log";
+                if (!gmmrrt_bench::write_arena_log(path, p.name + "_" + fmt(budgets[k], "%g") + "ms",
+                                                   setup, budgets[k], first_seed, seconds, arena[k], &err)) {
+                    std::fprintf(stderr, "gmmrrt-bench-all: %s\n", err.c_str());
+                    return 1;
+                }
+            }
         }
     }
     if (jf)

@@ -266,25 +266,40 @@ def find_executable(build_dir: Path, name: str) -> Optional[Path]:
 ALL_PLANNERS_BUDGETS_MS = (1.0, 10.0, 100.0, 1000.0)
 
 
-def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optional[str] = None) -> dict:
+def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optional[str] = None,
+                     approach_model: Optional[str] = None, map_yaml: Optional[Path] = None,
+                     arena_dir: Optional[Path] = None) -> dict:
     """gmmrrt-bench-all: our RRT* and every OMPL planner of the comparison on the problems of
     tests/data/bench_problems (path length, point robot), exact motion checks and set-up counted on
     both sides. Targets: our first path (set-up included) <= 0.5x the fastest OMPL planner's, and our
     best cost at each moment <= the best OMPL planner's (medians over trials). With avoid_model, also
-    the social avoid scene (problem "S", task cost) of gmmrrt-bench-ompl."""
+    the social avoid scene (problem "S", task cost) of gmmrrt-bench-ompl; with approach_model, the
+    social approach scene ("AP"); with map_yaml, the floor-plan scene ("MAP", robot radius 0.3 m).
+    With arena_dir, the Planner Arena logs (one per problem and budget) go there; each is read back
+    and its runs counted against the JSON records, so a log Planner Arena would misread fails here."""
     exe = bin_dir / "gmmrrt-bench-all"
     if not exe.is_file():
         raise BenchError(f"{exe} not built (OMPL missing?)")
-    root = Path(__file__).resolve().parent.parent
+    root = Path(__file__).resolve().parents[3]  # the repository (this file is tools/gmmrrt_tools/bench/)
     budgets = ALL_PLANNERS_BUDGETS_MS[:3] if quick else ALL_PLANNERS_BUDGETS_MS
     trials = 1 if quick else 3
     cmd = [str(exe), "--problems", str(root / "tests" / "data" / "bench_problems"), "--trials", str(trials),
            "--budgets", ",".join("%g" % b for b in budgets), "--json", str(raw)]
     if avoid_model:
         cmd += ["--model", str(avoid_model)]
+    if approach_model:
+        cmd += ["--approach-model", str(approach_model)]
+    if map_yaml:
+        cmd += ["--map", str(map_yaml)]
+    if arena_dir:
+        arena_dir.mkdir(parents=True, exist_ok=True)
+        for old in arena_dir.glob("*.log"):
+            old.unlink()
+        cmd += ["--arena", str(arena_dir)]
     t0 = time.time()
     text = _run(cmd, 3600)
     recs = [json.loads(line) for line in raw.read_text().splitlines() if line.strip()]
+    arena = check_arena_logs(arena_dir, recs) if arena_dir else None
     problems: Dict[str, dict] = {}
     for name in sorted({r["problem"] for r in recs}):
         rs = [r for r in recs if r["problem"] == name]
@@ -307,6 +322,67 @@ def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optiona
         problems[name] = out
     shown = [str(exe.relative_to(root)) if root in exe.parents else str(exe), "--problems",
              "tests/data/bench_problems"] + cmd[3:7] + ["--json", raw.name] + (
-                 ["--model", Path(avoid_model).name] if avoid_model else [])
-    return {"command": " ".join(shown),
-            "seconds": round(time.time() - t0, 1), "text": text.strip(), "problems": problems, "trials": trials}
+                 ["--model", Path(avoid_model).name] if avoid_model else []) + (
+                 ["--approach-model", Path(approach_model).name] if approach_model else []) + (
+                 ["--map", "logs/maps/" + Path(map_yaml).name] if map_yaml else []) + (
+                 ["--arena", "build/" + arena_dir.name] if arena_dir else [])
+    out = {"command": " ".join(shown),
+           "seconds": round(time.time() - t0, 1), "text": text.strip(), "problems": problems, "trials": trials}
+    if arena is not None:
+        out["arena_logs"] = arena
+    return out
+
+
+def check_arena_logs(arena_dir: Path, recs: List[dict]) -> List[dict]:
+    """Reads every Planner Arena log gmmrrt-bench-all wrote (the header lines and run tables that
+    ompl_benchmark_statistics.py reads, in its order) and checks that each (problem, budget) log
+    holds, per planner, as many runs and solved runs as the JSON records. Returns one entry per log
+    (name, bytes, planners, runs); BenchError on a mismatch or a malformed log."""
+    out = []
+    for path in sorted(arena_dir.glob("*.log")):
+        lines = path.read_text().splitlines()
+        pos = 0
+
+        def take() -> str:
+            nonlocal pos
+            if pos >= len(lines):
+                raise BenchError(f"{path}: ends early (line {pos + 1})")
+            pos += 1
+            return lines[pos - 1]
+        if not take().startswith("OMPL version ") or not take().startswith("Experiment "):
+            raise BenchError(f"{path}: not an OMPL benchmark log")
+        for _ in range(int(take().split()[0])):  # experiment properties
+            take()
+        take(), take()  # Running on, Starting at
+        for _ in range(2):  # set-up and CPU blocks
+            if take() != "<<<|":
+                raise BenchError(f"{path}:{pos}: expected '<<<|'")
+            while take() != "|>>>":
+                pass
+        seed, _limit, _mem, _runs, _total = (take().split()[0] for _ in range(5))
+        for _ in range(int(take().split()[0])):  # enums
+            take()
+        problem, budget = path.stem.rsplit("_", 1)
+        budget_ms = float(budget[:-2])
+        planners = {}
+        for _ in range(int(take().split()[0])):
+            name = take().removeprefix("geometric_")
+            for _ in range(int(take().split()[0])):  # common properties
+                take()
+            props = [" ".join(take().split()[:-1]) for _ in range(int(take().split()[0]))]
+            runs = [take().split("; ")[:-1] for _ in range(int(take().split()[0]))]
+            if take() != ".":
+                raise BenchError(f"{path}:{pos}: expected '.' after planner {name}")
+            if any(len(r) != len(props) for r in runs):
+                raise BenchError(f"{path}: planner {name}: a run with other than {len(props)} values")
+            solved = sum(1 for r in runs if r[props.index("solved")] == "1")
+            want = [r for r in recs if r["problem"] == problem and r["planner"] == name and r["budget_ms"] == budget_ms]
+            if len(runs) != len(want) or solved != sum(1 for r in want if r["cost"] is not None):
+                raise BenchError(f"{path}: planner {name}: {len(runs)} runs ({solved} solved), the JSON records "
+                                 f"{len(want)} ({sum(1 for r in want if r['cost'] is not None)} solved)")
+            planners[name] = len(runs)
+        out.append({"log": path.name, "bytes": path.stat().st_size, "planners": len(planners),
+                    "runs": sum(planners.values()), "seed": int(seed)})
+    if not out:
+        raise BenchError(f"{arena_dir}: gmmrrt-bench-all wrote no Planner Arena log")
+    return out

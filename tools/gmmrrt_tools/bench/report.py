@@ -103,6 +103,43 @@ def _within_text(s: dict) -> str:
     return fmt(v, 1, " ms")
 
 
+def _planner_targets_summary(res: dict, pl: dict) -> List[str]:
+    """Where the all-planner comparison's targets stand, scene by scene, with the run's load."""
+    probs = pl.get("problems") or {}
+    if not probs:
+        return []
+    load = f"load {res.get('load_before')} before, {res.get('load_after')} after, on {_get(res, 'host', 'nproc')} cores"
+    L = [f"**Targets, scene by scene** (medians of {pl.get('trials')} trials; {load}): first path including "
+         "set-up <= 0.5x the fastest OMPL planner's, and best cost at every budget <= the best OMPL planner's.", "",
+         "| problem | first path: ours / fastest OMPL | ratio | met | cost met at |  cost not met at |",
+         "|---|---|---|---|---|---|"]
+    for name, pr in sorted(probs.items()):
+        ratio_ = pr.get("first_ratio")
+        met_at = [b + " ms" + (" (neither has a path)" if c.get("ours") is None and c.get("best_ompl") is None else "")
+                  for b, c in pr.get("cost", {}).items() if c.get("met")]
+        miss = [f"{b} ms ({fmt(c.get('ours'), 4) if c.get('ours') is not None else 'none'} vs {c.get('best_ompl_planner')} {fmt(c.get('best_ompl'), 4)})"
+                for b, c in pr.get("cost", {}).items() if not c.get("met")]
+        L.append(f"| {name} | {fmt(pr.get('first_ms'), 3, ' ms')} / {pr.get('fastest_ompl')} "
+                 f"{fmt(pr.get('fastest_ompl_first_ms'), 3, ' ms')} | {fmt(ratio_, 2, 'x')} | "
+                 f"{'yes' if ratio_ is not None and ratio_ <= 0.5 else 'no'} | "
+                 f"{', '.join(met_at) or '-'} | {'; '.join(miss) or '-'} |")
+    # The other speed targets of the same set, measured by other sections (maybe in an earlier run).
+    carried = res.get("carried_over") or {}
+    others = []
+    for t in res.get("targets") or evaluate_targets(res):
+        sec = ("ompl" if t["name"].startswith(("iterations", "time to OMPL")) else
+               "social" if t["name"].startswith("social") else
+               "memory" if t["name"].startswith("allocations") else None)
+        if sec is None:
+            continue
+        when = (f"{sec} section of {carried[sec].get('date_utc')}, commit {carried[sec].get('commit')}"
+                if sec in carried else f"{sec} section of this run")
+        others.append(f"- {t['name']}: **{t['status']}**, {t['value_text']} (target {t['target']}; {when})")
+    if others:
+        L += ["", "The other targets of the same set, from their own sections:", ""] + others
+    return L + [""]
+
+
 def observations(res: dict) -> List[str]:
     """Plain statements the figures support, for the top of the report."""
     notes = []
@@ -271,14 +308,42 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
     else:
         L += [f"`{pl.get('command')}` ({pl.get('seconds')} s). Point robot, path length, problems of "
               "`tests/data/bench_problems/` (A disc, B cluttered, C narrow passage; optima 10.8112, 26.2074, "
-              "11.4639), and S, the social avoid scene of the OMPL RRT* section (task cost, the avoid model "
-              "above; ours GMM-RRT* with uniform sampling). One fresh run per budget; cost @ t = the cost a run of budget t returns (median over "
-              "trials, `none`: no exactly free path); first path = set-up + time to the first solution "
-              "(OMPL's intermediate-solution callback, or the solve's duration when it stopped early; `-`: the "
-              "planner reports neither). OMPL checks motions exactly (circles, boxes) like ours.", "",
+              "11.4639); S, the social avoid scene of the OMPL RRT* section (task cost, the avoid model "
+              "above; ours GMM-RRT* with uniform sampling); AP, the social approach scene of the social "
+              "section (a person at the origin facing +x, (-4, 0.5) -> (1.2, 0), bounds [-6,6]x[-5,5], the "
+              "person a disc of 0.55 m around a point robot, task cost with the approach model, the person the "
+              "target; OMPL through the same `GmmTaskCostObjective`, a `StateCostIntegralObjective`); and MAP, "
+              "the floor plan of `logs/maps/` (its whole extent, (-9, -2) -> (8, 4), robot disc 0.3 m, path "
+              "length). In MAP our planner reads the map through its raster layer (distance field, "
+              "conservative by up to about a cell, docs/world.md); OMPL gets exact state and motion validators "
+              "over the same raster (a 0.3 m disc, swept along the motion, against every blocked cell's "
+              "square: occupied, unknown, or outside the map), and both sides' returned paths are re-checked "
+              "with them: both mean the same blocked cells, and OMPL's free space is the larger. The map is "
+              "loaded and its field computed once, outside both clocks. One fresh run per budget; cost @ t = "
+              "the cost a run of budget t returns (median over trials, `none`: no exactly free path); first "
+              "path = set-up + time to the first solution (OMPL's intermediate-solution callback, or the "
+              "solve's duration when it stopped early; `-`: the planner reports neither). OMPL checks motions "
+              "exactly (circles, boxes, raster) like ours, and every returned path of both sides is re-checked "
+              "segment by segment (ours: the best path as `gmmrrt_planner_best_path` returns it). In S and AP "
+              "both sides' cost is OMPL's objective (its trapezoid rule at its motion-check resolution) "
+              "evaluated on the path each side returns; our planner searches with its own midpoint rule.", "",
               pl.get("text", ""), ""]
         if pl.get("note"):
             L += [pl["note"], ""]
+        L += _planner_targets_summary(res, pl)
+        if pl.get("arena_logs"):
+            logs = pl["arena_logs"]
+            L += [f"**Planner Arena.** The same runs are written as ompl::tools::Benchmark logs, one per problem "
+                  f"and budget ({len(logs)} files, `build/bench-arena/<problem>_<budget>ms.log`, "
+                  f"{sum(x['bytes'] for x in logs) // 1024} KB together; read back and counted against the JSON "
+                  "records by the harness). Run properties: `best cost`, `first solution time` (s, set-up "
+                  "included), `setup time` (s), `solved` (an exactly free path), `time` (s, set-up + solve). "
+                  f"The MAP logs are kept as an example: {pl.get('arena_example', 'bench/arena/')}. To look at them: "
+                  "`ompl_benchmark_statistics.py build/bench-arena/*.log -d bench.db` (the script is in OMPL's "
+                  "source tree, `scripts/`, and in its Python bindings as `ompl.tools.readBenchmarkLog`; Debian's "
+                  "libompl-dev does not ship it), then open `bench.db` in Planner Arena (plannerarena.org: "
+                  "\"Change database\", or a local `plannerarena`). Each experiment is one problem at one budget; "
+                  "`time` and `best cost` against planner are the figures of the tables above.", ""]
     L += ["## Social tasks (GMM-RRT*, bias 0.95, default configuration)", ""]
     so = res.get("social")
     if _err(so):
