@@ -113,8 +113,8 @@ def real_upo_avoid(ctx: Ctx) -> RealSet:
     ep_csv, idx = _real_file(ctx, "upo_avoid_episodes.csv"), _real_file(ctx, "upo_avoid_index.csv")
     every = S.read_episodes(ep_csv, index=idx)
     RD._require_person(ep_csv, every)
-    RD.require_split(idx, ctx.train_split, [e.episode_id for e in every])
-    RD.require_split(idx, ctx.split, [e.episode_id for e in every])
+    RD.require_split(idx, ctx.train_split, every)
+    RD.require_split(idx, ctx.split, every)
     mdl = R.fit_model(ctx.work / "models" / f"upo_avoid_{ctx.train_split}_all.gmm", "avoid", [ep_csv], homotopy="all",
                       seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir)
     people = RD.upo_people(idx, every)
@@ -139,8 +139,8 @@ def real_ucy_avoid(ctx: Ctx) -> RealSet:
     tracks = _real_file(ctx, "ucy_tracks.csv")
     every = S.read_episodes(ep_csv, index=idx)
     RD._require_person(ep_csv, every)
-    RD.require_split(idx, ctx.train_split, [e.episode_id for e in every])
-    RD.require_split(idx, ctx.split, [e.episode_id for e in every])
+    RD.require_split(idx, ctx.train_split, every)
+    RD.require_split(idx, ctx.split, every)
     mdl = R.fit_model(ctx.work / "models" / f"ucy_avoid_{ctx.train_split}_all.gmm", "avoid", [ep_csv], homotopy="all",
                       seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir)
     eps = _limit(ctx, [e for e in every if e.split == ctx.split])
