@@ -36,6 +36,7 @@ static void walk_start(walk_t *w, const gmmrrt_planner_t *p)
     w->next = p->goal_idx[p->best_goal];
     w->at_goal = 1;
     w->have_last = 0;
+    w->lx = w->ly = 0.0; /* read only once have_last is set; set for GCC's -Wmaybe-uninitialized */
 }
 
 static int walk_next(walk_t *w, double *x, double *y)
