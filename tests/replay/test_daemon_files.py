@@ -61,6 +61,20 @@ def test_whole_numbers_take_digits_only(gmmrrtd, tmp_path):
     assert res.returncode == 2 and "%s:2:" % ini in res.stderr, res.stderr
 
 
+def test_planner_settings_are_checked_by_the_core(gmmrrtd, tmp_path):
+    """The [planner] keys' ranges are config.c's (gmmrrt_planner_config_validate), named by key."""
+    for args, rule in ((("--robot-radius", "-1"), "config.robot_radius_m"),
+                       (("--grid-max-cells", "100000000"), "config.grid_max_cells"),
+                       (("--goal-bias", "1"), "config.goal_bias"),
+                       (("--max-nodes", "99999999999"), "32-bit whole number")):
+        res = run(gmmrrtd, *args)
+        assert res.returncode == 2 and args[0] in res.stderr and rule in res.stderr, (args, res.stderr)
+    ini = tmp_path / "weights.ini"
+    ini.write_text("[planner]\nw_length = 0\nw_task = 0\n")
+    res = run(gmmrrtd, "--config", str(ini))
+    assert res.returncode == 2 and "must not both be 0" in res.stderr, res.stderr
+
+
 def test_model_fifo_and_wrong_kind_are_refused_at_start_up(gmmrrtd, tmp_path):
     fifo = str(tmp_path / "m.fifo")
     os.mkfifo(fifo)
