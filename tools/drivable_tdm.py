@@ -20,11 +20,11 @@ from pathlib import Path
 
 import numpy as np
 
+from gmmrrt_tools import metrics as M
+from gmmrrt_tools import runner as R
+from gmmrrt_tools import scenes as S
+
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "tools"))
-from gmmrrt_tools import metrics as M  # noqa: E402
-from gmmrrt_tools import runner as R  # noqa: E402
-from gmmrrt_tools import scenes as S  # noqa: E402
 
 ROBOT_RADIUS_M = 0.3
 CLEARANCE_M = ROBOT_RADIUS_M + 0.25 + 0.05  # as tools/experiments.py
