@@ -20,10 +20,11 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parent.parent
 from gmmrrt_tools import metrics as M
 from gmmrrt_tools import runner as R
 from gmmrrt_tools import scenes as S
+
+ROOT = Path(__file__).resolve().parent.parent
 
 ROBOT_RADIUS_M = 0.3
 CLEARANCE_M = ROBOT_RADIUS_M + 0.25 + 0.05  # as tools/experiments.py

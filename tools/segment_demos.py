@@ -16,20 +16,16 @@ file and the person. Exit status 0; 1 on bad input (no file is written); 2 on ba
 from __future__ import annotations
 
 import argparse
-import csv
 import math
 import sys
 import tempfile
 from collections import Counter
 from pathlib import Path
 
-import lcm
-
-from gmmrrt_tools.demolog import CH_PEOPLE, CH_POSE, people_t, pose2d_t
-from gmmrrt_tools.episodes import EpisodeError, read_episode_csv, write_episode_csv
+from gmmrrt_tools.demonstration_log import write_demo_log
+from gmmrrt_tools.episodes import EpisodeError, write_episode_csv
+from gmmrrt_tools.scenes import read_episodes
 from gmmrrt_tools.segment import SegmentError, segment_log
-
-T0_UTIME = 1_700_000_000_000_000
 
 
 def cmd_segment(args) -> int:
@@ -50,27 +46,10 @@ def cmd_segment(args) -> int:
     return 0
 
 
-def write_unlabelled_log(path: Path, ep) -> None:
-    """The episode as a recorder would have logged it: ROBOT_POSE and PEOPLE, no DEMO_INFO."""
-    log = lcm.EventLog(str(path), "w", overwrite=True)
-    for i in range(len(ep)):
-        utime = T0_UTIME + int(round(ep.t[i] * 1e6))
-        pe = people_t()
-        pe.utime, pe.num_people = utime, 1
-        q = pe.people[0]
-        q.utime, q.id, q.x, q.y, q.yaw, q.vx, q.vy = utime, 1, ep.person_x[i], ep.person_y[i], ep.person_yaw[i], 0.0, 0.0
-        log.write_event(utime, CH_PEOPLE, pe.encode())
-        po = pose2d_t()
-        po.utime, po.x, po.y, po.yaw = utime, ep.robot_x[i], ep.robot_y[i], 0.0
-        log.write_event(utime, CH_POSE, po.encode())
-    log.close()
-
-
 def cmd_evaluate(args) -> int:
     real = Path(args.real_dir)
-    with open(real / "upo_avoid_index.csv", newline="") as f:
-        index = {r["episode_id"]: r for r in csv.DictReader(f)}
-    episodes = read_episode_csv(str(real / "upo_avoid_episodes.csv"))
+    # The learner's reader (gmmrrt-learn dump), each episode with its index row in ep.meta.
+    episodes = read_episodes(str(real / "upo_avoid_episodes.csv"), index=str(real / "upo_avoid_index.csv"))
     if args.limit:
         episodes = episodes[:args.limit]
     found = agree = one = 0
@@ -80,18 +59,18 @@ def cmd_evaluate(args) -> int:
     with tempfile.TemporaryDirectory() as tmp:
         for ep in episodes:
             p = Path(tmp) / f"{ep.id}.lcmlog"
-            write_unlabelled_log(p, ep)
+            write_demo_log(str(p), [ep], labelled=False)
             res = segment_log(str(p))
             if not res.episodes:
-                confusion[(index[ep.id]["homotopy"], "none")] += 1
+                confusion[(ep.meta["homotopy"], "none")] += 1
                 continue
             found += 1
             one += len(res.episodes) == 1
             best = max(res.episodes, key=len)
             cover.append(len(best) / len(ep))
             task_ok += best.task == "avoid"
-            confusion[(index[ep.id]["homotopy"], best.homotopy)] += 1
-            agree += best.homotopy == index[ep.id]["homotopy"]
+            confusion[(ep.meta["homotopy"], best.homotopy)] += 1
+            agree += best.homotopy == ep.meta["homotopy"]
     n = len(episodes)
     print(f"UPO avoid episodes: {n}; found {found} ({100.0 * found / n:.1f} %), exactly one episode in "
           f"{one}; labelled avoid {task_ok}; homotopy agrees with the index in {agree} of {found} found "

@@ -30,9 +30,10 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parent.parent
 from gmmrrt_tools import metrics
 from gmmrrt_tools.runner import find_tool
+
+ROOT = Path(__file__).resolve().parent.parent
 
 STEP_S = 0.4
 CONTACT_M = 0.55        # robot 0.3 + person 0.25 (the planner's defaults)

@@ -561,9 +561,9 @@ int main(int argc, char **argv)
         pr.model = &model;
         if (task == 0)
             task = model.task == GMMRRT_TASK_APPROACH ? GMMRRT_TASK_APPROACH : GMMRRT_TASK_AVOID;
-        /* gmmrrtd's rule (planner/daemon/models.c): a model learned for one task never plans the
+        /* The core's rule, as gmmrrtd applies it: a model learned for one task never plans the
          * other; a model without a task (generic, xy) serves either. */
-        if (model.task != GMMRRT_TASK_NONE && model.task != task) {
+        if (gmmrrt_model_task_fits(&model, task) != GMMRRT_OK) {
             fprintf(stderr, "%s: error: --task %s, but --model %s was learned for task %s; give a model of task %s or "
                     "--task %s\n", prog, task_name(task), model_path, task_name(model.task), task_name(task),
                     task_name(model.task));

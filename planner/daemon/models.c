@@ -2,7 +2,7 @@
  * models.c - gmmrrtd's models (paper Sect. 5: one mixture per task): loaded with
  * gmmrrt_model_load_file (planner/io: a regular file only, opened without blocking, every
  * field validated before anything is overwritten), then checked against their use: the task
- * they were learned for and the feature space the configured planner needs
+ * they were learned for (gmmrrt_model_task_fits) and the feature space the configured planner needs
  * (gmmrrt_planner_model_fits, the rule gmmrrt_planner_set_problem applies; an x-y or generic
  * model for GMM-RRT* would make every goal of its task stop with MODEL_MISMATCH). Like a cFE
  * table: a new file goes into a scratch model and replaces the model in use only when it is
@@ -66,7 +66,7 @@ static int load_one(gmmrrtd_t *d, const char *path, int32_t want_task, gmmrrt_mo
         return refuse(d, reload, *have, st, what);
     }
     const gmmrrt_model_t *m = &d->model_scratch;
-    if (m->task != want_task && m->task != GMMRRT_TASK_NONE) {
+    if (gmmrrt_model_task_fits(m, want_task) != GMMRRT_OK) {
         snprintf(what, sizeof what, "%s model %s: learned for task %d, not %s", task_name, path, (int)m->task,
                  task_name);
         return refuse(d, reload, *have, GMMRRT_ERR_MODEL_MISMATCH, what);

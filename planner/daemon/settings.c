@@ -6,10 +6,12 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <float.h>
 #include <getopt.h>
 #include <ini.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,13 +33,17 @@ typedef struct {
     const char *flag;          /* --flag (long option name) */
     key_type_t type;
     size_t offset, size;       /* into gmmrrtd_settings_t; size for K_STR */
-    double min, max;           /* numeric range, inclusive */
+    double min, max;           /* numeric range, inclusive; for a planner key, the stored type's */
     const char *help;
+    int planner_key;           /* a field of cfg: its range is config.c's (check_planner_key) */
 } key_t_;
 
 #define OFF(f) offsetof(gmmrrtd_settings_t, f)
-#define STR(sec, k, fl, f, h) {sec, k, fl, K_STR, OFF(f), sizeof(((gmmrrtd_settings_t *)0)->f), 0, 0, h}
-#define NUM(sec, k, fl, ty, f, lo, hi, h) {sec, k, fl, ty, OFF(f), 0, lo, hi, h}
+#define STR(sec, k, fl, f, h) {sec, k, fl, K_STR, OFF(f), sizeof(((gmmrrtd_settings_t *)0)->f), 0, 0, h, 0}
+#define NUM(sec, k, fl, ty, f, lo, hi, h) {sec, k, fl, ty, OFF(f), 0, lo, hi, h, 0}
+/* A field of the planner's configuration: no range here, gmmrrt_planner_config_validate has it. */
+#define CFG_F64(sec, k, fl, f, h) {sec, k, fl, K_F64, OFF(cfg.f), 0, -DBL_MAX, DBL_MAX, h, 1}
+#define CFG_I32(sec, k, fl, f, h) {sec, k, fl, K_I32, OFF(cfg.f), 0, INT32_MIN, INT32_MAX, h, 1}
 
 static const key_t_ k_keys[] = {
     STR("lcm", "url", "lcm-url", lcm_url, "LCM URL to subscribe (and publish) on"),
@@ -108,21 +114,21 @@ static const key_t_ k_keys[] = {
         "shortest straight final leg on the arrival heading, m"),
     NUM("planner", "planner", "planner", K_PLANNER, cfg.planner, 0, 0, "gmm-rrt-star | rrt-star | gmm-rrt"),
     NUM("planner", "seed", "seed", K_U64, cfg.seed, 0, 18446744073709551615.0, "RNG seed"),
-    NUM("planner", "max_nodes", "max-nodes", K_I32, cfg.max_nodes, 2, 4194304, "tree node pool (memory)"),
-    NUM("planner", "grid_max_cells", "grid-max-cells", K_I32, cfg.grid_max_cells, 1, 2147483647.0, "clearance grid cells (memory)"),
-    NUM("planner", "robot_radius_m", "robot-radius", K_F64, cfg.robot_radius_m, 0, 100, "robot radius, m"),
-    NUM("planner", "person_radius_m", "person-radius", K_F64, cfg.person_radius_m, 0, 100, "person radius, m"),
-    NUM("planner", "grid_resolution_m", "grid-resolution", K_F64, cfg.grid_resolution_m, 1e-4, 100, "clearance grid cell, m"),
-    NUM("planner", "step_m", "step", K_F64, cfg.step_m, 1e-4, 1e4, "longest new edge, m"),
-    NUM("planner", "goal_bias", "goal-bias", K_F64, cfg.goal_bias, 0, 0.999999, "probability of sampling the goal"),
-    NUM("planner", "gmm_bias", "gmm-bias", K_F64, cfg.gmm_bias, 0, 1, "probability of a mixture sample"),
-    NUM("planner", "rewire_k_factor", "rewire-k", K_F64, cfg.rewire_k_factor, 0, 64,
+    CFG_I32("planner", "max_nodes", "max-nodes", max_nodes, "tree node pool (memory)"),
+    CFG_I32("planner", "grid_max_cells", "grid-max-cells", grid_max_cells, "clearance grid cells (memory)"),
+    CFG_F64("planner", "robot_radius_m", "robot-radius", robot_radius_m, "robot radius, m"),
+    CFG_F64("planner", "person_radius_m", "person-radius", person_radius_m, "person radius, m"),
+    CFG_F64("planner", "grid_resolution_m", "grid-resolution", grid_resolution_m, "clearance grid cell, m"),
+    CFG_F64("planner", "step_m", "step", step_m, "longest new edge, m"),
+    CFG_F64("planner", "goal_bias", "goal-bias", goal_bias, "probability of sampling the goal"),
+    CFG_F64("planner", "gmm_bias", "gmm-bias", gmm_bias, "probability of a mixture sample"),
+    CFG_F64("planner", "rewire_k_factor", "rewire-k", rewire_k_factor,
         "near set: at least this times ln(n+1) nearest nodes (0: radius rewiring)"),
-    NUM("planner", "informed_sampling", "informed", K_I32, cfg.informed_sampling, 0, 1,
+    CFG_I32("planner", "informed_sampling", "informed", informed_sampling,
         "1: sample the informed ellipse once a path exists, 0: off"),
-    NUM("planner", "w_length", "w-length", K_F64, cfg.w_length, 0, 1e6, "weight of length in the cost"),
-    NUM("planner", "w_task", "w-task", K_F64, cfg.w_task, 0, 1e6, "weight of the task cost"),
-    NUM("planner", "waypoint_spacing_m", "waypoint-spacing", K_F64, cfg.waypoint_spacing_m, 1e-3, 1e4, "plan spacing, m"),
+    CFG_F64("planner", "w_length", "w-length", w_length, "weight of length in the cost"),
+    CFG_F64("planner", "w_task", "w-task", w_task, "weight of the task cost"),
+    CFG_F64("planner", "waypoint_spacing_m", "waypoint-spacing", waypoint_spacing_m, "plan spacing, m"),
     STR("log", "level", "log-level", log_level, "error | warn | info | debug"),
     NUM("log", "interval_ms", "log-interval-ms", K_F64, log_interval_ms, 0, 1e9, "one line per reason per interval, ms"),
 };
@@ -189,6 +195,21 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->log_interval_ms = 5000.0;
 }
 
+/* The planner's ranges live in config.c (gmmrrt_planner_config_validate), not in the key table:
+ * a planner key's value is tried on the default configuration, so a failure is this key's and
+ * the reason is the one config.c states. Rules across keys (w_length and w_task not both 0) are
+ * checked once every key is read (gmmrrtd_settings_validate). 0 or -1 with the reason. */
+static int check_planner_key(const key_t_ *k, const void *v, size_t n, const char *value, char *err, size_t errcap)
+{
+    gmmrrt_planner_config_t probe;
+    gmmrrt_planner_config_default(&probe);
+    memcpy((char *)&probe + (k->offset - OFF(cfg)), v, n);
+    char why[200];
+    if (gmmrrt_planner_config_validate(&probe, why, sizeof why) != GMMRRT_OK)
+        return fail(err, errcap, "%s = %s: %s", k->key, value, why);
+    return 0;
+}
+
 /* Parses `value` into the field of key k. 0 or -1 with the reason (without location). */
 static int set_key(gmmrrtd_settings_t *s, const key_t_ *k, const char *value, char *err, size_t errcap)
 {
@@ -230,6 +251,8 @@ static int set_key(gmmrrtd_settings_t *s, const key_t_ *k, const char *value, ch
             return fail(err, errcap, "%s = \"%s\": not a number", k->key, value);
         if (v < k->min || v > k->max)
             return fail(err, errcap, "%s = %s: outside %g..%g", k->key, value, k->min, k->max);
+        if (k->planner_key && check_planner_key(k, &v, sizeof v, value, err, errcap) != 0)
+            return -1;
         memcpy(field, &v, sizeof v);
         return 0;
     }
@@ -251,10 +274,14 @@ static int set_key(gmmrrtd_settings_t *s, const key_t_ *k, const char *value, ch
     const long long x = strtoll(value, &end, 10);
     if (end == value || *end != '\0' || errno == ERANGE)
         return fail(err, errcap, "%s = \"%s\": expected a whole number of digits", k->key, value);
+    if (k->planner_key && ((double)x < k->min || (double)x > k->max))
+        return fail(err, errcap, "%s = %s: not a 32-bit whole number", k->key, value);
     if ((double)x < k->min || (double)x > k->max)
         return fail(err, errcap, "%s = %s: outside %g..%g", k->key, value, k->min, k->max);
     if (k->type == K_I32) {
         const int32_t v = (int32_t)x;
+        if (k->planner_key && check_planner_key(k, &v, sizeof v, value, err, errcap) != 0)
+            return -1;
         memcpy(field, &v, sizeof v);
     } else {
         const int64_t v = (int64_t)x;

@@ -27,6 +27,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "block_layout.h"
 #include "collision_internal.h"
 #include "fcl_adapter.h"
 
@@ -95,8 +96,6 @@ struct gmmrrt_world {
 _Static_assert(sizeof(gmmrrt_circle_t) == 3 * sizeof(double), "gmmrrt_circle_t has padding");
 _Static_assert(sizeof(gmmrrt_box_t) == 5 * sizeof(double), "gmmrrt_box_t has padding");
 
-static size_t align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
-
 /* Tiles a grid of grid_max_cells needs: every layout whose bounds fit the capacity as a
  * square fits in these tiles (the lattice's partial tiles at each side add at most one row
  * and one column of tiles, about sqrt(cells) / 4 cells of slack in all); a long thin one
@@ -112,7 +111,7 @@ size_t gmmrrt_world_mem_size(int32_t grid_max_cells)
     if (grid_max_cells < 1)
         return 0;
     const size_t tiles = (size_t)max_tiles_for(grid_max_cells);
-    return align8(sizeof(struct gmmrrt_world) + tiles * TILE_CELLS * sizeof(float)) + align8(tiles);
+    return gmmrrt_align8(sizeof(struct gmmrrt_world) + tiles * TILE_CELLS * sizeof(float)) + gmmrrt_align8(tiles);
 }
 
 static int finite_bounds(const gmmrrt_bounds_t *b)
@@ -351,7 +350,7 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
     w->ny = nw.tny * TILE;
     w->max_cells = grid_max_cells;
     w->max_tiles = max_tiles;
-    w->ready = (uint8_t *)mem + align8(sizeof(struct gmmrrt_world) + (size_t)max_tiles * TILE_CELLS * sizeof(float));
+    w->ready = (uint8_t *)mem + gmmrrt_align8(sizeof(struct gmmrrt_world) + (size_t)max_tiles * TILE_CELLS * sizeof(float));
     w->stats = counts;
     w->exact_only = obstacles->num_circles + obstacles->num_boxes <= GMMRRT_EXACT_MAX_OBSTACLES;
     w->exact_queries_left = GMMRRT_EXACT_FIRST_QUERIES;

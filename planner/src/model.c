@@ -368,3 +368,10 @@ gmmrrt_status_t gmmrrt_model_decode(const uint8_t *buf, size_t len, gmmrrt_model
             out->chol[i][t] = get_f64(p);
     return gmmrrt_model_prepare(out, err, errcap);
 }
+
+gmmrrt_status_t gmmrrt_model_task_fits(const gmmrrt_model_t *model, int32_t task)
+{
+    if (!model)
+        return GMMRRT_ERR_INVALID_ARGUMENT;
+    return (model->task == GMMRRT_TASK_NONE || model->task == task) ? GMMRRT_OK : GMMRRT_ERR_MODEL_MISMATCH;
+}

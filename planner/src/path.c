@@ -36,6 +36,7 @@ static void walk_start(walk_t *w, const gmmrrt_planner_t *p)
     w->next = p->goal_idx[p->best_goal];
     w->at_goal = 1;
     w->have_last = 0;
+    w->lx = w->ly = 0.0; /* read only once have_last is set; set for GCC's -Wmaybe-uninitialized */
 }
 
 static int walk_next(walk_t *w, double *x, double *y)
@@ -114,6 +115,16 @@ static double pieces(const gmmrrt_path_t *v, int32_t n, double s)
     return total;
 }
 
+int32_t gmmrrt_waypoint_count(double total_m, double *spacing_m)
+{
+    int32_t m = (int32_t)fmin(ceil(total_m / *spacing_m) + 1.0, (double)GMMRRT_MAX_WAYPOINTS + 1.0);
+    if (m > GMMRRT_MAX_WAYPOINTS) {
+        m = GMMRRT_MAX_WAYPOINTS;
+        *spacing_m = total_m / (double)(m - 1);
+    }
+    return m < 2 ? 2 : m;
+}
+
 /* Waypoints at equal arc length along the tree path (corners are cut by the chords). */
 static void resample_by_arc_length(const gmmrrt_planner_t *p, gmmrrt_path_t *out)
 {
@@ -127,13 +138,7 @@ static void resample_by_arc_length(const gmmrrt_planner_t *p, gmmrrt_path_t *out
         total += hypot(b->x - a->x, b->y - a->y);
     }
     double spacing = p->cfg.waypoint_spacing_m;
-    int32_t m = (int32_t)fmin(ceil(total / spacing) + 1.0, (double)GMMRRT_MAX_WAYPOINTS + 1.0);
-    if (m > GMMRRT_MAX_WAYPOINTS) {
-        m = GMMRRT_MAX_WAYPOINTS;
-        spacing = total / (double)(m - 1);
-    }
-    if (m < 2)
-        m = 2;
+    const int32_t m = gmmrrt_waypoint_count(total, &spacing);
     /* Waypoint j (0 .. m-2) sits at arc length j * spacing from the start, the last one at
      * the goal. Walking from the goal back, distance from the goal t grows, so j falls. */
     out->num_points = m;

@@ -168,4 +168,10 @@ void gmmrrt_sampler_prepare(struct gmmrrt_planner *p);
 /* GMM-RRT: advances the stage when (x, y) reached the current component. */
 void gmmrrt_sampler_node_added(struct gmmrrt_planner *p, double x, double y);
 
+/* path.c: the number of waypoints of a published path total_m long at *spacing_m (the
+ * configured waypoint_spacing_m): ceil(total / spacing) + 1, at least 2 (start and end) and
+ * at most GMMRRT_MAX_WAYPOINTS; when capped, *spacing_m widens so that the waypoints still
+ * reach the end. The one rule for the plain and the drivable path (smooth.c). */
+int32_t gmmrrt_waypoint_count(double total_m, double *spacing_m);
+
 #endif /* GMMRRT_PLANNER_INTERNAL_H */

@@ -13,13 +13,14 @@
 #include <math.h>
 #include <string.h>
 
+#include "block_layout.h"
+
 /* "Nothing blocks" in squared cells: larger than any real squared distance (2 x 16384^2). */
 #define FAR2 1e18
 /* The field goes through floats (squared, then the distance): each rounding is relative
  * 2^-24; the stored distance is shrunk by this factor so it stays a lower bound. */
 #define FIELD_SHRINK (1.0 - 1e-6)
 
-static size_t align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
 
 typedef struct {
     size_t cells, marks, dist, f, d, z, v, total;
@@ -30,20 +31,13 @@ static layout_t layout_of(int32_t max_cells, int32_t max_side)
     layout_t l;
     const size_t n = (size_t)max_cells, s = (size_t)max_side + 1;
     size_t off = 0;
-    l.cells = off;
-    off += align8(n);
-    l.marks = off;
-    off += align8(n * sizeof(uint32_t));
-    l.dist = off;
-    off += align8(n * sizeof(float));
-    l.f = off;
-    off += align8(s * sizeof(double));
-    l.d = off;
-    off += align8(s * sizeof(double));
-    l.z = off;
-    off += align8((s + 1) * sizeof(double));
-    l.v = off;
-    off += align8(s * sizeof(int32_t));
+    l.cells = gmmrrt_block_take(&off, n);
+    l.marks = gmmrrt_block_take(&off, n * sizeof(uint32_t));
+    l.dist = gmmrrt_block_take(&off, n * sizeof(float));
+    l.f = gmmrrt_block_take(&off, s * sizeof(double));
+    l.d = gmmrrt_block_take(&off, s * sizeof(double));
+    l.z = gmmrrt_block_take(&off, (s + 1) * sizeof(double));
+    l.v = gmmrrt_block_take(&off, s * sizeof(int32_t));
     l.total = off;
     return l;
 }

@@ -20,11 +20,11 @@
 #include <string.h>
 #include <time.h>
 
+#include "block_layout.h"
 #include "planner_internal.h"
 
 #define GMMRRT_SAME_POINT_M 1e-9
 
-static size_t align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
 
 typedef struct {
     size_t xy, cost, link, next, heads, hist_iter, hist_cost, world, total;
@@ -33,22 +33,15 @@ typedef struct {
 static layout_t layout_of(const gmmrrt_planner_config_t *cfg)
 {
     layout_t l;
-    size_t off = align8(sizeof(struct gmmrrt_planner));
+    size_t off = gmmrrt_align8(sizeof(struct gmmrrt_planner));
     const size_t n = (size_t)cfg->max_nodes;
-    l.xy = off;
-    off += align8(n * sizeof(gmmrrt_xy_t));
-    l.cost = off;
-    off += align8(n * sizeof(double));
-    l.link = off;
-    off += align8(n * sizeof(gmmrrt_links_t));
-    l.next = off;
-    off += align8(n * sizeof(int32_t));
-    l.heads = off;
-    off += align8((size_t)gmmrrt_nn_capacity(cfg->max_nodes) * sizeof(int32_t));
-    l.hist_iter = off;
-    off += align8((size_t)cfg->history_capacity * sizeof(int64_t));
-    l.hist_cost = off;
-    off += align8((size_t)cfg->history_capacity * sizeof(double));
+    l.xy = gmmrrt_block_take(&off, n * sizeof(gmmrrt_xy_t));
+    l.cost = gmmrrt_block_take(&off, n * sizeof(double));
+    l.link = gmmrrt_block_take(&off, n * sizeof(gmmrrt_links_t));
+    l.next = gmmrrt_block_take(&off, n * sizeof(int32_t));
+    l.heads = gmmrrt_block_take(&off, (size_t)gmmrrt_nn_capacity(cfg->max_nodes) * sizeof(int32_t));
+    l.hist_iter = gmmrrt_block_take(&off, (size_t)cfg->history_capacity * sizeof(int64_t));
+    l.hist_cost = gmmrrt_block_take(&off, (size_t)cfg->history_capacity * sizeof(double));
     l.world = off;
     off += gmmrrt_world_mem_size(cfg->grid_max_cells);
     l.total = off;

@@ -454,13 +454,7 @@ gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gm
     for (int32_t k = 0; k < np; ++k)
         total += pieces[k].len;
     double spacing = p->cfg.waypoint_spacing_m;
-    int32_t m = (int32_t)fmin(ceil(total / spacing) + 1.0, (double)GMMRRT_MAX_WAYPOINTS + 1.0);
-    if (m > GMMRRT_MAX_WAYPOINTS) {
-        m = GMMRRT_MAX_WAYPOINTS;
-        spacing = total / (double)(m - 1);
-    }
-    if (m < 2)
-        m = 2;
+    const int32_t m = gmmrrt_waypoint_count(total, &spacing);
     double s0 = 0.0, yaw = np > 0 ? pieces[0].yaw : 0.0;
     int32_t k = 0;
     for (int32_t j = 0; j < m - 1; ++j) {

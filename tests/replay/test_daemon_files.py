@@ -14,10 +14,8 @@
 """
 import os
 import signal
-import struct
 import subprocess
 import time
-import zlib
 
 from daemon_fixture import SCENARIOS, venv_bin
 from test_daemon_cli import StatusListener
@@ -25,7 +23,7 @@ from test_replay_udpm import private_url, wait_for_line
 
 from gmmrrt import planner_status_t
 
-from gmmrrt_tools.scenario_models import HEADER, MAGIC
+from gmmrrt_tools import core
 
 R = planner_status_t
 
@@ -35,11 +33,11 @@ def run(exe, *args, timeout=10):
 
 
 def xy_model_bytes(task=1):
-    """A valid x-y kind model (D = 3: s, x', y'; docs/model-format.md) with one component."""
-    body = HEADER.pack(MAGIC, 1, 0xFEFF, 2, task, 0, 3, 1, 0, 0, 0.001)
-    body += struct.pack("<1d", 1.0) + struct.pack("<3d", 0.5, 1.0, 0.0)
-    body += struct.pack("<6d", 0.3, 0.0, 0.3, 0.0, 0.0, 0.3)
-    return body + struct.pack("<I", zlib.crc32(body))
+    """A valid x-y kind model (D = 3: s, x', y'; docs/model-format.md) with one component, encoded
+    by the core (the one writer of the format)."""
+    xy_kind = 2  # model.h: GMMRRT_MODEL_KIND_XY
+    return core.encode_model(core.model_from_arrays(xy_kind, task, 0, [1.0], [(0.5, 1.0, 0.0)],
+                                                    [(0.3, 0.0, 0.3, 0.0, 0.0, 0.3)], 0, 0.001))
 
 
 def test_config_that_is_not_a_regular_file_is_refused_at_once(gmmrrtd, tmp_path):
@@ -61,6 +59,20 @@ def test_whole_numbers_take_digits_only(gmmrrtd, tmp_path):
     ini.write_text("[planner]\nseed = 1e3\n")
     res = run(gmmrrtd, "--config", str(ini))
     assert res.returncode == 2 and "%s:2:" % ini in res.stderr, res.stderr
+
+
+def test_planner_settings_are_checked_by_the_core(gmmrrtd, tmp_path):
+    """The [planner] keys' ranges are config.c's (gmmrrt_planner_config_validate), named by key."""
+    for args, rule in ((("--robot-radius", "-1"), "config.robot_radius_m"),
+                       (("--grid-max-cells", "100000000"), "config.grid_max_cells"),
+                       (("--goal-bias", "1"), "config.goal_bias"),
+                       (("--max-nodes", "99999999999"), "32-bit whole number")):
+        res = run(gmmrrtd, *args)
+        assert res.returncode == 2 and args[0] in res.stderr and rule in res.stderr, (args, res.stderr)
+    ini = tmp_path / "weights.ini"
+    ini.write_text("[planner]\nw_length = 0\nw_task = 0\n")
+    res = run(gmmrrtd, "--config", str(ini))
+    assert res.returncode == 2 and "must not both be 0" in res.stderr, res.stderr
 
 
 def test_model_fifo_and_wrong_kind_are_refused_at_start_up(gmmrrtd, tmp_path):
@@ -141,7 +153,7 @@ def test_goal_flood_writes_a_few_lines_not_one_per_goal(gmmrrtd, models, tmp_pat
     """2000 different goals in one second of log: each is taken (the last one is planned for),
     but the "new goal" line is rate-limited like every other (one per log_interval_ms, then a count
     of the suppressed ones); it used to be written once per goal (55 920 lines in 3 s)."""
-    import make_scenarios as ms
+    from gmmrrt_tools import scenario_logs as ms
     sc = ms.Scenario("goal_flood", "", 3.0)
     for k in range(31):
         t = k * 0.1

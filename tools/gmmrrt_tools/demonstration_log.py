@@ -26,7 +26,7 @@ EPISODE_GAP_S = 10.0                          # pause between episodes in a writ
 
 def write_demo_log(path: str, episodes: List[Episode], start_utime: int = DEFAULT_START_UTIME,
                    distractors: Optional[List[List[Tuple[int, float, float, float]]]] = None,
-                   people_every: int = 1) -> None:
+                   people_every: int = 1, labelled: bool = True) -> None:
     """Writes episodes as a demonstration log, as lcm-logger would have recorded them: per episode
     a DEMO_INFO (episode numbers 0, 1, ... in list order), then per sample a PEOPLE and a ROBOT_POSE
     with the same utime (start of the episode + round(t * 1e6)). Episodes follow each other with
@@ -35,7 +35,9 @@ def write_demo_log(path: str, episodes: List[Episode], start_utime: int = DEFAUL
     none), since pose2d_t.yaw must be finite. distractors[e][i]: other people (id, x, y, yaw) at sample i of episode e (optional).
     people_every: write PEOPLE only at every k-th sample (k >= 1; the first sample always), as a
     slower people tracker would; keep (k - 1) sample periods <= MAX_PERSON_AGE_S or the readers
-    drop poses. The file appears whole or not at all. Raises EpisodeError on invalid input."""
+    drop poses. labelled=False leaves out DEMO_INFO: a continuous recording as a robot logs it
+    before anyone labels it (the input of tools/segment_demos.py). The file appears whole or not
+    at all. Raises EpisodeError on invalid input."""
     if people_every < 1:
         raise EpisodeError(f"{path}: people_every must be >= 1, not {people_every}")
     check_labels(path, episodes)
@@ -53,7 +55,8 @@ def write_demo_log(path: str, episodes: List[Episode], start_utime: int = DEFAUL
             info.utime, info.episode = utime0, e
             info.task, info.homotopy = TASKS[ep.task], HOMOTOPIES[ep.homotopy]
             info.person_id = int(ep.person_id)
-            log.write_event(utime0, CH_INFO, info.encode())
+            if labelled:
+                log.write_event(utime0, CH_INFO, info.encode())
             yaw = _finite_headings(ep)
             for i in range(len(ep)):
                 ut = utime0 + int(round(float(ep.t[i]) * 1e6))

@@ -178,17 +178,22 @@ def fraction_within(path, people, radius_m: float) -> float:
     return inside / total
 
 
-def smoothness(path) -> float:
-    """Cumulative absolute heading change [rad] along the polyline: sum over consecutive non-zero
-    segments of |wrap(heading_k+1 - heading_k)|. 0 for a straight line."""
+def heading_changes(path) -> np.ndarray:
+    """|wrap(heading_k+1 - heading_k)| [rad] between consecutive non-zero segments of the
+    polyline (empty for fewer than two); the wrap is the core's (metrics.wrap)."""
     p = as_path(path)
     d = np.diff(p, axis=0)
     d = d[np.linalg.norm(d, axis=1) > 1e-12]
     if len(d) < 2:
-        return 0.0
+        return np.zeros(0)
     h = np.arctan2(d[:, 1], d[:, 0])
-    dh = np.diff(h)
-    return float(np.sum(np.abs([wrap(a) for a in dh])))
+    return np.abs([wrap(a) for a in np.diff(h)])
+
+
+def smoothness(path) -> float:
+    """Cumulative absolute heading change [rad] along the polyline: the sum of heading_changes.
+    0 for a straight line."""
+    return float(np.sum(heading_changes(path)))
 
 
 def resample_by_arc_length(path, step_m: float) -> np.ndarray:
@@ -215,14 +220,8 @@ def max_turn_per_step(path, step_m: float = 0.1) -> float:
 
 def smoothness_max(path) -> float:
     """Largest |wrap(heading_k+1 - heading_k)| between consecutive non-zero segments [rad]."""
-    p = as_path(path)
-    d = np.diff(p, axis=0)
-    d = d[np.linalg.norm(d, axis=1) > 1e-12]
-    if len(d) < 2:
-        return 0.0
-    h = np.arctan2(d[:, 1], d[:, 0])
-    dh = (np.diff(h) + np.pi) % (2.0 * np.pi) - np.pi
-    return float(np.max(np.abs(dh)))
+    dh = heading_changes(path)
+    return float(np.max(dh)) if len(dh) else 0.0
 
 
 def summed_heading_change(path) -> float:

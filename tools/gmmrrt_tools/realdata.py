@@ -13,6 +13,7 @@ import os
 from typing import Dict, List, Tuple
 
 from .episodes import Episode, EpisodeError, read_episodes
+from .scenes import read_index
 
 
 def select_upo(real_data: str, split: str, encounter: str) -> List[Episode]:
@@ -30,13 +31,14 @@ def select_upo(real_data: str, split: str, encounter: str) -> List[Episode]:
 def frontal_encounters(index_path: str) -> set:
     """Episode ids whose frontal_encounter column is True."""
     try:
-        with open(index_path, newline="") as f:
-            rows = list(csv.DictReader(f))
+        rows = read_index(index_path)
     except OSError as e:
         raise EpisodeError(f"{index_path}: cannot open: {e.strerror}") from None
-    if not rows or "frontal_encounter" not in rows[0] or "episode_id" not in rows[0]:
-        raise EpisodeError(f"{index_path}: line 1: no episode_id or frontal_encounter column")
-    return {r["episode_id"] for r in rows if r["frontal_encounter"] == "True"}
+    except ValueError as e:
+        raise EpisodeError(str(e)) from None
+    if not rows or "frontal_encounter" not in next(iter(rows.values())):
+        raise EpisodeError(f"{index_path}: line 1: no frontal_encounter column")
+    return {k for k, r in rows.items() if r["frontal_encounter"] == "True"}
 
 
 # ---------------------------------------------------------------- every person in the scene
@@ -57,13 +59,12 @@ def _require_person(path: str, episodes) -> None:
             raise EpisodeError(f"{path}: episode {e.episode_id}: no standing person (person_x/y/yaw missing)")
 
 
-def require_split(index_path: str, split: str, episode_ids) -> None:
-    """Raises EpisodeError naming the index file when it has no split column, or no episode of
-    `episode_ids` in `split`."""
-    by_split = read_split_index(index_path)
-    have = {k for k, v in by_split.items() if v == split} & set(episode_ids)
-    if not have:
-        found = sorted(set(by_split.values()))
+def require_split(index_path: str, split: str, episodes) -> None:
+    """Raises EpisodeError naming the index file when no episode of `episodes` is in `split`. The
+    splits are the ones the learner's reader gave the episodes from that index (read_episodes with
+    index=index_path), so the index's split column is read in one place."""
+    if not any(e.split == split for e in episodes):
+        found = sorted({e.split for e in episodes if e.split})
         raise EpisodeError(f"{index_path}: no episode in split '{split}' (splits found: {', '.join(found) or 'none'})")
 
 
@@ -71,8 +72,7 @@ def upo_people(index_path: str, episodes) -> Dict[str, List[Tuple[float, float, 
     """episode id -> every standing person of its recording: its own person first, then the persons
     of the other episodes of the same recording (the index's `scene` column; episodes of one
     recording share the robot's path and each is about one of the people), one per person_track."""
-    with open(index_path, newline="") as f:
-        rows = {r["episode_id"]: r for r in csv.DictReader(f)}
+    rows = read_index(index_path)
     if not rows or "scene" not in next(iter(rows.values())):
         raise EpisodeError(f"{index_path}: line 1: no scene column (the recording of each episode)")
     by_scene: Dict[str, Dict[str, Tuple[float, float, float]]] = {}
@@ -102,8 +102,7 @@ def ucy_people(tracks_path: str, index_path: str, episodes, all_episodes=()) -> 
     mean position (the data has no other facing for them; counted in the return's meta)."""
     import numpy as np
 
-    with open(index_path, newline="") as f:
-        rows = {r["episode_id"]: r for r in csv.DictReader(f)}
+    rows = read_index(index_path)
     tracks: Dict[Tuple[str, str], Dict[float, Tuple[float, float]]] = {}
     try:
         with open(tracks_path, newline="") as f:

@@ -117,6 +117,13 @@ gmmrrt_status_t gmmrrt_model_from_arrays(int32_t kind, int32_t task, int32_t hom
 void gmmrrt_model_to_arrays(const gmmrrt_model_t *model, int32_t *header, double *delta, double *weight,
                             double *mean, double *chol);
 
+/* Whether a model may serve goals of `task` (gmmrrt_task_t; paper Sect. 5: one mixture per
+ * task): a model learned for one task never plans the other, and a model without a task
+ * (GMMRRT_TASK_NONE, e.g. an x-y or generic one) serves either. The rule of every caller that
+ * pairs a model with a task (gmmrrtd's model slots, gmmrrt-plan's --task and --model).
+ * GMMRRT_OK, GMMRRT_ERR_MODEL_MISMATCH, or GMMRRT_ERR_INVALID_ARGUMENT for a NULL model. */
+gmmrrt_status_t gmmrrt_model_task_fits(const gmmrrt_model_t *model, int32_t task);
+
 /* CRC-32 (IEEE 802.3 / zlib polynomial, reflected, init and final xor 0xFFFFFFFF), so
  * Python's zlib.crc32 checks files too. */
 uint32_t gmmrrt_crc32(const uint8_t *data, size_t len);

@@ -1,6 +1,6 @@
 // bench_armadillo_main.cpp - gmmrrt-bench-armadillo: Armadillo's gmm_full (k-means seeding, then
 // EM with full covariances, multi-threaded through OpenMP) timed on the points of a CSV file:
-// the peer of gmmrrt-bench-learner in tools/bench_learner.py. Benchmark-only, built when Debian's
+// the peer of gmmrrt-bench-learner in tools/gmmrrt_tools/bench/learner.py. Benchmark-only, built when Debian's
 // libarmadillo-dev is installed. Armadillo's EM runs em_iter iterations and stops earlier only
 // when the mean log-likelihood changes by less than machine epsilon, so the comparison is made
 // at the same number of EM iterations (ours with --accel none and a tolerance of 1e-300, which

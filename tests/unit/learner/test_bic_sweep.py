@@ -1,5 +1,5 @@
 """learner.bic_sweep: `fit --k auto` finds the generating K (+-1) on overlapping components, not
-only on well-separated ones. Data: the benchmark's generators (tools/bench_learner.py): the
+only on well-separated ones. Data: the benchmark's generators (gmmrrt_tools.bench.learner): the
 8-component mixture with means in a square of side 7 (separation 0.35), whose components
 overlap, and 6 well-separated components; N = 20 000 each (the benchmark runs N = 50 000 and the
 19-component mixture, with scikit-learn beside it). The split starts are what makes the
@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from bench_learner import make_mixture_points, make_separated_points, write_points_csv  # tools/ on PYTHONPATH
+from gmmrrt_tools.bench.learner import make_mixture_points, make_separated_points, write_points_csv
 
 BIN = Path(os.environ.get("GMMRRT_BIN_DIR", "build/bin")) / "gmmrrt-learn"
 

@@ -2,22 +2,18 @@
 standing person of a UPO recording, the UCY scene's standing pedestrians, the side of a sweep, how often
 two humans agree) and the named errors for a data set without a split or an episode without a person."""
 import math
-import sys
-from pathlib import Path
 
-import numpy as np
 import pytest
 
-ROOT = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(ROOT / "tools"))
-
-from gmmrrt_tools import realdata as RD  # noqa: E402
-from gmmrrt_tools.episodes import EpisodeError  # noqa: E402
-from gmmrrt_tools.scenes import Episode  # noqa: E402
+from gmmrrt_tools import realdata as RD
+from gmmrrt_tools.episodes import Episode, EpisodeError
 
 
 def ep(eid, person, xy, split="test", meta=None):
-    return Episode(eid, "avoid", "left", tuple(person), np.asarray(xy, dtype=float), split, meta)
+    """An episode of the mover's positions xy past a standing person (x, y, yaw)."""
+    e = Episode.from_rows(eid, "avoid", "left", [(0.1 * i, x, y, math.nan, *person) for i, (x, y) in enumerate(xy)])
+    e.split, e.meta = split, meta
+    return e
 
 
 def test_side_of_sweep_is_counterclockwise_left():
@@ -83,8 +79,8 @@ def test_missing_split_and_missing_person_are_named(tmp_path):
     idx = tmp_path / "idx.csv"
     idx.write_text("episode_id,split\na,train\n")
     with pytest.raises(EpisodeError, match=r"idx\.csv: no episode in split 'test' \(splits found: train\)"):
-        RD.require_split(str(idx), "test", ["a"])
-    bad = ep("x7", (0, 0, 0), [(1, 1)])
-    bad.person = (0.0, float("nan"), 0.0)
+        RD.require_split(str(idx), "test", [ep("a", (0, 0, 0), [(1, 1)], split="train")])
+    RD.require_split(str(idx), "train", [ep("a", (0, 0, 0), [(1, 1)], split="train")])
+    bad = ep("x7", (0, float("nan"), 0), [(1, 1)])
     with pytest.raises(EpisodeError, match="eps.csv: episode x7: no standing person"):
         RD._require_person("eps.csv", [bad])

@@ -479,6 +479,24 @@ static void test_random_mutations_with_valid_crc_are_rejected_or_valid(void **st
             fail_msg("no mutation gave status %d (%s)", deep[i], gmmrrt_status_str(deep[i]));
 }
 
+/* A model learned for one task never serves the other; one without a task serves either. */
+static void test_task_fits_its_own_task_or_none(void **state)
+{
+    (void)state;
+    static gmmrrt_model_t m;
+    fixture_features_model(&m);
+    m.task = GMMRRT_TASK_AVOID;
+    assert_int_equal(gmmrrt_model_task_fits(&m, GMMRRT_TASK_AVOID), GMMRRT_OK);
+    assert_int_equal(gmmrrt_model_task_fits(&m, GMMRRT_TASK_APPROACH), GMMRRT_ERR_MODEL_MISMATCH);
+    m.task = GMMRRT_TASK_APPROACH;
+    assert_int_equal(gmmrrt_model_task_fits(&m, GMMRRT_TASK_APPROACH), GMMRRT_OK);
+    assert_int_equal(gmmrrt_model_task_fits(&m, GMMRRT_TASK_AVOID), GMMRRT_ERR_MODEL_MISMATCH);
+    m.task = GMMRRT_TASK_NONE;
+    assert_int_equal(gmmrrt_model_task_fits(&m, GMMRRT_TASK_AVOID), GMMRRT_OK);
+    assert_int_equal(gmmrrt_model_task_fits(&m, GMMRRT_TASK_APPROACH), GMMRRT_OK);
+    assert_int_equal(gmmrrt_model_task_fits(NULL, GMMRRT_TASK_AVOID), GMMRRT_ERR_INVALID_ARGUMENT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -497,6 +515,7 @@ int main(void)
         cmocka_unit_test(test_number_rules_each_give_their_status),
         cmocka_unit_test(test_rules_are_checked_in_the_documented_order),
         cmocka_unit_test(test_random_mutations_with_valid_crc_are_rejected_or_valid),
+        cmocka_unit_test(test_task_fits_its_own_task_or_none),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -106,15 +106,24 @@ def _limit(ctx: Ctx, eps: list) -> list:
     return eps[:: max(1, len(eps) // n)][:n] if n else eps
 
 
+def _study_episodes(ctx: Ctx, ep_csv: str, idx: str) -> list:
+    """Every episode of a study, with its split and index row (the learner's reader), after
+    checking that each has a standing person and that the training and evaluation splits exist."""
+    from gmmrrt_tools import realdata as RD
+
+    every = S.read_episodes(ep_csv, index=idx)
+    RD._require_person(ep_csv, every)
+    RD.require_split(idx, ctx.train_split, every)
+    RD.require_split(idx, ctx.split, every)
+    return every
+
+
 def real_upo_avoid(ctx: Ctx) -> RealSet:
     from gmmrrt_tools import realdata as RD
 
     s = ctx.s
     ep_csv, idx = _real_file(ctx, "upo_avoid_episodes.csv"), _real_file(ctx, "upo_avoid_index.csv")
-    every = S.read_episodes(ep_csv, index=idx)
-    RD._require_person(ep_csv, every)
-    RD.require_split(idx, ctx.train_split, [e.episode_id for e in every])
-    RD.require_split(idx, ctx.split, [e.episode_id for e in every])
+    every = _study_episodes(ctx, ep_csv, idx)
     mdl = R.fit_model(ctx.work / "models" / f"upo_avoid_{ctx.train_split}_all.gmm", "avoid", [ep_csv], homotopy="all",
                       seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir)
     people = RD.upo_people(idx, every)
@@ -137,10 +146,7 @@ def real_ucy_avoid(ctx: Ctx) -> RealSet:
     s = ctx.s
     ep_csv, idx = _real_file(ctx, "ucy_avoid_episodes.csv"), _real_file(ctx, "ucy_index.csv")
     tracks = _real_file(ctx, "ucy_tracks.csv")
-    every = S.read_episodes(ep_csv, index=idx)
-    RD._require_person(ep_csv, every)
-    RD.require_split(idx, ctx.train_split, [e.episode_id for e in every])
-    RD.require_split(idx, ctx.split, [e.episode_id for e in every])
+    every = _study_episodes(ctx, ep_csv, idx)
     mdl = R.fit_model(ctx.work / "models" / f"ucy_avoid_{ctx.train_split}_all.gmm", "avoid", [ep_csv], homotopy="all",
                       seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir)
     eps = _limit(ctx, [e for e in every if e.split == ctx.split])
