@@ -7,7 +7,8 @@ failures a driven robot used to see, each where it happened:
 - a person stepping into the robot's disc: the very next plan is an escape (status 43), the
   robot never goes deeper and is out within 2 s, and no cycle stops;
 - an approach from behind the person with the 8-direction model set: the status names the
-  back model first, and the robot arrives facing the person within 15 degrees;
+  back model first, the arrival plans end facing the person within 15 degrees and the robot
+  (which does not track heading) within 35;
 - every plan received turns no tighter than the configured radius, unless the status counted
   it as a plan that had to (tight_turn_plans).
 
@@ -33,6 +34,11 @@ MAX_TURN_RATE = 2.0         # rad/s
 LOOKAHEAD = 0.45            # m
 MIN_TURN_RADIUS = 0.3       # m, [drive] min_turn_radius_m
 DT = 0.1                    # s, simulation step = pose rate
+# Plans arrive facing the person within 15 degrees; the robot is allowed 20 more: pure pursuit
+# chases a point 0.45 m ahead and cuts into the final leg, it does not track the heading (measured
+# 16-26 degrees at arrival on this scene; the failure this test guards against was 75 degrees).
+PLAN_YAW_TOLERANCE_DEG = 15
+FOLLOWER_YAW_ALLOWANCE_DEG = 20
 
 
 def private_url():
@@ -79,7 +85,7 @@ class Daemon:
         cmd = [gmmrrtd, "--lcm-url", url, "--rate-hz", "10", "--budget-ms", "40", "--seed", "7",
                "--robot-radius", str(ROBOT_RADIUS), "--person-radius", str(PERSON_RADIUS),
                "--nominal-speed", str(SPEED), "--min-turn-radius", str(MIN_TURN_RADIUS),
-               "--goal-yaw-tolerance", "15", "--pose-timeout-ms", "1000", "--log-level", "info", *extra]
+               "--goal-yaw-tolerance", str(PLAN_YAW_TOLERANCE_DEG), "--pose-timeout-ms", "1000", "--log-level", "info", *extra]
         self.proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=self.err, env=daemon_env())
         end = time.monotonic() + 15.0
         while time.monotonic() < end and "running:" not in open(self.err_path).read():
@@ -101,9 +107,10 @@ def person(pid, x, y, yaw, vx=0.0, vy=0.0):
     return q
 
 
-def drive(gmmrrtd, tmp_path, robot, goal, people_at, extra, limit_s, reached):
+def drive(gmmrrtd, tmp_path, robot, goal, people_at, extra, limit_s, reached, finish=False):
     """Runs the loop: every DT publish pose and people (people_at(t) -> [person_t]), the goal once
-    a second; follow the latest plan. Ends when reached(robot) or after limit_s of wall clock.
+    a second; follow the latest plan (inside the goal disc: the plan of that moment to its end).
+    Ends when reached(robot) (with `finish`, also at the end of that plan) or after limit_s.
     Returns (trajectory [(t, x, y, yaw, people)], plans [(t received, plan)], statuses, stderr); t
     in seconds from the start of the loop."""
     url = private_url()
@@ -135,7 +142,9 @@ def drive(gmmrrtd, tmp_path, robot, goal, people_at, extra, limit_s, reached):
                 goal.utime = utime
                 lc.publish("NAV_GOAL", goal.encode())
             traj.append((t, robot.x, robot.y, robot.yaw, [(q.x, q.y) for q in ppl]))
-            if reached(robot) or t > limit_s:
+            n = latched.num_waypoints if latched else 0
+            at_end = n > 0 and math.hypot(robot.x - latched.x[n - 1], robot.y - latched.y[n - 1]) <= 0.03
+            if (reached(robot) and (not finish or at_end)) or t > limit_s:
                 break
             end = now + DT
             while time.monotonic() < end:
@@ -231,9 +240,18 @@ def test_approach_from_behind_arrives_facing_the_person(gmmrrtd, tmp_path):
     assert "approach model set" in stderr
     planning = [s for s in statuses if s.state == planner_status_t.STATE_PLANNING]
     assert planning and planning[0].approach_model == 4  # "5-back": the robot comes from behind
-    assert math.hypot(robot.x - 1.2, robot.y) <= 0.25, "no arrival: %s" % ((robot.x, robot.y),)
+    last = statuses[-1]
+    assert math.hypot(robot.x - 1.2, robot.y) <= 0.25, \
+        "no arrival: robot at (%.2f, %.2f), %.2f m from the person; last plan status %d; escapes %d; stops %s" % (
+            robot.x, robot.y, math.hypot(robot.x, robot.y), plans[-1][1].status if plans else -1, last.escapes,
+            list(last.stops))
+    moving = [p for _, p in plans if p.num_waypoints >= 2]
+    for p in moving[-5:]:  # the plans of the arrival end facing the person
+        n = p.num_waypoints - 1
+        off = wrap(p.yaw[n] - math.atan2(-p.y[n], -p.x[n]))
+        assert abs(off) <= math.radians(PLAN_YAW_TOLERANCE_DEG) + 1e-6, "a plan ends %.1f deg off" % math.degrees(off)
     facing = math.atan2(-robot.y, -robot.x)
-    assert abs(wrap(robot.yaw - facing)) <= math.radians(15), \
+    assert abs(wrap(robot.yaw - facing)) <= math.radians(PLAN_YAW_TOLERANCE_DEG + FOLLOWER_YAW_ALLOWANCE_DEG), \
         "arrived %.1f deg off facing the person" % math.degrees(wrap(robot.yaw - facing))
     no_stops(statuses)
     check_turns(plans, statuses)
