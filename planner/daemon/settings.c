@@ -470,10 +470,21 @@ int gmmrrtd_settings_validate(const gmmrrtd_settings_t *s, char *err, size_t err
     if (strncmp(s->lcm_url, "file://", 7) == 0 && !strcmp(s->clock, "live"))
         return fail(err, errcap, "clock = live with a file:// input (%s): a log is replayed on its own event times "
                                  "(clock = log or auto)", s->lcm_url);
+    /* lcm_subscribe takes a channel as a POSIX regular expression: "ROBOT.POSE" would also take
+     * "ROBOTXPOSE", and "PEOPLE|NAV_GOAL" two channels into one handler. A name is therefore a
+     * literal, and the characters that would make it a pattern are refused. */
     const char *chans[] = {s->ch_pose, s->ch_people, s->ch_goal, s->ch_obstacles, s->ch_plan, s->ch_status};
-    for (int i = 0; i < 6; ++i)
+    const char *chan_keys[] = {"pose", "people", "goal", "obstacles", "plan", "status"};
+    for (int i = 0; i < 6; ++i) {
         if (chans[i][0] == '\0')
-            return fail(err, errcap, "a channel name is empty");
+            return fail(err, errcap, "[channels] %s: the channel name is empty", chan_keys[i]);
+        const size_t bad = strcspn(chans[i], ".[]()*+?{}|^$\\ ");
+        if (chans[i][bad] != '\0')
+            return fail(err, errcap,
+                        "[channels] %s = \"%s\": '%c' is not allowed in a channel name (LCM reads subscribed "
+                        "names as regular expressions; use letters, digits, '_', '-', '/', ':')",
+                        chan_keys[i], chans[i], chans[i][bad]);
+    }
     const double period_ms = 1000.0 / s->rate_hz;
     if (s->budget_ms >= period_ms)
         return fail(err, errcap, "budget_ms = %g must be below the period %g ms (rate_hz = %g)", s->budget_ms,

@@ -35,7 +35,11 @@ def test_bad_flags_are_named(gmmrrtd):
              (["--rate-hz", "0"], "--rate-hz"), (["--robot-radius", "nan"], "--robot-radius"),
              (["--planner", "a-star"], "--planner"), (["--rate-hz"], "--rate-hz"), (["stray"], "stray"),
              (["--rate-hz", "20", "--budget-ms", "60"], "budget_ms"), (["--informed", "2"], "--informed"),
-             (["--rewire-k", "-1"], "--rewire-k")]
+             (["--rewire-k", "-1"], "--rewire-k"),
+             # Channel names are literals: LCM would read "ROBOT.POSE" as a pattern (ROBOTXPOSE too).
+             (["--channel-pose", "ROBOT.POSE"], "[channels] pose"),
+             (["--channel-people", "PEOPLE|NAV_GOAL"], "[channels] people"),
+             (["--channel-goal", "NAV_GOAL.*"], "regular expressions")]
     for args, named in cases:
         res = run(gmmrrtd, *args)
         assert res.returncode == 2, (args, res.returncode, res.stderr)
