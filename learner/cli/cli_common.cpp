@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <map>
 #include <memory>
+#include <vector>
 
 #include "gmmrrt/model_file.h"
 #include "gmmrrt_learner/demo_io.hpp"
@@ -118,20 +119,27 @@ std::string DescribeData(const DataSpec& spec) {
   return files + ")";
 }
 
-Status LoadModel(const std::string& path, gmmrrt_model_t* model) {
+Status LoadModel(const std::string& path, gmmrrt_model_t* model, std::string* provenance) {
   auto scratch = std::make_unique<gmmrrt_model_t>();
-  char err[256] = "";
-  const gmmrrt_status_t st = gmmrrt_model_load_file(path.c_str(), scratch.get(), err, sizeof err);
+  char err[512] = "";
+  std::vector<char> text(provenance != nullptr ? GMMRRT_MAX_PROVENANCE_BYTES + 1 : 0);
+  size_t text_len = 0;
+  const gmmrrt_status_t st =
+      gmmrrt_model_load_file_provenance(path.c_str(), scratch.get(), provenance ? text.data() : nullptr, text.size(),
+                                        &text_len, err, sizeof err);
   if (st != GMMRRT_OK)
     return Status::Error(st == GMMRRT_ERR_IO ? StatusCode::kIoError : StatusCode::kBadModel,
                          err[0] ? std::string(err) : path + ": " + gmmrrt_status_str(st));
   *model = *scratch;
+  if (provenance != nullptr) provenance->assign(text.data(), text_len);
   return Status::Ok();
 }
 
-Status SaveModel(const std::string& path, const gmmrrt_model_t& model) {
-  char err[256] = "";
-  const gmmrrt_status_t st = gmmrrt_model_save_file(path.c_str(), &model, err, sizeof err);
+Status SaveModel(const std::string& path, const gmmrrt_model_t& model, const std::string* provenance) {
+  char err[512] = "";
+  const gmmrrt_status_t st =
+      gmmrrt_model_save_file_provenance(path.c_str(), &model, provenance ? provenance->data() : nullptr,
+                                        provenance ? provenance->size() : 0, err, sizeof err);
   if (st != GMMRRT_OK)
     return Status::Error(st == GMMRRT_ERR_IO ? StatusCode::kIoError : StatusCode::kBadModel,
                          err[0] ? std::string(err) : path + ": " + gmmrrt_status_str(st));

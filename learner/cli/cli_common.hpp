@@ -52,11 +52,13 @@ Status LoadPoints(const char* cmd, const DataSpec& spec, Eigen::MatrixXd* points
 // with the task, homotopy and split chosen.
 std::string DescribeData(const DataSpec& spec);
 
-// Loads and validates a model file into *model (scratch copy first, as model.h asks).
-Status LoadModel(const std::string& path, gmmrrt_model_t* model);
+// Loads and validates a model file into *model (scratch copy first, as model.h asks); with
+// provenance, its provenance text too ("" when the file has none or an empty one).
+Status LoadModel(const std::string& path, gmmrrt_model_t* model, std::string* provenance = nullptr);
 
 // Encodes and writes atomically (temporary file + rename; nothing left behind on failure).
-Status SaveModel(const std::string& path, const gmmrrt_model_t& model);
+// With provenance, the file ends with a provenance trailer holding it (model.h).
+Status SaveModel(const std::string& path, const gmmrrt_model_t& model, const std::string* provenance = nullptr);
 
 }  // namespace cli
 }  // namespace learn

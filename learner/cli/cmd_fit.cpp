@@ -9,6 +9,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "provenance.hpp"
 #include "gmmrrt_learner/bic.hpp"
 #include "gmmrrt_learner/delta_quantile.hpp"
 #include "gmmrrt_learner/em.hpp"
@@ -62,6 +63,10 @@ const char kFitHelp[] =
     "                          evidence in docs/planner.md, \"What delta does\")\n"
     "  -d, --delta X           store this fixed delta instead (the paper's: --delta 0.001)\n"
     "  -o, --output MODEL      model file to write (required)\n"
+    "  -N, --no-provenance     write no provenance trailer (the SHA-256 of the data files, the\n"
+    "                          command line, seed, K, BIC, log-likelihood, version, UTC time;\n"
+    "                          written by default, docs/learner.md): a file that loaders built\n"
+    "                          before the trailer existed also read\n"
     "  -q, --quiet             no progress on stderr\n"
     "  -h, --help              this text\n"
     "\n"
@@ -96,7 +101,12 @@ int RunFit(int argc, char** argv) {
       {"quiet", no_argument, nullptr, 'q'},          {"help", no_argument, nullptr, 'h'},
       {"bic-patience", required_argument, nullptr, 'P'}, {"screen-points", required_argument, nullptr, 'p'},
       {"accel", required_argument, nullptr, 'A'},    {"split-starts", required_argument, nullptr, 'L'},    {"threads", required_argument, nullptr, 'j'},
+      {"no-provenance", no_argument, nullptr, 'N'},
       {nullptr, 0, nullptr, 0}};
+  // The command line as given, for the provenance record (getopt_long reorders argv).
+  std::vector<std::string> command_line = {"gmmrrt-learn"};
+  for (int a = 0; a < argc; ++a) command_line.push_back(argv[a]);
+  bool provenance = true;
   DataSpec spec;
   FitOptions options;
   std::string output, task_name, homotopy_name = "all", kind_name, angle_dims, k_text;
@@ -109,7 +119,7 @@ int RunFit(int argc, char** argv) {
   bool delta_given = false;
   optind = 1;
   int c;
-  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:L:p:S:R:m:T:A:j:d:Q:o:qh", kLong, nullptr)) != -1) {
+  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:L:p:S:R:m:T:A:j:d:Q:o:qhN", kLong, nullptr)) != -1) {
     const std::string arg = optarg ? optarg : "";
     long v = 0;
     switch (c) {
@@ -182,6 +192,7 @@ int RunFit(int argc, char** argv) {
         break;
       case 'o': output = arg; break;
       case 'q': spec.quiet = true; break;
+      case 'N': provenance = false; break;
       case 'h': std::printf(kFitHelp, DefaultThreadCount()); return kExitOk;
       default: return UsageError(cmd, "unknown option or missing argument");
     }
@@ -286,7 +297,25 @@ int RunFit(int argc, char** argv) {
   }
   gmmrrt_model_t model;
   if (!(s = MixtureToModel(mixture, kind, spec.task, spec.homotopy, delta, &model)).ok()) return Fail(cmd, s.message);
-  if (!(s = SaveModel(output, model)).ok()) return Fail(cmd, s.message);
+  std::string record;
+  if (provenance) {
+    FitRecord r;
+    r.command_line = command_line;
+    r.data_files = spec.features_csv.empty() ? spec.inputs : std::vector<std::string>{spec.features_csv};
+    r.index_files = spec.indexes;
+    r.seed = options.seed;
+    r.k_auto = auto_k;
+    r.k = mixture.k();
+    r.points = summary.n_points;
+    r.dim = static_cast<int>(points.rows());
+    r.bic = summary.bic;
+    r.mean_log_likelihood = summary.final_mean_log_likelihood;
+    r.iterations = summary.iterations;
+    r.converged = summary.converged;
+    r.delta = delta;
+    if (!(s = ProvenanceJson(r, &record)).ok()) return Fail(cmd, s.message);
+  }
+  if (!(s = SaveModel(output, model, provenance ? &record : nullptr)).ok()) return Fail(cmd, s.message);
   if (!spec.quiet) std::fprintf(stderr, "gmmrrt-learn fit: wrote %s\n", output.c_str());
   return kExitOk;
 }

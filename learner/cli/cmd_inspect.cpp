@@ -25,7 +25,9 @@ const char kInspectHelp[] =
     "Validates MODEL and prints its header and components (weight, mean, standard deviations,\n"
     "correlations, and the Cholesky factor L of the covariance, Sigma = L L^T).\n"
     "  -j, --json   print one JSON object instead: model, kind, task, homotopy, dim, k, delta,\n"
-    "               angle_dims (1-based), components [{weight, mean, covariance, chol}]\n"
+    "               angle_dims (1-based), components [{weight, mean, covariance, chol}],\n"
+    "               provenance (the learner's record: data SHA-256, command line, seed, K,\n"
+    "               BIC, log-likelihood, version, UTC time; null when the file has none)\n"
     "Exit status: 0 valid; 1 not a valid model (the reason is printed); 2 usage error.\n";
 }  // namespace
 
@@ -50,8 +52,15 @@ int RunInspect(int argc, char** argv) {
   if (argc - optind != 1) return UsageError(cmd, "give exactly one MODEL");
   const std::string path = argv[optind];
   gmmrrt_model_t model;
-  Status s = LoadModel(path, &model);
+  std::string provenance_text;
+  Status s = LoadModel(path, &model, &provenance_text);
   if (!s.ok()) return Fail(cmd, "invalid model: " + s.message);
+  // The learner writes a JSON object; any other text (another writer's) is shown as a string.
+  nlohmann::ordered_json provenance = nullptr;
+  if (!provenance_text.empty()) {
+    provenance = nlohmann::ordered_json::parse(provenance_text, nullptr, false);
+    if (provenance.is_discarded()) provenance = provenance_text;
+  }
 
   if (json) {
     const Mixture mj = MixtureFromModel(model);
@@ -82,6 +91,7 @@ int RunInspect(int argc, char** argv) {
       comp["chol"] = l_rows;
       out["components"].push_back(comp);
     }
+    out["provenance"] = provenance;
     // 17 significant digits: the doubles of the file round-trip exactly.
     std::printf("%s\n", out.dump(1).c_str());
     return kExitOk;
@@ -101,6 +111,17 @@ int RunInspect(int argc, char** argv) {
       any = true;
     }
   std::printf("%s\n", any ? " (1-based dimensions, wrapped)" : " none");
+  if (provenance.is_object()) {
+    std::printf("provenance\n");
+    for (const auto& item : provenance.items())
+      std::printf("  %-20s %s\n", item.key().c_str(),
+                  item.value().is_string() ? item.value().get<std::string>().c_str()
+                                           : item.value().dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+  } else if (provenance.is_string()) {
+    std::printf("provenance %s\n", provenance.get<std::string>().c_str());
+  } else {
+    std::printf("provenance none (the file has no provenance trailer)\n");
+  }
   const Mixture m = MixtureFromModel(model);
   for (int i = 0; i < m.k(); ++i) {
     const Eigen::MatrixXd cov = m.chol[i] * m.chol[i].transpose();

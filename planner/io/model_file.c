@@ -36,11 +36,18 @@ static ssize_t read_up_to(int fd, uint8_t *buf, size_t cap)
 
 gmmrrt_status_t gmmrrt_model_load_file(const char *path, gmmrrt_model_t *model, char *err, size_t errcap)
 {
-    gmmrrt_clear_error(err, errcap);
-    if (path == NULL || model == NULL)
-        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model path or model is NULL");
+    return gmmrrt_model_load_file_provenance(path, model, NULL, 0, NULL, err, errcap);
+}
 
-    const size_t cap = gmmrrt_model_max_encoded_size() + 1; /* one more: detects oversized files */
+gmmrrt_status_t gmmrrt_model_load_file_provenance(const char *path, gmmrrt_model_t *model, char *text,
+                                                  size_t text_cap, size_t *text_len, char *err, size_t errcap)
+{
+    gmmrrt_clear_error(err, errcap);
+    if (path == NULL || model == NULL || (text != NULL && text_len == NULL))
+        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap,
+                                "model path or model is NULL, or text without text_len");
+
+    const size_t cap = gmmrrt_model_max_file_size() + 1; /* one more: detects oversized files */
     uint8_t *buf = malloc(cap);
     gmmrrt_model_t *scratch = malloc(sizeof *scratch);
     gmmrrt_status_t st = GMMRRT_OK;
@@ -83,6 +90,13 @@ gmmrrt_status_t gmmrrt_model_load_file(const char *path, gmmrrt_model_t *model, 
             gmmrrt_set_error(st, err, errcap, "%s: %s", path, why);
         goto done;
     }
+    if (text != NULL) {
+        st = gmmrrt_model_provenance(buf, (size_t)n, text, text_cap, text_len, NULL, why, sizeof why);
+        if (st != GMMRRT_OK) {
+            gmmrrt_set_error(st, err, errcap, "%s: %s", path, why);
+            goto done;
+        }
+    }
     memcpy(model, scratch, sizeof *model);
 done:
     free(scratch);
@@ -122,6 +136,12 @@ static void dir_of(const char *path, char *dir, size_t cap)
 gmmrrt_status_t gmmrrt_model_save_file(const char *path, const gmmrrt_model_t *model, char *err,
                                        size_t errcap)
 {
+    return gmmrrt_model_save_file_provenance(path, model, NULL, 0, err, errcap);
+}
+
+gmmrrt_status_t gmmrrt_model_save_file_provenance(const char *path, const gmmrrt_model_t *model, const char *text,
+                                                  size_t text_len, char *err, size_t errcap)
+{
     gmmrrt_clear_error(err, errcap);
     if (path == NULL || model == NULL)
         return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model path or model is NULL");
@@ -137,7 +157,7 @@ gmmrrt_status_t gmmrrt_model_save_file(const char *path, const gmmrrt_model_t *m
                                 "directory or a link to one); give a file name",
                                 path);
 
-    const size_t cap = gmmrrt_model_max_encoded_size();
+    const size_t cap = gmmrrt_model_max_file_size();
     uint8_t *buf = malloc(cap);
     const size_t tmp_cap = strlen(path) + sizeof ".tmp.XXXXXX";
     char *tmp = malloc(tmp_cap);
@@ -152,9 +172,11 @@ gmmrrt_status_t gmmrrt_model_save_file(const char *path, const gmmrrt_model_t *m
 
     size_t len = 0;
     char why[256];
-    st = gmmrrt_model_encode(model, buf, cap, &len, why, sizeof why);
+    st = text != NULL ? gmmrrt_model_encode_provenance(model, text, text_len, buf, cap, &len, why, sizeof why)
+                      : gmmrrt_model_encode(model, buf, cap, &len, why, sizeof why);
     if (st != GMMRRT_OK) {
-        gmmrrt_set_error(st, err, errcap, "%s: not written, the model is invalid: %s", path, why);
+        gmmrrt_set_error(st, err, errcap, "%s: not written, the model or its provenance is invalid: %s", path,
+                         why);
         goto done;
     }
 

@@ -7,7 +7,8 @@
  * not depend on the host's byte order or alignment. Decoding checks, in this fixed order:
  *   length >= header + CRC (TRUNCATED), length <= largest valid file (TOO_LARGE), magic,
  *   version, byte-order mark, D and K within limits.h (BAD_SIZE), reserved == 0
- *   (BAD_FIELD), length == encoded size (shorter TRUNCATED, longer BAD_SIZE), CRC-32,
+ *   (BAD_FIELD), length >= encoded size (TRUNCATED), CRC-32, then any bytes after the
+ *   model's CRC-32 as a provenance trailer (model_provenance.c; anything else BAD_SIZE),
  * then the stored fields as gmmrrt_model_prepare() does:
  *   kind/task/homotopy/angle_mask/delta (BAD_FIELD), finite numbers (NOT_FINITE),
  *   weights (BAD_WEIGHTS), Cholesky factors (NOT_POSITIVE_DEFINITE), angle means in
@@ -21,6 +22,7 @@
 #include <string.h>
 
 #include "error_text.h"
+#include "model_frame.h"
 
 #define CRC_BYTES 4u
 #define WEIGHT_SUM_TOL 1e-9
@@ -289,22 +291,22 @@ gmmrrt_status_t gmmrrt_model_encode(const gmmrrt_model_t *model, uint8_t *buf, s
     return GMMRRT_OK;
 }
 
-gmmrrt_status_t gmmrrt_model_decode(const uint8_t *buf, size_t len, gmmrrt_model_t *out, char *err,
-                                    size_t errcap)
+gmmrrt_status_t gmmrrt_model_check_frame(const uint8_t *buf, size_t len, size_t *model_len, size_t *text_off,
+                                         size_t *text_len, char *err, size_t errcap)
 {
-    gmmrrt_clear_error(err, errcap);
-    if (out == NULL || (buf == NULL && len > 0))
-        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "buf or out is NULL");
+    *model_len = 0;
+    *text_off = 0;
+    *text_len = 0;
     const size_t min_len = GMMRRT_MODEL_HEADER_BYTES + CRC_BYTES;
-    const size_t max_len = gmmrrt_model_max_encoded_size();
+    const size_t max_len = gmmrrt_model_max_file_size();
     if (len < min_len)
         return gmmrrt_set_error(GMMRRT_ERR_MODEL_TRUNCATED, err, errcap,
                                 "%zu bytes is shorter than the %zu-byte header and checksum", len, min_len);
     if (len > max_len)
         return gmmrrt_set_error(GMMRRT_ERR_MODEL_TOO_LARGE, err, errcap,
-                                "%zu bytes is larger than any valid model "
-                                "(at most %zu bytes, D <= %d, K <= %d)",
-                                len, max_len, GMMRRT_MAX_DIM, GMMRRT_MAX_K);
+                                "%zu bytes is larger than any valid model file "
+                                "(at most %zu bytes, D <= %d, K <= %d, provenance <= %d bytes)",
+                                len, max_len, GMMRRT_MAX_DIM, GMMRRT_MAX_K, GMMRRT_MAX_PROVENANCE_BYTES);
     if (memcmp(buf, GMMRRT_MODEL_MAGIC, 8) != 0)
         return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_MAGIC, err, errcap,
                                 "bytes 0..7 are not the magic \"GMMRRTMD\": not a gmmrrt model file");
@@ -337,16 +339,36 @@ gmmrrt_status_t gmmrrt_model_decode(const uint8_t *buf, size_t len, gmmrrt_model
     if (len < want)
         return gmmrrt_set_error(GMMRRT_ERR_MODEL_TRUNCATED, err, errcap,
                                 "%zu bytes, but D = %d, K = %d needs %zu", len, (int)dim, (int)k, want);
-    if (len > want)
-        return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_SIZE, err, errcap,
-                                "%zu bytes, but D = %d, K = %d needs exactly %zu (trailing bytes)", len,
-                                (int)dim, (int)k, want);
-    const uint32_t stored_crc = get_u32(buf + len - CRC_BYTES);
-    const uint32_t crc = gmmrrt_crc32(buf, len - CRC_BYTES);
+    /* Bytes after the model's CRC-32: a provenance trailer, or the file is refused. */
+    if (len > want) {
+        const gmmrrt_status_t st =
+            gmmrrt_provenance_check(buf + want, len - want, want, text_off, text_len, err, errcap);
+        if (st != GMMRRT_OK)
+            return st;
+        *text_off += want;
+    }
+    const uint32_t stored_crc = get_u32(buf + want - CRC_BYTES);
+    const uint32_t crc = gmmrrt_crc32(buf, want - CRC_BYTES);
     if (crc != stored_crc)
         return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_CHECKSUM, err, errcap,
                                 "CRC-32 stored 0x%08X, computed 0x%08X: the file is corrupt",
                                 (unsigned)stored_crc, (unsigned)crc);
+    *model_len = want;
+    return GMMRRT_OK;
+}
+
+gmmrrt_status_t gmmrrt_model_decode(const uint8_t *buf, size_t len, gmmrrt_model_t *out, char *err,
+                                    size_t errcap)
+{
+    gmmrrt_clear_error(err, errcap);
+    if (out == NULL || (buf == NULL && len > 0))
+        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "buf or out is NULL");
+    size_t model_len, text_off, text_len;
+    const gmmrrt_status_t frame = gmmrrt_model_check_frame(buf, len, &model_len, &text_off, &text_len, err, errcap);
+    if (frame != GMMRRT_OK)
+        return frame;
+    const int32_t dim = buf[15];
+    const int32_t k = get_u16(buf + 16);
 
     memset(out, 0, sizeof *out);
     out->kind = buf[12];

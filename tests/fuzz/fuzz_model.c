@@ -7,7 +7,9 @@
  * validation behind the checksum. Properties checked (abort = finding):
  *   - decode never reads outside the input (ASan) and never hits undefined behaviour (UBSan);
  *   - a rejected input always comes with a non-empty message;
- *   - an accepted model encodes again, and the encoding decodes to the same stored fields.
+ *   - an accepted model encodes again, and the encoding decodes to the same stored fields;
+ *   - an accepted file's provenance text (if any) reads back (the same framing rules) and
+ *     re-encodes with the model to a file that gives the same text.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -21,6 +23,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 static gmmrrt_model_t g_model, g_again;
 static uint8_t g_fixed[1 << 16];
 static uint8_t g_encoded[1 << 16];
+static char g_text[GMMRRT_MAX_PROVENANCE_BYTES + 1], g_text_again[GMMRRT_MAX_PROVENANCE_BYTES + 1];
 
 static void check_one(const uint8_t *buf, size_t len)
 {
@@ -33,7 +36,22 @@ static void check_one(const uint8_t *buf, size_t len)
         }
         return;
     }
-    size_t n = 0;
+    size_t n = 0, text_len = 0, again_len = 0;
+    int has = 0;
+    if (gmmrrt_model_provenance(buf, len, g_text, sizeof g_text, &text_len, &has, err, sizeof err) != GMMRRT_OK) {
+        fprintf(stderr, "fuzz_model: a decoded file's provenance does not read: %s\n", err);
+        abort();
+    }
+    if (has) {
+        if (gmmrrt_model_encode_provenance(&g_model, g_text, text_len, g_encoded, sizeof g_encoded, &n, err,
+                                           sizeof err) != GMMRRT_OK ||
+            gmmrrt_model_provenance(g_encoded, n, g_text_again, sizeof g_text_again, &again_len, NULL, err,
+                                    sizeof err) != GMMRRT_OK ||
+            again_len != text_len || memcmp(g_text, g_text_again, text_len) != 0) {
+            fprintf(stderr, "fuzz_model: the provenance text does not survive a round trip: %s\n", err);
+            abort();
+        }
+    }
     if (gmmrrt_model_encode(&g_model, g_encoded, sizeof g_encoded, &n, err, sizeof err) != GMMRRT_OK) {
         fprintf(stderr, "fuzz_model: an accepted model does not encode: %s\n", err);
         abort();

@@ -14,7 +14,7 @@ import ctypes
 import math
 import os
 from pathlib import Path
-from typing import Tuple
+from typing import Optional, Tuple
 
 _REPO = Path(__file__).resolve().parents[2]
 
@@ -87,6 +87,18 @@ def lib() -> ctypes.CDLL:
         _lib.gmmrrt_model_decode.restype = ctypes.c_int
         _lib.gmmrrt_model_save_file.argtypes = [ctypes.c_char_p, ctypes.c_void_p, ctypes.c_char_p, ctypes.c_size_t]
         _lib.gmmrrt_model_save_file.restype = ctypes.c_int
+        sz, psz = ctypes.c_size_t, ctypes.POINTER(ctypes.c_size_t)
+        _lib.gmmrrt_model_max_file_size.argtypes = []
+        _lib.gmmrrt_model_max_file_size.restype = sz
+        _lib.gmmrrt_model_encode_provenance.argtypes = [ctypes.c_void_p, ctypes.c_char_p, sz, ctypes.c_char_p, sz,
+                                                        psz, ctypes.c_char_p, sz]
+        _lib.gmmrrt_model_encode_provenance.restype = ctypes.c_int
+        _lib.gmmrrt_model_provenance.argtypes = [ctypes.c_char_p, sz, ctypes.c_char_p, sz, psz,
+                                                 ctypes.POINTER(ctypes.c_int), ctypes.c_char_p, sz]
+        _lib.gmmrrt_model_provenance.restype = ctypes.c_int
+        _lib.gmmrrt_model_save_file_provenance.argtypes = [ctypes.c_char_p, ctypes.c_void_p, ctypes.c_char_p, sz,
+                                                           ctypes.c_char_p, sz]
+        _lib.gmmrrt_model_save_file_provenance.restype = ctypes.c_int
         _lib.gmmrrt_approach_direction_name.argtypes = [ctypes.c_int32]
         _lib.gmmrrt_approach_direction_name.restype = ctypes.c_char_p
     return _lib
@@ -203,25 +215,51 @@ def model_from_arrays(kind: int, task: int, homotopy: int, weights, means, chols
     return buf
 
 
-def encode_model(model: ctypes.Array) -> bytes:
-    """The file bytes of a prepared model (gmmrrt_model_encode; docs/model-format.md)."""
+def encode_model(model: ctypes.Array, provenance: Optional[str] = None) -> bytes:
+    """The file bytes of a prepared model (gmmrrt_model_encode; docs/model-format.md), with a
+    provenance trailer holding the text `provenance` when given (gmmrrt_model_encode_provenance)."""
     core = lib()
-    cap = core.gmmrrt_model_max_encoded_size()
+    cap = core.gmmrrt_model_max_file_size()
     out = ctypes.create_string_buffer(cap)
     n = ctypes.c_size_t()
     err = ctypes.create_string_buffer(256)
-    st = core.gmmrrt_model_encode(model, out, cap, ctypes.byref(n), err, len(err))
+    if provenance is None:
+        st = core.gmmrrt_model_encode(model, out, cap, ctypes.byref(n), err, len(err))
+    else:
+        text = provenance.encode("utf-8")
+        st = core.gmmrrt_model_encode_provenance(model, text, len(text), out, cap, ctypes.byref(n), err, len(err))
     if st != 0:
         raise ModelError("cannot encode the model (" + _status_text(st, err) + ")")
     return out.raw[:n.value]
 
 
-def save_model(path: str, model: ctypes.Array) -> None:
-    """Writes a prepared model to `path` atomically (gmmrrt_model_save_file: never a partial file)."""
+def save_model(path: str, model: ctypes.Array, provenance: Optional[str] = None) -> None:
+    """Writes a prepared model to `path` atomically (gmmrrt_model_save_file: never a partial file),
+    with a provenance trailer holding `provenance` when given (gmmrrt_model_save_file_provenance)."""
     err = ctypes.create_string_buffer(512)
-    st = lib().gmmrrt_model_save_file(os.fsencode(path), model, err, len(err))
+    if provenance is None:
+        st = lib().gmmrrt_model_save_file(os.fsencode(path), model, err, len(err))
+    else:
+        text = provenance.encode("utf-8")
+        st = lib().gmmrrt_model_save_file_provenance(os.fsencode(path), model, text, len(text), err, len(err))
     if st != 0:
         raise ModelError(_status_text(st, err))
+
+
+def model_provenance(data: bytes) -> Optional[str]:
+    """The provenance text of a model file's bytes (gmmrrt_model_provenance), None when the file has
+    no trailer. Checks the framing only (header, lengths, both CRC-32s); decode_model checks the rest.
+    The learner's text is a JSON object (docs/learner.md); raises ModelError with the core's reason."""
+    core = lib()
+    text = ctypes.create_string_buffer(core.gmmrrt_model_max_file_size())
+    n = ctypes.c_size_t()
+    has = ctypes.c_int()
+    err = ctypes.create_string_buffer(320)
+    st = core.gmmrrt_model_provenance(bytes(data), len(data), text, len(text), ctypes.byref(n), ctypes.byref(has),
+                                      err, len(err))
+    if st != 0:
+        raise ModelError("not a valid model (" + _status_text(st, err) + ")")
+    return text.raw[:n.value].decode("utf-8") if has.value else None
 
 
 def decode_model(data: bytes) -> ctypes.Array:
@@ -254,4 +292,4 @@ def model_fields(model: ctypes.Array) -> dict:
 
 __all__ = ["CoreNotBuilt", "Pose", "lib", "msg_lib", "wrap_angle", "features_from_xy", "features_to_xy",
            "world_to_person", "person_to_world", "MESSAGE_TYPES", "validate_message", "ModelError",
-           "model_from_arrays", "encode_model", "save_model", "decode_model", "model_fields"]
+           "model_from_arrays", "encode_model", "save_model", "decode_model", "model_fields", "model_provenance"]

@@ -46,6 +46,11 @@ KIND = {"features": 1, "xy": 2, "generic": 3}
 TASK = {"none": 0, "avoid": 1, "approach": 2}
 HOMOTOPY = {"all": 0, "left": 1, "right": 2, "frontal": 3}
 CHECK_RTOL = 1e-10  # --check: see the module docstring for why
+# The optional provenance trailer after the model's CRC-32 (docs/model-format.md).
+PROV_MAGIC = b"GMMRRTPV"
+PROV_VERSION = 1
+PROV_HEAD = struct.Struct("<8sHHI")  # magic, version, reserved, text length: 16 bytes
+PROV_MAX_TEXT = 4096  # GMMRRT_MAX_PROVENANCE_BYTES of limits.h (default)
 
 
 def encode(kind, task, homotopy, angle_mask, delta, weights, means, chols):
@@ -60,15 +65,51 @@ def encode(kind, task, homotopy, angle_mask, delta, weights, means, chols):
     return body + struct.pack("<I", zlib.crc32(body))
 
 
+def encode_provenance(text):
+    """The provenance trailer that follows a model's CRC-32: magic, version, reserved, UTF-8 text
+    length, the text, CRC-32 of the trailer's bytes before it."""
+    raw = text.encode("utf-8")
+    body = PROV_HEAD.pack(PROV_MAGIC, PROV_VERSION, 0, len(raw)) + raw
+    return body + struct.pack("<I", zlib.crc32(body))
+
+
+def _decode_provenance(tail):
+    """The text of the trailer `tail` (the bytes after the model's CRC-32); ValueError naming the rule."""
+    if len(tail) < 8 and PROV_MAGIC.startswith(tail):
+        raise ValueError("provenance trailer truncated")
+    if tail[:8] != PROV_MAGIC:
+        raise ValueError("length does not match D and K (trailing bytes are not a provenance trailer)")
+    if len(tail) < PROV_HEAD.size + 4:
+        raise ValueError("provenance trailer truncated")
+    _magic, version, reserved, n = PROV_HEAD.unpack_from(tail)
+    if version != PROV_VERSION or reserved != 0:
+        raise ValueError("provenance trailer version %d / reserved %d not supported" % (version, reserved))
+    if n > PROV_MAX_TEXT:
+        raise ValueError("provenance text of %d bytes is longer than %d" % (n, PROV_MAX_TEXT))
+    if len(tail) < PROV_HEAD.size + n + 4:
+        raise ValueError("provenance trailer truncated")
+    if len(tail) > PROV_HEAD.size + n + 4:
+        raise ValueError("trailing bytes after the provenance trailer")
+    if zlib.crc32(tail[:-4]) != struct.unpack_from("<I", tail, len(tail) - 4)[0]:
+        raise ValueError("provenance trailer CRC-32 mismatch")
+    raw = tail[PROV_HEAD.size:PROV_HEAD.size + n]
+    if b"\0" in raw:
+        raise ValueError("provenance text holds a NUL byte")
+    return raw.decode("utf-8")  # UnicodeDecodeError is a ValueError
+
+
 def decode(data):
-    """The reader of docs/model-format.md (checks magic, version, byte order, size, CRC only)."""
+    """The reader of docs/model-format.md (checks magic, version, byte order, size, CRC and the
+    provenance trailer's framing only); the result's "provenance" is its text, or None without one."""
     magic, version, bom, kind, task, homotopy, d, k, reserved, mask, delta = HEADER.unpack_from(data)
     if magic != MAGIC or version != VERSION or bom != BOM or reserved != 0:
         raise ValueError("not a version-1 little-endian gmmrrt model")
     ntri = d * (d + 1) // 2
-    if len(data) != HEADER.size + 8 * k * (1 + d + ntri) + 4:
-        raise ValueError("length does not match D and K")
-    if zlib.crc32(data[:-4]) != struct.unpack_from("<I", data, len(data) - 4)[0]:
+    model_len = HEADER.size + 8 * k * (1 + d + ntri) + 4
+    if len(data) < model_len:
+        raise ValueError("length does not match D and K (truncated)")
+    provenance = _decode_provenance(bytes(data[model_len:])) if len(data) > model_len else None
+    if zlib.crc32(data[:model_len - 4]) != struct.unpack_from("<I", data, model_len - 4)[0]:
         raise ValueError("CRC-32 mismatch")
     vals = np.frombuffer(data, dtype="<f8", count=k * (1 + d + ntri), offset=HEADER.size)
     weights, means, tri = vals[:k], vals[k:k + k * d].reshape(k, d), vals[k + k * d:].reshape(k, ntri)
@@ -76,7 +117,7 @@ def decode(data):
     rows, cols = np.tril_indices(d)  # row-major lower triangle: (0,0), (1,0), (1,1), (2,0), ...
     chols[:, rows, cols] = tri
     return dict(kind=kind, task=task, homotopy=homotopy, dim=d, k=k, angle_mask=mask, delta=delta,
-                weights=weights, means=means, chols=chols)
+                weights=weights, means=means, chols=chols, provenance=provenance)
 
 
 def wrap(a):
@@ -197,7 +238,7 @@ def compare(name, old, new):
             a, b = decode(old), decode(new)
         except ValueError as exc:
             return "does not decode (%s)" % exc, 0.0
-        for key in ("kind", "task", "homotopy", "dim", "k", "angle_mask"):
+        for key in ("kind", "task", "homotopy", "dim", "k", "angle_mask", "provenance"):
             if a[key] != b[key]:
                 return "%s is %r, the script makes %r" % (key, a[key], b[key]), 0.0
         dev = max(deviation([a["delta"]], [b["delta"]]),

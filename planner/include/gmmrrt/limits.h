@@ -19,6 +19,13 @@
 #define GMMRRT_MAX_K 64
 #endif
 
+/* Bytes of the provenance text a model file may carry after the model (model.h: the
+ * learner's record of the data hash, command line, seed, K, BIC and log-likelihood). Bounds
+ * what a loader reads; 4096 holds a command line of a few dozen input paths. */
+#ifndef GMMRRT_MAX_PROVENANCE_BYTES
+#define GMMRRT_MAX_PROVENANCE_BYTES 4096
+#endif
+
 /* People considered by the planner; equals people_t.MAX_PEOPLE on the wire. */
 #ifndef GMMRRT_MAX_PEOPLE
 #define GMMRRT_MAX_PEOPLE 32
@@ -70,6 +77,9 @@
 #endif
 #if GMMRRT_MAX_K < 1 || GMMRRT_MAX_K > 1024
 #error "GMMRRT_MAX_K must be in 1..1024"
+#endif
+#if GMMRRT_MAX_PROVENANCE_BYTES < 256 || GMMRRT_MAX_PROVENANCE_BYTES > 65536
+#error "GMMRRT_MAX_PROVENANCE_BYTES must be in 256..65536"
 #endif
 #if GMMRRT_MAX_PEOPLE < 1 || GMMRRT_MAX_PEOPLE > 256
 #error "GMMRRT_MAX_PEOPLE must be in 1..256"

@@ -83,7 +83,8 @@ gmmrrt_status_t gmmrrt_model_encode(const gmmrrt_model_t *model, uint8_t *buf, s
                                     size_t *out_len, char *err, size_t errcap);
 
 /* Parses and validates len bytes at buf into *out: magic, version, byte order, sizes
- * against len, CRC-32, K and D within limits.h, kind/task/homotopy/angle flags known,
+ * against len, CRC-32, the provenance trailer's framing when bytes follow the model (below;
+ * its text is not stored in *out), K and D within limits.h, kind/task/homotopy/angle flags known,
  * finite numbers, positive-definite factors, weights summing to 1 (|sum - 1| <= 1e-9),
  * then derives the prepared fields. Never reads outside buf[0..len). On failure returns
  * the specific GMMRRT_ERR_MODEL_* status, writes the reason into err[errcap], and leaves
@@ -123,6 +124,51 @@ void gmmrrt_model_to_arrays(const gmmrrt_model_t *model, int32_t *header, double
  * pairs a model with a task (gmmrrtd's model slots, gmmrrt-plan's --task and --model).
  * GMMRRT_OK, GMMRRT_ERR_MODEL_MISMATCH, or GMMRRT_ERR_INVALID_ARGUMENT for a NULL model. */
 gmmrrt_status_t gmmrrt_model_task_fits(const gmmrrt_model_t *model, int32_t task);
+
+/* ------------------------------------------------------------------ provenance trailer
+ *
+ * A model file may end with a provenance trailer after the model's CRC-32: what the model was
+ * learned from (the learner writes a JSON object: data hash, command line, seed, K, BIC,
+ * log-likelihood, learner version, UTC time). The core treats the text as opaque UTF-8 and
+ * checks only its framing; gmmrrt_model_t is unchanged (fixed memory), the text goes to a
+ * caller's buffer. Layout (docs/model-format.md), E = gmmrrt_model_encoded_size(D, K):
+ *   E      8  magic "GMMRRTPV"
+ *   E + 8  2  u16 trailer version (1)
+ *   E + 10 2  u16 reserved (0)
+ *   E + 12 4  u32 text length n, 0..GMMRRT_MAX_PROVENANCE_BYTES
+ *   E + 16 n  text: valid UTF-8, no NUL byte
+ *   E+16+n 4  u32 CRC-32 of the trailer bytes E .. E + 16 + n
+ * gmmrrt_model_decode accepts a file with or without a valid trailer and refuses a corrupt
+ * one (TRUNCATED, BAD_SIZE, BAD_VERSION, BAD_FIELD or BAD_CHECKSUM, the message names the
+ * provenance trailer). */
+#define GMMRRT_PROVENANCE_MAGIC "GMMRRTPV" /* 8 bytes, no terminator in the file */
+#define GMMRRT_PROVENANCE_VERSION 1
+#define GMMRRT_PROVENANCE_OVERHEAD 20 /* magic, version, reserved, length, CRC-32 */
+
+/* Largest valid file this build accepts: the largest model plus the largest trailer. */
+size_t gmmrrt_model_max_file_size(void);
+
+/* As gmmrrt_model_encode, then appends a provenance trailer holding text[0..text_len) (text
+ * may be NULL when text_len is 0, which still writes an empty trailer). The text must be valid
+ * UTF-8 without NUL bytes and at most GMMRRT_MAX_PROVENANCE_BYTES long (BAD_FIELD / TOO_LARGE
+ * otherwise, nothing written). */
+gmmrrt_status_t gmmrrt_model_encode_provenance(const gmmrrt_model_t *model, const char *text, size_t text_len,
+                                               uint8_t *buf, size_t cap, size_t *out_len, char *err,
+                                               size_t errcap);
+
+/* The provenance text of the model file buf[0..len): checks the file's framing as decode does
+ * (header, lengths, model CRC-32, the trailer's rules; not the model's numbers: decode the model
+ * for those) and copies the text, NUL-terminated, into text[cap]; *text_len gets its length.
+ * A file without a trailer gives GMMRRT_OK, *text_len = 0 and *has_trailer = 0 (has_trailer
+ * may be NULL). GMMRRT_ERR_BUFFER_TOO_SMALL when cap < text length + 1. */
+gmmrrt_status_t gmmrrt_model_provenance(const uint8_t *buf, size_t len, char *text, size_t cap, size_t *text_len,
+                                        int *has_trailer, char *err, size_t errcap);
+
+/* Checks the trailer at buf[0..len) (the bytes after the model's CRC-32; `at` is their offset
+ * in the file, for messages) and gives the text's offset in buf and its length. Used by decode
+ * and gmmrrt_model_provenance; status and message as documented above. */
+gmmrrt_status_t gmmrrt_provenance_check(const uint8_t *buf, size_t len, size_t at, size_t *text_off,
+                                        size_t *text_len, char *err, size_t errcap);
 
 /* CRC-32 (IEEE 802.3 / zlib polynomial, reflected, init and final xor 0xFFFFFFFF), so
  * Python's zlib.crc32 checks files too. */

@@ -20,7 +20,7 @@ bool load_model_file(const std::string &path, gmmrrt_model_t *out, std::string *
         return false;
     }
     std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (bytes.size() > gmmrrt_model_max_encoded_size()) {
+    if (bytes.size() > gmmrrt_model_max_file_size()) {
         *err = "model file '" + path + "' is larger than any valid model";
         return false;
     }

@@ -274,13 +274,17 @@ static void test_oversized_input_is_too_large_and_trailing_bytes_bad_size(void *
 {
     (void)state;
     const size_t max = gmmrrt_model_max_encoded_size();
-    uint8_t *big = calloc(max + 4096, 1);
+    /* The largest file: the largest model and the largest provenance trailer. */
+    const size_t max_file = gmmrrt_model_max_file_size();
+    assert_int_equal(max_file, max + GMMRRT_PROVENANCE_OVERHEAD + GMMRRT_MAX_PROVENANCE_BYTES);
+    uint8_t *big = calloc(max_file + 4096, 1);
     assert_non_null(big);
-    const size_t len = encode_fixture(big, max + 4096);
-    expect_status(big, max + 1, GMMRRT_ERR_MODEL_TOO_LARGE, NULL);
-    expect_status(big, max + 4096, GMMRRT_ERR_MODEL_TOO_LARGE, NULL);
-    /* One trailing byte after a valid model: a length mismatch, not a valid model. */
-    expect_status(big, len + 1, GMMRRT_ERR_MODEL_BAD_SIZE, "trailing");
+    const size_t len = encode_fixture(big, max_file + 4096);
+    expect_status(big, max_file + 1, GMMRRT_ERR_MODEL_TOO_LARGE, NULL);
+    expect_status(big, max_file + 4096, GMMRRT_ERR_MODEL_TOO_LARGE, NULL);
+    /* One trailing byte after a valid model: not a provenance trailer, not a valid model. */
+    expect_status(big, len + 1, GMMRRT_ERR_MODEL_BAD_SIZE, "not a provenance trailer");
+    expect_status(big, max + 1, GMMRRT_ERR_MODEL_BAD_SIZE, "not a provenance trailer");
     free(big);
 
     /* The largest valid model decodes. */
@@ -340,7 +344,7 @@ static void test_header_rules_each_give_their_status(void **state)
     f = fresh(); le_put_u16(f.b + OFF_K, GMMRRT_MAX_K + 1); check(&f, GMMRRT_ERR_MODEL_BAD_SIZE, "component count");
     f = fresh(); le_put_u16(f.b + OFF_RESERVED, 7); check(&f, GMMRRT_ERR_MODEL_BAD_FIELD, "reserved");
     /* K = 2 needs fewer bytes than the file holds: trailing bytes. */
-    f = fresh(); le_put_u16(f.b + OFF_K, 2); check(&f, GMMRRT_ERR_MODEL_BAD_SIZE, "exactly");
+    f = fresh(); le_put_u16(f.b + OFF_K, 2); check(&f, GMMRRT_ERR_MODEL_BAD_SIZE, "need exactly");
     /* K = 4 needs more: truncated. */
     f = fresh(); le_put_u16(f.b + OFF_K, 4); check(&f, GMMRRT_ERR_MODEL_TRUNCATED, "needs");
     /* A correct file with a wrong CRC. */

@@ -134,7 +134,7 @@ static void test_missing_file_is_io_error_naming_path_and_reason(void **state)
 static void test_oversized_file_is_too_large_and_model_untouched(void **state)
 {
     sandbox_t *s = *state;
-    const size_t max = gmmrrt_model_max_encoded_size();
+    const size_t max = gmmrrt_model_max_file_size();
     const size_t big_len = 10 * max;
     uint8_t *big = calloc(big_len, 1);
     assert_non_null(big);

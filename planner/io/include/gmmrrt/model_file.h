@@ -38,6 +38,19 @@ gmmrrt_status_t gmmrrt_model_load_file(const char *path, gmmrrt_model_t *model, 
 gmmrrt_status_t gmmrrt_model_save_file(const char *path, const gmmrrt_model_t *model, char *err,
                                        size_t errcap);
 
+/* As gmmrrt_model_load_file, and the file's provenance text (gmmrrt_model_provenance:
+ * NUL-terminated, *text_len = 0 when the file has none) into text[text_cap] when text is not
+ * NULL; a text_cap below the text's length + 1 is GMMRRT_ERR_BUFFER_TOO_SMALL
+ * (GMMRRT_MAX_PROVENANCE_BYTES + 1 always suffices). Neither *model nor text is trusted
+ * unless the call returns GMMRRT_OK; *model is untouched on failure. */
+gmmrrt_status_t gmmrrt_model_load_file_provenance(const char *path, gmmrrt_model_t *model, char *text,
+                                                  size_t text_cap, size_t *text_len, char *err, size_t errcap);
+
+/* As gmmrrt_model_save_file, with a provenance trailer holding text[0..text_len)
+ * (gmmrrt_model_encode_provenance; text NULL writes no trailer, as gmmrrt_model_save_file). */
+gmmrrt_status_t gmmrrt_model_save_file_provenance(const char *path, const gmmrrt_model_t *model, const char *text,
+                                                  size_t text_len, char *err, size_t errcap);
+
 #ifdef __cplusplus
 }
 #endif
