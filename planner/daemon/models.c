@@ -26,16 +26,6 @@ static const char *kind_name(int32_t kind)
     }
 }
 
-static const char *planner_name(int32_t planner)
-{
-    switch (planner) {
-    case GMMRRT_PLANNER_GMM_RRT_STAR: return "gmm-rrt-star";
-    case GMMRRT_PLANNER_RRT_STAR: return "rrt-star";
-    case GMMRRT_PLANNER_GMM_RRT: return "gmm-rrt";
-    default: return "?";
-    }
-}
-
 static int refuse(gmmrrtd_t *d, int reload, int have, gmmrrt_status_t st, const char *what)
 {
     if (!reload) {
@@ -74,7 +64,7 @@ static int load_one(gmmrrtd_t *d, const char *path, int32_t want_task, gmmrrt_mo
     const gmmrrt_status_t fit = gmmrrt_planner_model_fits(&d->set.cfg, m);
     if (fit != GMMRRT_OK) {
         snprintf(what, sizeof what, "%s model %s: a %s model with D = %d does not fit the %s planner (%s)", task_name,
-                 path, kind_name(m->kind), (int)m->dim, planner_name(d->set.cfg.planner), gmmrrt_status_str(fit));
+                 path, kind_name(m->kind), (int)m->dim, gmmrrtd_planner_name(d->set.cfg.planner), gmmrrt_status_str(fit));
         return refuse(d, reload, *have, fit, what);
     }
     *slot = *m;

@@ -136,6 +136,11 @@ static const key_t_ k_keys[] = {
 
 static const char *const k_planner_names[] = {NULL, "gmm-rrt-star", "rrt-star", "gmm-rrt"};
 
+const char *gmmrrtd_planner_name(int32_t planner)
+{
+    return planner >= 1 && planner <= 3 ? k_planner_names[planner] : "?";
+}
+
 static int fail(char *err, size_t errcap, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 static int fail(char *err, size_t errcap, const char *fmt, ...)
 {

@@ -94,6 +94,9 @@ int gmmrrtd_settings_validate(const gmmrrtd_settings_t *s, char *err, size_t err
 /* The clock mode after resolving "auto" against the URL. */
 gmmrrtd_clock_mode_t gmmrrtd_settings_clock(const gmmrrtd_settings_t *s);
 
+/* The name of a planner (GMMRRT_PLANNER_*, config.h) as [planner] planner takes it; "?" for none. */
+const char *gmmrrtd_planner_name(int32_t planner);
+
 void gmmrrtd_settings_print_help(const char *argv0);
 
 #endif /* GMMRRTD_SETTINGS_H */

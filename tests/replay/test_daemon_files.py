@@ -15,7 +15,6 @@
 import os
 import signal
 import subprocess
-import time
 
 from daemon_fixture import SCENARIOS, venv_bin
 from test_daemon_cli import StatusListener

@@ -71,12 +71,13 @@ def _read_streams(path: str) -> Tuple[np.ndarray, Dict[int, np.ndarray], List[st
     event. The log's framing is LCM's own (lcm.EventLog); whether a message is valid is decided by
     the daemon's decoders (msg_decode.c through core.validate_message), so no rule is written here:
     an invalid event is a note naming the event and the decoder's reason, and is skipped. A log
-    that ends inside an event is read up to the last whole one, with a note."""
+    cut inside its last event is read up to the last whole one, with a note when LCM's reader
+    stopped short of the file's end (a few stray bytes at the very end may pass unnoticed)."""
     if not Path(path).is_file():
         raise SegmentError(f"{path}: cannot open: not a regular file")
     try:
         log = lcm.EventLog(path, "r")
-    except (IOError, OSError) as e:
+    except OSError as e:
         raise SegmentError(f"{path}: cannot open: {e}") from None
     notes: List[str] = []
     poses, people = [], {}
