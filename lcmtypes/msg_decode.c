@@ -9,6 +9,11 @@
 #include <stdint.h>
 
 #include "gmmrrt/detail/reason_text.h"
+#include "gmmrrt/limits.h"
+
+/* One bound: the wire's capacity is the core's scan capacity (raster.h). */
+_Static_assert(GMMRRT_PLANAR_SCAN_T_MAX_RANGES == GMMRRT_MAX_SCAN_RANGES,
+               "planar_scan_t.MAX_RANGES must equal GMMRRT_MAX_SCAN_RANGES");
 
 static gmmrrt_msg_result_t reject(gmmrrt_msg_result_t r, char *err, size_t errcap, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
@@ -214,5 +219,33 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_demo_info(const void *buf, size_t len, gmm
     if (out->episode < 0)
         return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "demo_info_t.episode = %d is negative",
                       (int)out->episode);
+    return GMMRRT_MSG_OK;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_planar_scan(const void *buf, size_t len, gmmrrt_planar_scan_t *out,
+                                                  char *err, size_t errcap)
+{
+    DECODE_OR_REJECT(planar_scan_t, buf, len, out, err, errcap);
+    const gmmrrt_msg_result_t r = check_count("planar_scan_t", "num_ranges", out->num_ranges,
+                                              GMMRRT_PLANAR_SCAN_T_MAX_RANGES, err, errcap);
+    if (r != GMMRRT_MSG_OK)
+        return r;
+    REQUIRE_FINITE(planar_scan_t, "rad0", out->rad0, err, errcap);
+    REQUIRE_FINITE(planar_scan_t, "radstep", out->radstep, err, errcap);
+    if (out->num_ranges > 0 && !isfinite(out->rad0 + (double)(out->num_ranges - 1) * out->radstep))
+        return reject(GMMRRT_MSG_NOT_FINITE, err, errcap,
+                      "planar_scan_t: the last beam's angle rad0 + %d radstep is not finite", (int)(out->num_ranges - 1));
+    REQUIRE_FINITE(planar_scan_t, "range_min_m", out->range_min_m, err, errcap);
+    REQUIRE_FINITE(planar_scan_t, "range_max_m", out->range_max_m, err, errcap);
+    REQUIRE_FINITE(planar_scan_t, "sensor_x", out->sensor_x, err, errcap);
+    REQUIRE_FINITE(planar_scan_t, "sensor_y", out->sensor_y, err, errcap);
+    REQUIRE_FINITE(planar_scan_t, "sensor_yaw", out->sensor_yaw, err, errcap);
+    if (out->range_min_m < 0.0)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "planar_scan_t.range_min_m = %g must be >= 0",
+                      out->range_min_m);
+    if (!(out->range_max_m > out->range_min_m))
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
+                      "planar_scan_t.range_max_m = %g must be > range_min_m = %g", out->range_max_m,
+                      out->range_min_m);
     return GMMRRT_MSG_OK;
 }

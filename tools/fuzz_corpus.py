@@ -22,7 +22,7 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, ".."))
 import lcm  # noqa: E402
-from gmmrrt import demo_info_t, planner_status_t, waypoints_t  # noqa: E402
+from gmmrrt import demo_info_t, planar_scan_t, planner_status_t, waypoints_t  # noqa: E402
 from gmmrrt_tools.scenario_models import APPROACH, AVOID, TASK_APPROACH, TASK_AVOID, encode_features_model  # noqa: E402
 
 SCENARIOS = os.path.join(ROOT, "logs", "scenarios")
@@ -73,6 +73,12 @@ def msg_seeds():
                     break
     di = demo_info_t()
     seeds.append(di.encode())
+    sc = planar_scan_t()  # a 270-degree scan of 541 beams, one NaN and one beyond range_max_m
+    sc.utime, sc.rad0, sc.radstep, sc.range_min_m, sc.range_max_m = 1, -2.356194, 0.00872665, 0.05, 30.0
+    sc.sensor_x, sc.num_ranges = 0.2, 541
+    sc.ranges[:541] = [2.0 + 0.01 * k for k in range(541)]
+    sc.ranges[7], sc.ranges[8] = float("nan"), 100.0
+    seeds.append(sc.encode())
     return seeds
 
 

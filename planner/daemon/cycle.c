@@ -162,6 +162,7 @@ static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_
     p->obstacles.bounds.xmax = fmax(p->start_x, p->goal_x) + m;
     p->obstacles.bounds.ymin = fmin(p->start_y, p->goal_y) - m;
     p->obstacles.bounds.ymax = fmax(p->start_y, p->goal_y) + m;
+    p->obstacles.raster = d->have_map ? &d->map : NULL; /* read only inside the bounds */
     if (d->have[GMMRRTD_IN_OBSTACLES]) {
         const gmmrrt_obstacles_t *o = &d->obstacles;
         p->obstacles.num_circles = o->num_circles;

@@ -22,6 +22,7 @@
 #include "gmmrrt/model.h"
 #include "gmmrrt/model_set.h"
 #include "gmmrrt/msg_decode.h"
+#include "gmmrrt/raster.h"
 #include "gmmrrt/rrtstar.h"
 #include "log.h"
 #include "settings.h"
@@ -90,6 +91,13 @@ typedef struct {
      * directions or none (a reload loads into the scratch set and swaps only when all are good). */
     gmmrrt_model_t approach_set[GMMRRT_APPROACH_DIRECTIONS], approach_set_scratch[GMMRRT_APPROACH_DIRECTIONS];
     int have_approach_set;
+
+    /* The static map (world.c): a raster allocated once at start-up when a map is configured,
+     * sized by map_max_cells / map_max_side; replaced on SIGHUP only by a good file. */
+    gmmrrt_raster_t map;
+    void *map_mem;
+    int32_t map_capacity_cells, map_capacity_side;
+    int have_map;
 
     /* The planner: one block, allocated once. */
     void *mem;
@@ -172,6 +180,12 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us);
  * a failure is fatal (-1); on reload a failure keeps the old model, counts
  * REJECT_MODEL_RELOAD and logs every time. */
 int gmmrrtd_models_load(gmmrrtd_t *d, int reload);
+
+/* world.c: loads [world] map into the map raster (allocated at the first load, at start-up).
+ * At start-up (`reload` 0) a failure is fatal (-1, logged); on reload a bad or missing file
+ * keeps the old map, counts REJECT_MODEL_RELOAD and logs every time. An empty path removes
+ * the map. */
+int gmmrrtd_world_load(gmmrrtd_t *d, int reload);
 
 /* main.c / watchdog.c: tells systemd's watchdog the daemon is alive; before a step that may
  * take long, gmmrrtd_watchdog_long_step(d, 1) stretches the interval to long_step_ms, and

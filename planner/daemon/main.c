@@ -130,6 +130,15 @@ static void reload(gmmrrtd_t *d, int argc, char **argv)
     memcpy(s.model_avoid, d->set.model_avoid, sizeof s.model_avoid);
     memcpy(s.model_approach, d->set.model_approach, sizeof s.model_approach);
     memcpy(s.approach_set, d->set.approach_set, sizeof s.approach_set);
+    /* The map: its raster's capacity is fixed at start-up; a new file replaces it only when good. */
+    if (s.map_max_cells != d->set.map_max_cells || s.map_max_side != d->set.map_max_side) {
+        LOG_WARN("reload: map_max_cells and map_max_side apply at the next restart");
+        s.map_max_cells = d->set.map_max_cells;
+        s.map_max_side = d->set.map_max_side;
+    }
+    memcpy(d->set.map, s.map, sizeof s.map);
+    d->set.map_unknown_blocked = s.map_unknown_blocked;
+    (void)gmmrrtd_world_load(d, 1);
     d->set = s;
     gmmrrtd_log_level_t lvl;
     if (gmmrrtd_log_level_parse(d->set.log_level, &lvl) == 0)
@@ -298,6 +307,8 @@ int main(int argc, char **argv)
     }
     if (gmmrrtd_models_load(d, 0) != 0)
         return 1;
+    if (gmmrrtd_world_load(d, 0) != 0)
+        return 1;
     if (planner_setup(d) != 0)
         return 1;
 #ifdef GMMRRT_HAVE_SYSTEMD
@@ -353,5 +364,6 @@ int main(int argc, char **argv)
         lcm_destroy(d->lcm_in);
     gmmrrtd_replay_close(d);
     free(d->mem);
+    free(d->map_mem);
     return result == 0 ? 0 : 1;
 }

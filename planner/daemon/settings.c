@@ -93,6 +93,13 @@ static const key_t_ k_keys[] = {
     NUM("timing", "long_step_ms", "long-step-ms", K_F64, long_step_ms, 100, 1e7,
         "watchdog interval granted around a step that may take long (world set-up, reload), ms"),
     NUM("world", "bounds_margin_m", "bounds-margin", K_F64, bounds_margin_m, 0.1, 1e4, "planning bounds margin, m"),
+    STR("world", "map", "map", map, "static map, map_server YAML + PGM/PNG (docs/world.md); reloaded on SIGHUP"),
+    NUM("world", "map_max_cells", "map-max-cells", K_I32, map_max_cells, 1, GMMRRT_MAX_RASTER_CELLS,
+        "map raster capacity, cells (memory: 9 bytes a cell, allocated at start-up when a map is set)"),
+    NUM("world", "map_max_side", "map-max-side", K_I32, map_max_side, 1, GMMRRT_MAX_RASTER_SIDE,
+        "map raster capacity, cells a side"),
+    NUM("world", "map_unknown_blocked", "map-unknown-blocked", K_I32, map_unknown_blocked, 0, 1,
+        "1: unknown map cells and everything outside the map block; 0: they are free"),
     NUM("warm_start", "goal_shift_m", "warm-goal-shift", K_F64, warm_goal_shift_m, 0, 1e4, "warm start: goal moved less, m"),
     NUM("warm_start", "people_shift_m", "warm-people-shift", K_F64, warm_people_shift_m, 0, 1e4,
         "warm start: each person moved less, m"),
@@ -183,6 +190,10 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->clock_slew_ms_per_s = 10.0;
     s->long_step_ms = 30000.0;
     s->bounds_margin_m = 3.0;
+    s->map[0] = '\0';
+    s->map_max_cells = 2048 * 2048; /* 36 MiB of raster; 102 x 102 m at 5 cm */
+    s->map_max_side = 4096;
+    s->map_unknown_blocked = 1;
     s->warm_goal_shift_m = 0.25;
     s->warm_people_shift_m = 0.3;
     s->warm_robot_offset_m = 0.5;

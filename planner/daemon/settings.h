@@ -53,6 +53,10 @@ typedef struct {
     double long_step_ms;         /* watchdog interval granted around a step that may take long */
     /* [world] */
     double bounds_margin_m;      /* planning bounds: box around robot, goal, people, obstacles + this */
+    char map[GMMRRTD_PATH_MAX];  /* map_server YAML (docs/world.md); "" = no map */
+    int32_t map_max_cells;       /* raster capacity, fixed at start-up: cells ... */
+    int32_t map_max_side;        /* ... and cells a side; a larger map is refused */
+    int32_t map_unknown_blocked; /* 1: unknown cells and the outside of the map block */
     /* [warm_start]: the situation "has not changed much" when all hold */
     double warm_goal_shift_m;    /* goal moved less than this, same task and target */
     double warm_people_shift_m;  /* same tracked ids, each moved less than this */

@@ -1,7 +1,7 @@
 /*
  * fuzz_msg_decode.c - libFuzzer target for every decoder of lcmtypes/include/gmmrrt/msg_decode.h:
  * the first line of defence of the daemon and of the
- * learner's log reader. Each input goes to all seven decoders; the LCM fingerprint in the
+ * learner's log reader. Each input goes to all eight decoders; the LCM fingerprint in the
  * first 8 bytes decides which one gets past the wire format, so the seed corpus (real
  * encoded messages of each type, tools/fuzz_corpus.py) keeps every decoder busy.
  *
@@ -41,6 +41,7 @@ static gmmrrt_obstacles_t g_obst;
 static gmmrrt_waypoints_t g_wp;
 static gmmrrt_planner_status_t g_status;
 static gmmrrt_demo_info_t g_info;
+static gmmrrt_planar_scan_t g_scan;
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -98,5 +99,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     err[0] = '\0';
     r = gmmrrt_msg_decode_demo_info(data, size, &g_info, err, sizeof err);
     require_message(r, err);
+
+    /* A scan: bounded count, finite geometry; ranges may be anything ("no return"). */
+    err[0] = '\0';
+    r = gmmrrt_msg_decode_planar_scan(data, size, &g_scan, err, sizeof err);
+    require_message(r, err);
+    if (r == GMMRRT_MSG_OK) {
+        REQUIRE(g_scan.num_ranges >= 0 && g_scan.num_ranges <= GMMRRT_PLANAR_SCAN_T_MAX_RANGES);
+        REQUIRE(isfinite(g_scan.rad0) && isfinite(g_scan.radstep) && isfinite(g_scan.sensor_x) &&
+                isfinite(g_scan.sensor_y) && isfinite(g_scan.sensor_yaw));
+        REQUIRE(g_scan.range_min_m >= 0.0 && g_scan.range_max_m > g_scan.range_min_m && isfinite(g_scan.range_max_m));
+    }
     return 0;
 }

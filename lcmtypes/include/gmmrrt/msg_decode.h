@@ -20,6 +20,7 @@
 #include "gmmrrt/gmmrrt_nav_goal_t.h"
 #include "gmmrrt/gmmrrt_obstacles_t.h"
 #include "gmmrrt/gmmrrt_people_t.h"
+#include "gmmrrt/gmmrrt_planar_scan_t.h"
 #include "gmmrrt/gmmrrt_planner_status_t.h"
 #include "gmmrrt/gmmrrt_pose2d_t.h"
 #include "gmmrrt/gmmrrt_waypoints_t.h"
@@ -53,6 +54,12 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_waypoints(const void *buf, size_t len, gmm
 gmmrrt_msg_result_t gmmrrt_msg_decode_planner_status(const void *buf, size_t len,
                                                      gmmrrt_planner_status_t *out, char *err,
                                                      size_t errcap);
+/* planar_scan_t: num_ranges within 0..MAX_RANGES (COUNT_OVER_BOUND); rad0, radstep, the last
+ * beam's angle rad0 + (num_ranges - 1) radstep, the limits and the sensor's pose finite
+ * (NOT_FINITE); range_min_m >= 0 and range_max_m > range_min_m (BAD_VALUE). Ranges are not
+ * judged: NaN, +-inf and out-of-range values are "no return" and kept as they are. */
+gmmrrt_msg_result_t gmmrrt_msg_decode_planar_scan(const void *buf, size_t len, gmmrrt_planar_scan_t *out,
+                                                  char *err, size_t errcap);
 gmmrrt_msg_result_t gmmrrt_msg_decode_demo_info(const void *buf, size_t len, gmmrrt_demo_info_t *out,
                                                 char *err, size_t errcap);
 

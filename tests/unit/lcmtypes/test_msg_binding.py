@@ -13,7 +13,7 @@ import pytest
 from gmmrrt_tools import core, replay_check
 
 try:
-    from gmmrrt import nav_goal_t, obstacles_t, people_t, person_t, pose2d_t
+    from gmmrrt import nav_goal_t, obstacles_t, people_t, person_t, planar_scan_t, pose2d_t
 except ImportError as exc:  # the generated types come with the build
     pytest.fail(f"generated Python message types missing ({exc}): build first (tools/run build)",
                 pytrace=False)
@@ -60,6 +60,29 @@ def people(n=1, pid=7):
         ps.append(p)
     m.people = ps
     return m.encode()
+
+
+def scan(n=4, ranges=None, **kw):
+    m = planar_scan_t()
+    m.utime, m.rad0, m.radstep, m.range_min_m, m.range_max_m, m.num_ranges = 1_000_000, -1.0, 0.5, 0.1, 10.0, n
+    r = list(ranges) if ranges is not None else [1.0] * n
+    m.ranges = r + [0.0] * (planar_scan_t.MAX_RANGES - len(r))
+    for k, v in kw.items():
+        setattr(m, k, v)
+    return m.encode()
+
+
+def test_scan_no_returns_are_kept_and_the_geometry_is_judged():
+    """NaN, inf and out-of-range ranges are "no return": the scan is valid. The rules are the C
+    decoder's (the binding only reports them)."""
+    assert core.validate_message("planar_scan", scan(4, [math.nan, math.inf, -math.inf, 50.0])) == (OK, "")
+    assert core.validate_message("planar_scan", scan(planar_scan_t.MAX_RANGES)) == (OK, "")
+    code, why = core.validate_message("planar_scan", scan(planar_scan_t.MAX_RANGES + 1))
+    assert code == COUNT_OVER_BOUND and "num_ranges" in why
+    code, why = core.validate_message("planar_scan", scan(4, radstep=math.nan))
+    assert code == NOT_FINITE and "planar_scan_t.radstep" in why
+    code, why = core.validate_message("planar_scan", scan(4, range_max_m=0.05))
+    assert code == BAD_VALUE and "range_max_m" in why
 
 
 def test_valid_messages_pass():

@@ -139,6 +139,22 @@ static void fill_demo(gmmrrt_demo_info_t *m)
     m->person_id = 3;
 }
 
+static void fill_scan(gmmrrt_planar_scan_t *m, int32_t n)
+{
+    memset(m, 0, sizeof *m);
+    m->utime = 1700000000800000LL;
+    m->rad0 = -2.35619449;
+    m->radstep = 0.004363323;
+    m->range_min_m = 0.05;
+    m->range_max_m = 30.0;
+    m->sensor_x = 0.2;
+    m->sensor_y = -0.05;
+    m->sensor_yaw = 0.01;
+    m->num_ranges = n;
+    for (int i = 0; i < GMMRRT_PLANAR_SCAN_T_MAX_RANGES; ++i)
+        m->ranges[i] = 0.5f + 0.001f * (float)i;
+}
+
 /* ------------------------------------------------------------------ round trips */
 
 /* Encode, decode through msg_decode.h, re-encode: same bytes. Field checks follow. */
@@ -295,6 +311,82 @@ static void test_demo_info_round_trips(void **state)
 
 static const double k_bad_numbers[] = {NAN, INFINITY, -INFINITY};
 #define N_BAD (sizeof k_bad_numbers / sizeof k_bad_numbers[0])
+
+static void test_planar_scan_round_trips_at_capacity_keeping_no_returns(void **state)
+{
+    (void)state;
+    gmmrrt_planar_scan_t a, b;
+    fill_scan(&a, GMMRRT_PLANAR_SCAN_T_MAX_RANGES);
+    /* "No return" values are kept as they are, not rejected. */
+    a.ranges[0] = NAN;
+    a.ranges[1] = INFINITY;
+    a.ranges[2] = -INFINITY;
+    a.ranges[3] = 1e6f;  /* beyond range_max_m */
+    a.ranges[4] = 0.01f; /* below range_min_m */
+    a.ranges[5] = -1.0f;
+    ROUNDTRIP(planar_scan_t, gmmrrt_msg_decode_planar_scan, &a, &b);
+    assert_true(b.utime == a.utime && b.rad0 == a.rad0 && b.radstep == a.radstep);
+    assert_true(b.range_min_m == a.range_min_m && b.range_max_m == a.range_max_m);
+    assert_true(b.sensor_x == a.sensor_x && b.sensor_y == a.sensor_y && b.sensor_yaw == a.sensor_yaw);
+    assert_int_equal(b.num_ranges, GMMRRT_PLANAR_SCAN_T_MAX_RANGES);
+    assert_true(isnan(b.ranges[0]) && isinf(b.ranges[1]) && b.ranges[1] > 0 && isinf(b.ranges[2]) && b.ranges[2] < 0);
+    for (int i = 3; i < GMMRRT_PLANAR_SCAN_T_MAX_RANGES; ++i)
+        assert_true(b.ranges[i] == a.ranges[i]);
+}
+
+static void test_planar_scan_rules(void **state)
+{
+    (void)state;
+    gmmrrt_planar_scan_t m;
+    const int32_t bad_counts[] = {-1, GMMRRT_PLANAR_SCAN_T_MAX_RANGES + 1, INT32_MIN, INT32_MAX};
+    for (size_t i = 0; i < sizeof bad_counts / sizeof bad_counts[0]; ++i) {
+        fill_scan(&m, 10);
+        m.num_ranges = bad_counts[i];
+        EXPECT_REJECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m, GMMRRT_MSG_COUNT_OVER_BOUND, "planar_scan_t",
+                      "num_ranges");
+    }
+    for (size_t b = 0; b < N_BAD; ++b) {
+        fill_scan(&m, 10); m.rad0 = k_bad_numbers[b];
+        EXPECT_REJECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m, GMMRRT_MSG_NOT_FINITE, "planar_scan_t", "rad0");
+        fill_scan(&m, 10); m.radstep = k_bad_numbers[b];
+        EXPECT_REJECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m, GMMRRT_MSG_NOT_FINITE, "planar_scan_t",
+                      "radstep");
+        fill_scan(&m, 10); m.range_min_m = k_bad_numbers[b];
+        EXPECT_REJECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m, GMMRRT_MSG_NOT_FINITE, "planar_scan_t",
+                      "range_min_m");
+        fill_scan(&m, 10); m.range_max_m = k_bad_numbers[b];
+        EXPECT_REJECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m, GMMRRT_MSG_NOT_FINITE, "planar_scan_t",
+                      "range_max_m");
+        fill_scan(&m, 10); m.sensor_x = k_bad_numbers[b];
+        EXPECT_REJECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m, GMMRRT_MSG_NOT_FINITE, "planar_scan_t",
+                      "sensor_x");
+        fill_scan(&m, 10); m.sensor_y = k_bad_numbers[b];
+        EXPECT_REJECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m, GMMRRT_MSG_NOT_FINITE, "planar_scan_t",
+                      "sensor_y");
+        fill_scan(&m, 10); m.sensor_yaw = k_bad_numbers[b];
+        EXPECT_REJECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m, GMMRRT_MSG_NOT_FINITE, "planar_scan_t",
+                      "sensor_yaw");
+    }
+    /* Finite rad0 and radstep whose last beam overflows. */
+    fill_scan(&m, 10); m.rad0 = 1e308; m.radstep = 1e308;
+    EXPECT_REJECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m, GMMRRT_MSG_NOT_FINITE, "planar_scan_t",
+                  "last beam");
+    fill_scan(&m, 10); m.range_min_m = -0.1;
+    EXPECT_REJECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m, GMMRRT_MSG_BAD_VALUE, "planar_scan_t",
+                  "range_min_m");
+    fill_scan(&m, 10); m.range_max_m = m.range_min_m;
+    EXPECT_REJECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m, GMMRRT_MSG_BAD_VALUE, "planar_scan_t",
+                  "range_max_m");
+    /* Every range NaN is a valid scan with no return; so is an empty one; slots beyond the
+     * count are not looked at. */
+    fill_scan(&m, 100);
+    for (int i = 0; i < 100; ++i)
+        m.ranges[i] = NAN;
+    EXPECT_OK(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m);
+    fill_scan(&m, 0);
+    m.rad0 = 1e308; m.radstep = 1e308; /* no beam: no last angle */
+    EXPECT_OK(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m);
+}
 
 static void test_pose2d_non_finite_fields_are_rejected(void **state)
 {
@@ -559,6 +651,8 @@ static void test_every_truncation_is_rejected(void **state)
     EXPECT_EVERY_TRUNCATION_FAILS(planner_status_t, gmmrrt_msg_decode_planner_status, &st);
     gmmrrt_demo_info_t demo; fill_demo(&demo);
     EXPECT_EVERY_TRUNCATION_FAILS(demo_info_t, gmmrrt_msg_decode_demo_info, &demo);
+    gmmrrt_planar_scan_t scan; fill_scan(&scan, 3);
+    EXPECT_EVERY_TRUNCATION_FAILS(planar_scan_t, gmmrrt_msg_decode_planar_scan, &scan);
 }
 
 static void test_wrong_fingerprint_is_rejected(void **state)
@@ -579,6 +673,7 @@ static void test_wrong_fingerprint_is_rejected(void **state)
     gmmrrt_waypoints_t wp; fill_waypoints(&wp, 1);
     gmmrrt_planner_status_t st; fill_status(&st);
     gmmrrt_demo_info_t demo; fill_demo(&demo);
+    gmmrrt_planar_scan_t scan; fill_scan(&scan, 3);
     fill_goal(&goal);
     for (int bit = 0; bit < 64; ++bit) {
         const int byte = bit / 8, mask = 1 << (bit % 8);
@@ -596,6 +691,7 @@ static void test_wrong_fingerprint_is_rejected(void **state)
         FLIP_AND_EXPECT(waypoints_t, gmmrrt_msg_decode_waypoints, &wp);
         FLIP_AND_EXPECT(planner_status_t, gmmrrt_msg_decode_planner_status, &st);
         FLIP_AND_EXPECT(demo_info_t, gmmrrt_msg_decode_demo_info, &demo);
+        FLIP_AND_EXPECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &scan);
 #undef FLIP_AND_EXPECT
     }
 }
@@ -642,6 +738,8 @@ int main(void)
         cmocka_unit_test(test_empty_plan_round_trips),
         cmocka_unit_test(test_planner_status_round_trips),
         cmocka_unit_test(test_demo_info_round_trips),
+        cmocka_unit_test(test_planar_scan_round_trips_at_capacity_keeping_no_returns),
+        cmocka_unit_test(test_planar_scan_rules),
         cmocka_unit_test(test_pose2d_non_finite_fields_are_rejected),
         cmocka_unit_test(test_pose2d_velocity_is_ignored_when_not_valid),
         cmocka_unit_test(test_people_count_out_of_bounds_is_rejected),
