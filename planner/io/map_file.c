@@ -173,12 +173,16 @@ static gmmrrt_status_t check_size(int64_t w, int64_t h, const char *name, const 
     if (w < 1 || h < 1)
         return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "%s: image of %lld x %lld pixels", name,
                                 (long long)w, (long long)h);
-    if (w > r->max_side || h > r->max_side || w * h > (int64_t)r->max_cells)
+    /* w * h is formed only once both sides fit int32_t's range of a side; the message's figures are
+     * doubles because a header may claim sides near 2^64 (the product would overflow). */
+    if (w > r->max_side || h > r->max_side || w * h > (int64_t)r->max_cells) {
+        const double cells = (double)w * (double)h;
         return gmmrrt_set_error(GMMRRT_ERR_BUFFER_TOO_SMALL, err, errcap,
-                                "%s: the map is %lld x %lld = %lld cells (%lld bytes of raster); the configured raster "
+                                "%s: the map is %lld x %lld = %.0f cells (%.0f bytes of raster); the configured raster "
                                 "holds %d cells and %d a side",
-                                name, (long long)w, (long long)h, (long long)(w * h), (long long)(w * h * 9),
-                                (int)r->max_cells, (int)r->max_side);
+                                name, (long long)w, (long long)h, cells, cells * 9.0, (int)r->max_cells,
+                                (int)r->max_side);
+    }
     return GMMRRT_OK;
 }
 
