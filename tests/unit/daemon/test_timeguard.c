@@ -18,6 +18,7 @@
 #include <cmocka.h>
 
 #include "daemon.h"
+#include "daemon_fixture.h"
 
 #define S ((int64_t)1000000)
 #define MS ((int64_t)1000)
@@ -28,32 +29,15 @@ static gmmrrtd_t g_d;
 
 static int setup(void **state)
 {
-    gmmrrtd_t *d = &g_d;
-    memset(d, 0, sizeof *d);
-    gmmrrtd_log_set_level(GMMRRTD_LOG_ERROR);
-    gmmrrtd_settings_default(&d->set);
-    d->set.budget_ms = 0.0;
-    d->set.budget_iterations = 200;
-    d->set.cfg.max_nodes = 1024;
-    d->set.cfg.seed = 7;
-    d->set.cfg.planner = GMMRRT_PLANNER_RRT_STAR; /* no model needed: these cases are about inputs */
-    d->clock_mode = GMMRRTD_CLOCK_LOG;
-    d->staged.input = -1;
-    d->mem_size = gmmrrt_planner_mem_size(&d->set.cfg);
-    d->mem = aligned_alloc(64, (d->mem_size + 63u) / 64u * 64u);
-    assert_non_null(d->mem);
-    assert_int_equal(gmmrrt_planner_init(&d->planner, d->mem, d->mem_size, &d->set.cfg), GMMRRT_OK);
-    d->lcm_in = d->lcm_out = lcm_create("file:///dev/null?mode=w");
-    assert_non_null(d->lcm_out);
-    *state = d;
+    /* plain RRT*: no model needed: these cases are about inputs */
+    daemon_fixture_setup(&g_d, 200, 1024, 7);
+    *state = &g_d;
     return 0;
 }
 
 static int teardown(void **state)
 {
-    gmmrrtd_t *d = *state;
-    lcm_destroy(d->lcm_out);
-    free(d->mem);
+    daemon_fixture_teardown(*state);
     return 0;
 }
 
