@@ -7,9 +7,16 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "gmmrrt/detail/reason_text.h"
 #include "gmmrrt/limits.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 
 /* One bound: the wire's capacity is the core's scan capacity (raster.h). */
 _Static_assert(GMMRRT_PLANAR_SCAN_T_MAX_RANGES == GMMRRT_MAX_SCAN_RANGES,
@@ -35,8 +42,20 @@ const char *gmmrrt_msg_result_str(gmmrrt_msg_result_t r)
     case GMMRRT_MSG_COUNT_OVER_BOUND: return "count over bound";
     case GMMRRT_MSG_NOT_FINITE: return "not finite";
     case GMMRRT_MSG_BAD_VALUE: return "bad value";
+    case GMMRRT_MSG_UNKNOWN_COMMAND: return "unknown command";
+    case GMMRRT_MSG_WRONG_FRAME: return "wrong frame";
     }
     return "unknown";
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_check_frame(const char *type, const char *frame, const char *expected, char *err,
+                                           size_t errcap)
+{
+    if (frame == NULL || expected == NULL || strcmp(frame, expected) != 0)
+        return reject(GMMRRT_MSG_WRONG_FRAME, err, errcap, "%s.frame \"%.64s\" is not the planning frame \"%.64s\"",
+                      type != NULL ? type : "message", frame != NULL ? frame : "(none)",
+                      expected != NULL ? expected : "(none)");
+    return GMMRRT_MSG_OK;
 }
 
 /* The generated decoders take an int length; anything larger cannot be a gmmrrt message. */
@@ -48,6 +67,80 @@ static int decodable_len(size_t len) { return len <= (size_t)INT32_MAX; }
             gmmrrt_##type##_decode((buf), 0, (int)(len), (out)) < 0)                                    \
             return reject(GMMRRT_MSG_DECODE_FAILED, (err), (errcap),                                    \
                           #type ": cannot decode %zu bytes (wrong type or truncated)", (size_t)(len));  \
+    } while (0)
+
+/* The frame string of a type that has one sits right after the fingerprint and utime: an int32
+ * big-endian length that counts the terminating NUL, then the bytes. LCM's generated decoder
+ * allocates that length before it reads anything else, so it is read and judged here first:
+ * nothing on the wire sizes an allocation beyond GMMRRT_MSG_FRAME_MAX + 1 bytes, and the string
+ * the generated decoder makes is known to be terminated. */
+enum { k_frame_offset = 16 };
+
+/* The rule for a frame's name: 1..GMMRRT_MSG_FRAME_MAX bytes, each printable ASCII but the space. */
+static gmmrrt_msg_result_t check_frame_name(const char *type, const uint8_t *name, size_t n, char *err,
+                                            size_t errcap)
+{
+    if (n == 0 || n > GMMRRT_MSG_FRAME_MAX)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "%s is %zu bytes long: 1..%d bytes allowed", type, n,
+                      GMMRRT_MSG_FRAME_MAX);
+    for (size_t i = 0; i < n; ++i)
+        if (name[i] < 0x21 || name[i] > 0x7e)
+            return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
+                          "%s has byte 0x%02x at %zu: printable ASCII without spaces only", type,
+                          (unsigned)name[i], i);
+    return GMMRRT_MSG_OK;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_check_frame_name(const char *name, char *err, size_t errcap)
+{
+    if (name == NULL)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "frame: no name");
+    const char *end = memchr(name, '\0', GMMRRT_MSG_FRAME_MAX + 1);
+    const size_t n = end != NULL ? (size_t)(end - name) : GMMRRT_MSG_FRAME_MAX + 1;
+    return check_frame_name("the frame name", (const uint8_t *)name, n, err, errcap);
+}
+
+static gmmrrt_msg_result_t check_frame_on_wire(const char *type, int64_t fingerprint, const void *buf, size_t len,
+                                               char *err, size_t errcap)
+{
+    const uint8_t *b = buf;
+    if (b == NULL || !decodable_len(len) || len < k_frame_offset + 4)
+        return reject(GMMRRT_MSG_DECODE_FAILED, err, errcap, "%s: cannot decode %zu bytes (wrong type or truncated)",
+                      type, len);
+    uint64_t fp = 0;
+    for (int i = 0; i < 8; ++i)
+        fp = fp << 8 | b[i];
+    if ((int64_t)fp != fingerprint)
+        return reject(GMMRRT_MSG_DECODE_FAILED, err, errcap, "%s: cannot decode %zu bytes (wrong type or truncated)",
+                      type, len);
+    const uint32_t n = (uint32_t)b[16] << 24 | (uint32_t)b[17] << 16 | (uint32_t)b[18] << 8 | (uint32_t)b[19];
+    if (n == 0 || n > (uint32_t)len - (k_frame_offset + 4) || b[k_frame_offset + 4 + n - 1] != 0)
+        return reject(GMMRRT_MSG_DECODE_FAILED, err, errcap,
+                      "%s.frame: a string of %lu bytes does not fit the %zu-byte message or lacks its NUL", type,
+                      (unsigned long)n, len);
+    char what[48];
+    snprintf(what, sizeof what, "%s.frame", type);
+    return check_frame_name(what, b + k_frame_offset + 4, n - 1, err, errcap);
+}
+
+/* For a type with a frame: the frame judged on the wire, then the generated decoder into a
+ * zeroed *out (so a failure after the frame was allocated frees exactly what was). From here on
+ * every rejection goes through REJECT_HOLDING, which releases the frame. */
+#define DECODE_WITH_FRAME_OR_REJECT(type, buf, len, out, err, errcap)                                    \
+    do {                                                                                                \
+        if ((out) == NULL)                                                                              \
+            return reject(GMMRRT_MSG_DECODE_FAILED, (err), (errcap), #type ": no output");             \
+        const gmmrrt_msg_result_t fr_ =                                                                 \
+            check_frame_on_wire(#type, __gmmrrt_##type##_get_hash(), (buf), (len), (err), (errcap));     \
+        if (fr_ != GMMRRT_MSG_OK)                                                                       \
+            return fr_;                                                                                 \
+        memset((out), 0, sizeof *(out));                                                                \
+        if (gmmrrt_##type##_decode((buf), 0, (int)(len), (out)) < 0) {                                  \
+            free((out)->frame);                                                                         \
+            (out)->frame = NULL;                                                                        \
+            return reject(GMMRRT_MSG_DECODE_FAILED, (err), (errcap),                                    \
+                          #type ": cannot decode %zu bytes (wrong type or truncated)", (size_t)(len));  \
+        }                                                                                               \
     } while (0)
 
 #define REQUIRE_FINITE(type, field, value, err, errcap)                                                 \
@@ -65,10 +158,8 @@ static gmmrrt_msg_result_t check_count(const char *type, const char *field, int3
     return GMMRRT_MSG_OK;
 }
 
-gmmrrt_msg_result_t gmmrrt_msg_decode_pose2d(const void *buf, size_t len, gmmrrt_pose2d_t *out,
-                                             char *err, size_t errcap)
+static gmmrrt_msg_result_t validate_pose2d(const gmmrrt_pose2d_t *out, char *err, size_t errcap)
 {
-    DECODE_OR_REJECT(pose2d_t, buf, len, out, err, errcap);
     REQUIRE_FINITE(pose2d_t, "x", out->x, err, errcap);
     REQUIRE_FINITE(pose2d_t, "y", out->y, err, errcap);
     REQUIRE_FINITE(pose2d_t, "yaw", out->yaw, err, errcap);
@@ -80,10 +171,8 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_pose2d(const void *buf, size_t len, gmmrrt
     return GMMRRT_MSG_OK;
 }
 
-gmmrrt_msg_result_t gmmrrt_msg_decode_people(const void *buf, size_t len, gmmrrt_people_t *out,
-                                             char *err, size_t errcap)
+static gmmrrt_msg_result_t validate_people(const gmmrrt_people_t *out, char *err, size_t errcap)
 {
-    DECODE_OR_REJECT(people_t, buf, len, out, err, errcap);
     gmmrrt_msg_result_t r =
         check_count("people_t", "num_people", out->num_people, GMMRRT_PEOPLE_T_MAX_PEOPLE, err, errcap);
     if (r != GMMRRT_MSG_OK)
@@ -106,17 +195,31 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_people(const void *buf, size_t len, gmmrrt
     return GMMRRT_MSG_OK;
 }
 
-gmmrrt_msg_result_t gmmrrt_msg_decode_nav_goal(const void *buf, size_t len, gmmrrt_nav_goal_t *out,
-                                               char *err, size_t errcap)
+/* A CANCEL names its goal only; a NEW is a whole goal. The command is judged before anything
+ * else, so that an unknown command is counted as that rather than by whatever its other fields
+ * hold. */
+static gmmrrt_msg_result_t validate_nav_goal(const gmmrrt_nav_goal_t *out, char *err, size_t errcap)
 {
-    DECODE_OR_REJECT(nav_goal_t, buf, len, out, err, errcap);
+    if (out->command != GMMRRT_NAV_GOAL_T_COMMAND_NEW && out->command != GMMRRT_NAV_GOAL_T_COMMAND_CANCEL)
+        return reject(GMMRRT_MSG_UNKNOWN_COMMAND, err, errcap,
+                      "nav_goal_t.command = %d is not COMMAND_NEW (1) or COMMAND_CANCEL (2)", (int)out->command);
+    if (out->goal_id <= 0)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "nav_goal_t.goal_id = %lld must be > 0",
+                      (long long)out->goal_id);
+    if (out->command == GMMRRT_NAV_GOAL_T_COMMAND_CANCEL)
+        return GMMRRT_MSG_OK;
     REQUIRE_FINITE(nav_goal_t, "x", out->x, err, errcap);
     REQUIRE_FINITE(nav_goal_t, "y", out->y, err, errcap);
     REQUIRE_FINITE(nav_goal_t, "yaw", out->yaw, err, errcap);
     REQUIRE_FINITE(nav_goal_t, "tolerance_m", out->tolerance_m, err, errcap);
+    REQUIRE_FINITE(nav_goal_t, "yaw_tolerance_rad", out->yaw_tolerance_rad, err, errcap);
     if (!(out->tolerance_m > 0.0))
         return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "nav_goal_t.tolerance_m = %g must be > 0",
                       out->tolerance_m);
+    if (!(out->yaw_tolerance_rad >= 0.0 && out->yaw_tolerance_rad <= M_PI))
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
+                      "nav_goal_t.yaw_tolerance_rad = %g must be within [0, pi] (0: heading not judged)",
+                      out->yaw_tolerance_rad);
     if (out->task != GMMRRT_NAV_GOAL_T_TASK_NONE && out->task != GMMRRT_NAV_GOAL_T_TASK_AVOID &&
         out->task != GMMRRT_NAV_GOAL_T_TASK_APPROACH)
         return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "nav_goal_t.task = %d is not a TASK_* value",
@@ -125,13 +228,16 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_nav_goal(const void *buf, size_t len, gmmr
         return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
                       "nav_goal_t.target_person_id = %d: TASK_APPROACH needs a person id >= 0",
                       (int)out->target_person_id);
+    if (out->preferred_side != GMMRRT_NAV_GOAL_T_SIDE_EITHER && out->preferred_side != GMMRRT_NAV_GOAL_T_SIDE_LEFT &&
+        out->preferred_side != GMMRRT_NAV_GOAL_T_SIDE_RIGHT)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
+                      "nav_goal_t.preferred_side = %d is not SIDE_EITHER (0), SIDE_LEFT (1) or SIDE_RIGHT (-1)",
+                      (int)out->preferred_side);
     return GMMRRT_MSG_OK;
 }
 
-gmmrrt_msg_result_t gmmrrt_msg_decode_obstacles(const void *buf, size_t len, gmmrrt_obstacles_t *out,
-                                                char *err, size_t errcap)
+static gmmrrt_msg_result_t validate_obstacles(const gmmrrt_obstacles_t *out, char *err, size_t errcap)
 {
-    DECODE_OR_REJECT(obstacles_t, buf, len, out, err, errcap);
     gmmrrt_msg_result_t r = check_count("obstacles_t", "num_circles", out->num_circles,
                                         GMMRRT_OBSTACLES_T_MAX_CIRCLES, err, errcap);
     if (r == GMMRRT_MSG_OK)
@@ -168,10 +274,8 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_obstacles(const void *buf, size_t len, gmm
     return GMMRRT_MSG_OK;
 }
 
-gmmrrt_msg_result_t gmmrrt_msg_decode_waypoints(const void *buf, size_t len, gmmrrt_waypoints_t *out,
-                                                char *err, size_t errcap)
+static gmmrrt_msg_result_t validate_waypoints(const gmmrrt_waypoints_t *out, char *err, size_t errcap)
 {
-    DECODE_OR_REJECT(waypoints_t, buf, len, out, err, errcap);
     gmmrrt_msg_result_t r = check_count("waypoints_t", "num_waypoints", out->num_waypoints,
                                         GMMRRT_WAYPOINTS_T_MAX_WAYPOINTS, err, errcap);
     if (r != GMMRRT_MSG_OK)
@@ -248,4 +352,94 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_planar_scan(const void *buf, size_t len, g
                       "planar_scan_t.range_max_m = %g must be > range_min_m = %g", out->range_max_m,
                       out->range_min_m);
     return GMMRRT_MSG_OK;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_pose2d(const void *buf, size_t len, gmmrrt_pose2d_t *out, char *err,
+                                             size_t errcap)
+{
+    DECODE_WITH_FRAME_OR_REJECT(pose2d_t, buf, len, out, err, errcap);
+    const gmmrrt_msg_result_t r = validate_pose2d(out, err, errcap);
+    if (r != GMMRRT_MSG_OK)
+        gmmrrt_msg_release_pose2d(out);
+    return r;
+}
+
+void gmmrrt_msg_release_pose2d(gmmrrt_pose2d_t *m)
+{
+    if (m == NULL)
+        return;
+    free(m->frame);
+    m->frame = NULL;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_people(const void *buf, size_t len, gmmrrt_people_t *out, char *err,
+                                             size_t errcap)
+{
+    DECODE_WITH_FRAME_OR_REJECT(people_t, buf, len, out, err, errcap);
+    const gmmrrt_msg_result_t r = validate_people(out, err, errcap);
+    if (r != GMMRRT_MSG_OK)
+        gmmrrt_msg_release_people(out);
+    return r;
+}
+
+void gmmrrt_msg_release_people(gmmrrt_people_t *m)
+{
+    if (m == NULL)
+        return;
+    free(m->frame);
+    m->frame = NULL;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_nav_goal(const void *buf, size_t len, gmmrrt_nav_goal_t *out, char *err,
+                                               size_t errcap)
+{
+    DECODE_WITH_FRAME_OR_REJECT(nav_goal_t, buf, len, out, err, errcap);
+    const gmmrrt_msg_result_t r = validate_nav_goal(out, err, errcap);
+    if (r != GMMRRT_MSG_OK)
+        gmmrrt_msg_release_nav_goal(out);
+    return r;
+}
+
+void gmmrrt_msg_release_nav_goal(gmmrrt_nav_goal_t *m)
+{
+    if (m == NULL)
+        return;
+    free(m->frame);
+    m->frame = NULL;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_obstacles(const void *buf, size_t len, gmmrrt_obstacles_t *out, char *err,
+                                                size_t errcap)
+{
+    DECODE_WITH_FRAME_OR_REJECT(obstacles_t, buf, len, out, err, errcap);
+    const gmmrrt_msg_result_t r = validate_obstacles(out, err, errcap);
+    if (r != GMMRRT_MSG_OK)
+        gmmrrt_msg_release_obstacles(out);
+    return r;
+}
+
+void gmmrrt_msg_release_obstacles(gmmrrt_obstacles_t *m)
+{
+    if (m == NULL)
+        return;
+    free(m->frame);
+    m->frame = NULL;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_waypoints(const void *buf, size_t len, gmmrrt_waypoints_t *out, char *err,
+                                                size_t errcap)
+{
+    DECODE_WITH_FRAME_OR_REJECT(waypoints_t, buf, len, out, err, errcap);
+    const gmmrrt_msg_result_t r = validate_waypoints(out, err, errcap);
+    if (r != GMMRRT_MSG_OK)
+        gmmrrt_msg_release_waypoints(out);
+    return r;
+}
+
+void gmmrrt_msg_release_waypoints(gmmrrt_waypoints_t *m)
+{
+    if (m == NULL)
+        return;
+    free(m->frame);
+    m->frame = NULL;
 }

@@ -312,6 +312,8 @@ class LogReader {
             warn_.Add(Where(event_no, offset, kChannelRobotPose) + ": " + err + "; skipped");
             return;
         }
+        // A demonstration's features are relative to its person: the frame name is not needed.
+        gmmrrt_msg_release_pose2d(&pose);
         if (pose.utime <= ep->last_pose_utime || pose.utime < ep->start_utime) {
             warn_.Add(Where(event_no, offset, kChannelRobotPose) + ": time does not advance (utime " +
                       std::to_string(pose.utime) + " not after " +
@@ -349,6 +351,7 @@ class LogReader {
             warn_.Add(Where(event_no, offset, kChannelPeople) + ": " + err + "; skipped");
             return;
         }
+        gmmrrt_msg_release_people(&people);
         if (people.utime < ep->last_people_utime) {
             warn_.Add(Where(event_no, offset, kChannelPeople) + ": time goes backwards (utime " +
                       std::to_string(people.utime) + " after " + std::to_string(ep->last_people_utime) +

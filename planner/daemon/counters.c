@@ -31,6 +31,8 @@ const char *gmmrrtd_stop_str(int code)
     case GMMRRTD_STOP_UNKNOWN_TARGET: return "stopped: approach target not tracked";
     case GMMRRTD_STOP_OBSTACLES_STALE: return "stopped: obstacle list is stale";
     case GMMRRTD_STOP_PLANNING_BOX: return "stopped: planning box exceeds the clearance grid";
+    case GMMRRTD_STOP_GOAL_REACHED: return "stopped: goal reached";
+    case GMMRRTD_STOP_GOAL_CANCELLED: return "stopped: goal cancelled";
     default: return gmmrrt_status_str((gmmrrt_status_t)code);
     }
 }

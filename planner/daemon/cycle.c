@@ -62,6 +62,11 @@ static void publish_status(gmmrrtd_t *d, int64_t now_utime, int8_t state)
     d->status.utime = status_utime(d, now_utime);
     d->status.stale_inputs = d->stale_mask;
     d->status.state = state;
+    d->status.goal_id = d->life.id;
+    d->status.goal_state = d->life.state;
+    d->status.goal_failure = d->life.failure;
+    d->status.remaining_m = d->life.remaining_m;
+    d->status.side_result = d->life.side_result;
     gmmrrt_planner_status_t_publish(d->lcm_out, d->set.ch_status, &d->status);
 }
 
@@ -69,6 +74,7 @@ static void publish_plan(gmmrrtd_t *d, const gmmrrt_path_t *path, int status)
 {
     gmmrrt_waypoints_t *m = &d->plan_msg;
     m->utime = d->pose.utime;
+    m->frame = d->set.frame; /* every input was refused unless in this frame (inputs.c) */
     m->seq = ++d->plan_seq;
     const int32_t n = path != NULL ? path->num_points : 0;
     m->num_waypoints = n;
@@ -116,10 +122,37 @@ static int stop_slot(int why)
     }
 }
 
+/* The goal's failure a stop code stands for; FAILURE_NONE for stops that are not the goal's
+ * (a stale pose or obstacle list, a blocked start: the goal may be fine once they pass). */
+static int goal_failure_of(int why)
+{
+    switch (why) {
+    case GMMRRTD_STOP_NO_MODEL: return ST(FAILURE_NO_MODEL);
+    case GMMRRTD_STOP_UNKNOWN_TARGET: return ST(FAILURE_UNKNOWN_TARGET);
+    case GMMRRTD_STOP_PLANNING_BOX: return ST(FAILURE_PLANNING_BOX);
+    case GMMRRT_ERR_GOAL_IN_COLLISION:
+    case GMMRRT_ERR_GOAL_OUT_OF_BOUNDS: return ST(FAILURE_GOAL_BLOCKED);
+    case GMMRRT_NO_PATH_YET:
+    case GMMRRT_NO_PATH_ON_SIDE: return ST(FAILURE_UNREACHABLE);
+    case GMMRRTD_STOP_POSE_STALE:
+    case GMMRRTD_STOP_OBSTACLES_STALE:
+    case GMMRRT_ERR_START_IN_COLLISION:
+    case GMMRRT_ERR_START_OUT_OF_BOUNDS:
+    case GMMRRT_ERR_FROZEN: return ST(FAILURE_NONE);
+    default: return ST(FAILURE_SETUP);
+    }
+}
+
 /* Stats of the cycle stay as they are (cleared by the callers that did not plan). Every stop
  * is counted by reason and logged (rate-limited). */
 static void publish_stop(gmmrrtd_t *d, int64_t now_utime, int why, int8_t state)
 {
+    /* A stop that is the goal's fault (not the robot's or its inputs') counts towards its failure. */
+    const int failure = goal_failure_of(why);
+    if (failure != ST(FAILURE_NONE))
+        gmmrrtd_goal_unusable(d, now_utime, failure);
+    else
+        d->life.remaining_m = -1.0;
     gmmrrtd_count_stop(d, stop_slot(why), "%s (code %d, goal (%.2f, %.2f))", gmmrrtd_stop_str(why), why,
                        d->goal.x, d->goal.y);
     d->last.valid = 0; /* never warm-start across a stop */
@@ -182,11 +215,17 @@ static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_
             p->person_vy[i] = q->vy;
         }
     }
+    /* nav_goal_t's side (+1 left, -1 right) is gmmrrt_side_t's, about the approach target or else
+     * the person nearest the segment start-goal. */
+    p->side = d->goal.preferred_side == GMMRRT_NAV_GOAL_T_SIDE_LEFT    ? GMMRRT_SIDE_LEFT
+              : d->goal.preferred_side == GMMRRT_NAV_GOAL_T_SIDE_RIGHT ? GMMRRT_SIDE_RIGHT
+                                                                      : GMMRRT_SIDE_EITHER;
+    p->side_person = target_index >= 0 ? target_index : -1;
     p->nominal_speed_m_s = d->set.nominal_speed_m_s;
     p->prediction_horizon_s = d->set.prediction_horizon_s;
 }
 
-/* "Not changed much" (docs/daemon.md): same task and target, goal moved < warm_goal_shift_m,
+/* "Not changed much" (docs/daemon.md): same task, target and side, goal moved < warm_goal_shift_m,
  * obstacles unchanged, the same tracked ids each moved < warm_people_shift_m, and the robot
  * within warm_robot_offset_m of the last path. Then the seed is the robot followed by the
  * last path from the waypoint after the nearest one. Returns the seed length (0: cold). */
@@ -195,6 +234,7 @@ static int32_t warm_start_seed(gmmrrtd_t *d)
     const gmmrrtd_snapshot_t *s = &d->last;
     const gmmrrtd_settings_t *set = &d->set;
     if (!s->valid || s->task != d->goal.task || s->target_id != d->goal.target_person_id ||
+        s->side != d->goal.preferred_side ||
         hypot(s->goal_x - d->goal.x, s->goal_y - d->goal.y) >= set->warm_goal_shift_m ||
         s->obstacles_version != d->obstacles_version)
         return 0;
@@ -245,6 +285,7 @@ static void remember_situation(gmmrrtd_t *d)
     s->goal_y = d->goal.y;
     s->task = d->goal.task;
     s->target_id = d->goal.target_person_id;
+    s->side = d->goal.preferred_side;
     s->obstacles_version = d->obstacles_version;
     s->num_people = people_usable(d) ? d->people.num_people : 0;
     for (int32_t i = 0; i < s->num_people; ++i) {
@@ -368,7 +409,68 @@ static int publish_drivable(gmmrrtd_t *d, int64_t now_us, int escaping, gmmrrt_s
                             (long long)d->status.tight_turn_plans);
     }
     publish_plan(d, &d->path, escaping ? GMMRRT_ESCAPE : GMMRRT_OK);
+    gmmrrtd_goal_planned(d, d->path.length_m);
     return 1;
+}
+
+/* Runs the planner on `budget` (time and samples: whichever ends first), anytime when
+ * anytime_max_plans > 1: the budget in slices, the first path published at once, a better one only
+ * when its cost falls by anytime_improvement, at most anytime_max_plans per cycle (counted in
+ * *published across the calls of one cycle, with *published_cost the last one's cost). *st: the
+ * run's last status. 0, or -1 when a stop was published (the cycle ends). */
+static int run_budget(gmmrrtd_t *d, int64_t now_us, int escaping, const gmmrrt_budget_t *budget,
+                      gmmrrt_plan_stats_t *stats, gmmrrt_status_t *st, int *published, double *published_cost)
+{
+    if (d->set.anytime_max_plans <= 1) {
+        *st = gmmrrt_planner_run(d->planner, budget, stats);
+    } else {
+        /* Anytime: the budget in slices; the first path is published at once, a better one only
+         * when its cost falls by anytime_improvement, at most anytime_max_plans per cycle. */
+        const int64_t run_start_us = gmmrrtd_mono_us();
+        int64_t iterations_left = budget->max_iterations;
+        double tried_tree_cost = INFINITY;
+        for (;;) {
+            gmmrrt_budget_t slice = *budget;
+            if (budget->time_ms > 0.0) {
+                const double left_ms = budget->time_ms - (double)(gmmrrtd_mono_us() - run_start_us) * 1e-3;
+                if (left_ms <= 0.0)
+                    break;
+                slice.time_ms = fmin(GMMRRTD_ANYTIME_SLICE_MS, left_ms);
+            }
+            if (budget->max_iterations > 0) {
+                if (iterations_left <= 0)
+                    break;
+                slice.max_iterations = iterations_left < GMMRRTD_ANYTIME_SLICE_ITERATIONS
+                                           ? iterations_left
+                                           : GMMRRTD_ANYTIME_SLICE_ITERATIONS;
+            }
+            const int64_t before = stats->iterations;
+            *st = gmmrrt_planner_run(d->planner, &slice, stats);
+            iterations_left -= stats->iterations - before;
+            if (*st != GMMRRT_OK && *st != GMMRRT_POOL_FULL && *st != GMMRRT_NO_PATH_YET &&
+                *st != GMMRRT_NO_PATH_ON_SIDE && *st != GMMRRT_TIMEOUT)
+                break;
+            if (*st == GMMRRT_OK || *st == GMMRRT_POOL_FULL) {
+                /* The tree's cost decides when to try (the drivable path's is lower: shortcut),
+                 * the drivable path's whether to publish. */
+                if (*published < d->set.anytime_max_plans &&
+                    stats->best_cost <= tried_tree_cost * (1.0 - d->set.anytime_improvement)) {
+                    tried_tree_cost = stats->best_cost;
+                    const int r = publish_drivable(d, now_us, escaping, *st, published_cost);
+                    if (r < 0)
+                        return -1;
+                    *published += r;
+                }
+            }
+            if (*st == GMMRRT_POOL_FULL || *published >= d->set.anytime_max_plans)
+                break;
+            if (*published > 0 && input_waiting(d))
+                break; /* a newer pose (or world) is waiting: plan from it rather than polish this one */
+        }
+        if (*published > 0)
+            *st = GMMRRT_OK;
+    }
+    return 0;
 }
 
 void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
@@ -379,11 +481,20 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     d->status.plan_time_ms = 0.0;
     d->status.setup_time_ms = 0.0;
     clear_stats(d);
-    judge_staleness(d, now_us, d->have[GMMRRTD_IN_GOAL]);
-    if (!d->have[GMMRRTD_IN_GOAL]) {
+    judge_staleness(d, now_us, gmmrrtd_goal_active(d));
+    if (!gmmrrtd_goal_active(d)) {
+        /* No goal, or it has finished: a reached or cancelled goal's empty plan once, then idle. */
+        if (d->life.announce && d->life.state != ST(GOAL_FAILED)) {
+            const int why = d->life.state == ST(GOAL_REACHED) ? GMMRRTD_STOP_GOAL_REACHED : GMMRRTD_STOP_GOAL_CANCELLED;
+            d->status.stops[d->life.state == ST(GOAL_REACHED) ? ST(STOP_GOAL_REACHED) : ST(STOP_GOAL_CANCELLED)]++;
+            d->last.valid = 0;
+            publish_plan(d, NULL, why);
+        }
+        d->life.announce = 0;
         publish_status(d, now_us, ST(STATE_IDLE));
         return;
     }
+    d->life.state = ST(GOAL_PLANNING);
 
     /* No pose, or none newer than pose_timeout_ms: stop. */
     if (!d->have[GMMRRTD_IN_POSE] || (d->stale_mask & ST(STALE_POSE))) {
@@ -393,6 +504,18 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
         }
         d->stale_mask |= ST(STALE_POSE);
         publish_stop(d, now_us, GMMRRTD_STOP_POSE_STALE, ST(STATE_STOPPED));
+        return;
+    }
+    /* Reached, judged on the fresh pose: the goal ends, its empty plan is published once. */
+    if (gmmrrtd_goal_check_reached(d)) {
+        gmmrrtd_log_limited(&d->rl_goal, gmmrrtd_mono_us() / 1000, (int64_t)d->set.log_interval_ms, GMMRRTD_LOG_INFO,
+                            "goal %lld reached at (%.2f, %.2f, yaw %.2f)", (long long)d->life.id, d->pose.x, d->pose.y,
+                            d->pose.yaw);
+        d->status.stops[ST(STOP_GOAL_REACHED)]++;
+        d->life.announce = 0;
+        d->last.valid = 0;
+        publish_plan(d, NULL, GMMRRTD_STOP_GOAL_REACHED);
+        publish_status(d, now_us, ST(STATE_IDLE));
         return;
     }
     /* A stale obstacle list: the world may have changed; stop as for a stale pose. */
@@ -511,53 +634,46 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     gmmrrt_plan_stats_t stats = {.first_solution_iteration = -1, .first_solution_ms = -1.0, .best_cost = INFINITY};
     double published_cost = INFINITY;
     int published = 0;
-    if (d->set.anytime_max_plans <= 1) {
-        st = gmmrrt_planner_run(d->planner, &budget, &stats);
+    const int side_asked = d->problem.side != GMMRRT_SIDE_EITHER && d->problem.obstacles.num_people > 0;
+    d->life.side_result = ST(SIDE_NOT_ASKED);
+    if (!side_asked) {
+        if (run_budget(d, now_us, escaping, &budget, &stats, &st, &published, &published_cost) < 0)
+            return;
     } else {
-        /* Anytime: the budget in slices; the first path is published at once, a better one only
-         * when its cost falls by anytime_improvement, at most anytime_max_plans per cycle. */
-        const int64_t run_start_us = gmmrrtd_mono_us();
-        int64_t iterations_left = budget.max_iterations;
-        double tried_tree_cost = INFINITY;
-        for (;;) {
-            gmmrrt_budget_t slice = budget;
-            if (budget.time_ms > 0.0) {
-                const double left_ms = budget.time_ms - (double)(gmmrrtd_mono_us() - run_start_us) * 1e-3;
-                if (left_ms <= 0.0)
-                    break;
-                slice.time_ms = fmin(GMMRRTD_ANYTIME_SLICE_MS, left_ms);
+        /* The preferred side (rrtstar.h, problem.side) gets the first half of the budget; when it
+         * has no path by then, the problem is set again with either side for the rest, and the
+         * status says the side was not found. Otherwise the rest goes on the same tree. */
+        gmmrrt_budget_t half = budget, rest = budget;
+        half.time_ms = budget.time_ms > 0.0 ? budget.time_ms * 0.5 : 0.0;
+        half.max_iterations = budget.max_iterations > 0 ? (budget.max_iterations + 1) / 2 : 0;
+        rest.max_iterations = budget.max_iterations > 0 ? budget.max_iterations - half.max_iterations : 0;
+        const int64_t half_start_us = gmmrrtd_mono_us();
+        if (run_budget(d, now_us, escaping, &half, &stats, &st, &published, &published_cost) < 0)
+            return;
+        if (budget.time_ms > 0.0)
+            rest.time_ms = fmax(budget.time_ms - (double)(gmmrrtd_mono_us() - half_start_us) * 1e-3, 1.0);
+        if (published == 0 && st == GMMRRT_NO_PATH_ON_SIDE) {
+            d->life.side_result = ST(SIDE_NOT_FOUND);
+            d->problem.side = GMMRRT_SIDE_EITHER;
+            const int64_t first_iterations = stats.iterations;
+            st = gmmrrt_planner_set_problem(d->planner, &d->problem);
+            if (st != GMMRRT_OK && st != GMMRRT_ESCAPE) {
+                reject_once_per_goal(d, ST(REJECT_SETUP), st);
+                publish_stop(d, now_us, st, ST(STATE_ERROR));
+                return;
             }
-            if (budget.max_iterations > 0) {
-                if (iterations_left <= 0)
-                    break;
-                slice.max_iterations = iterations_left < GMMRRTD_ANYTIME_SLICE_ITERATIONS
-                                           ? iterations_left
-                                           : GMMRRTD_ANYTIME_SLICE_ITERATIONS;
-            }
-            const int64_t before = stats.iterations;
-            st = gmmrrt_planner_run(d->planner, &slice, &stats);
-            iterations_left -= stats.iterations - before;
-            if (st != GMMRRT_OK && st != GMMRRT_POOL_FULL && st != GMMRRT_NO_PATH_YET && st != GMMRRT_TIMEOUT)
-                break;
-            if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL) {
-                /* The tree's cost decides when to try (the drivable path's is lower: shortcut),
-                 * the drivable path's whether to publish. */
-                if (published < d->set.anytime_max_plans &&
-                    stats.best_cost <= tried_tree_cost * (1.0 - d->set.anytime_improvement)) {
-                    tried_tree_cost = stats.best_cost;
-                    const int r = publish_drivable(d, now_us, escaping, st, &published_cost);
-                    if (r < 0)
-                        return;
-                    published += r;
-                }
-            }
-            if (st == GMMRRT_POOL_FULL || published >= d->set.anytime_max_plans)
-                break;
-            if (published > 0 && input_waiting(d))
-                break; /* a newer pose (or world) is waiting: plan from it rather than polish this one */
+            gmmrrt_plan_stats_t either = {.first_solution_iteration = -1, .first_solution_ms = -1.0, .best_cost = INFINITY};
+            if (run_budget(d, now_us, escaping, &rest, &either, &st, &published, &published_cost) < 0)
+                return;
+            stats = either;
+            stats.iterations += first_iterations;
+        } else {
+            if (published > 0 || st == GMMRRT_OK || st == GMMRRT_POOL_FULL)
+                d->life.side_result = ST(SIDE_KEPT);
+            if ((rest.max_iterations > 0 || budget.max_iterations <= 0) && published < d->set.anytime_max_plans &&
+                run_budget(d, now_us, escaping, &rest, &stats, &st, &published, &published_cost) < 0)
+                return;
         }
-        if (published > 0)
-            st = GMMRRT_OK;
     }
     d->status.iterations = stats.iterations;
     d->status.nodes = stats.nodes;
@@ -577,7 +693,7 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
         publish_status(d, now_us, ST(STATE_PLANNING));
         return;
     }
-    if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL || st == GMMRRT_TIMEOUT)
+    if (st == GMMRRT_OK || st == GMMRRT_POOL_FULL || st == GMMRRT_TIMEOUT || st == GMMRRT_NO_PATH_ON_SIDE)
         st = GMMRRT_NO_PATH_YET;
     if (++d->no_path_cycles >= d->set.unreachable_after_cycles)
         reject_once_per_goal(d, ST(REJECT_GOAL_UNREACHABLE), st);

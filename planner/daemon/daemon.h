@@ -37,12 +37,28 @@ enum { GMMRRTD_RL_PLANNER = GMMRRTD_NUM_INPUTS, GMMRRTD_RL_STOP = GMMRRTD_NUM_IN
 typedef struct {
     int valid;
     double goal_x, goal_y;
-    int32_t task, target_id;
+    int32_t task, target_id, side;
     int32_t num_people;
     int32_t people_id[GMMRRT_MAX_PEOPLE];
     double people_x[GMMRRT_MAX_PEOPLE], people_y[GMMRRT_MAX_PEOPLE];
     int64_t obstacles_version;
 } gmmrrtd_snapshot_t;
+
+/* Finished goals remembered, so that a late re-send of one is not taken as a new goal. */
+#define GMMRRTD_FINISHED_GOALS 64
+
+/* The current goal's life (goal.c; docs/daemon.md, "The goal's life"). */
+typedef struct {
+    int64_t id;                 /* the current (or last finished) goal's id; 0 = none yet */
+    int8_t state;               /* planner_status_t.GOAL_* */
+    int8_t failure;             /* planner_status_t.FAILURE_* when FAILED */
+    int announce;               /* 1: the finished goal's empty plan is still to be published (once) */
+    int64_t unusable_since_us;  /* local time since which no cycle could plan the goal; -1: it could */
+    double remaining_m;         /* length of the last plan published for it; -1 none */
+    int8_t side_result;         /* planner_status_t.SIDE_* of the last cycle */
+    int64_t finished[GMMRRTD_FINISHED_GOALS]; /* ring of finished ids (0 = empty slot) */
+    int32_t finished_next;
+} gmmrrtd_goal_life_t;
 
 /* One decoded message waiting to be applied (dispatch.c: decode -> cycles due -> apply). */
 typedef struct {
@@ -73,6 +89,7 @@ typedef struct {
     gmmrrt_obstacles_t obstacles;
     int64_t obstacles_version;   /* +1 whenever the obstacle content changes */
     int64_t goal_version;        /* +1 whenever the goal's content changes */
+    gmmrrtd_goal_life_t life;    /* the goal's id and state (goal.c) */
     gmmrrtd_staged_t staged;
 
     /* Local time base (clock.h): live, CLOCK_MONOTONIC; log, the log's event times made
@@ -162,6 +179,26 @@ int gmmrrtd_inputs_decode(gmmrrtd_t *d, int input, int64_t local_us, const void 
 
 /* inputs.c: makes the staged message the latest value of its channel. */
 void gmmrrtd_inputs_apply(gmmrrtd_t *d);
+
+/* goal.c: applies an accepted nav_goal_t (decoded, in the planning frame, on time): a NEW with
+ * the current goal's id updates it, with a finished goal's id is refused (REJECT_GOAL_ID_REUSED),
+ * with any other id replaces the current goal (which counts as finished); a CANCEL of the
+ * current goal cancels it, of a finished goal is ignored (a re-send), of any other id is refused
+ * (REJECT_BAD_VALUE). Returns 1 when the goal or its state changed (a cycle is due). */
+int gmmrrtd_goal_apply(gmmrrtd_t *d, const gmmrrt_nav_goal_t *m);
+
+/* goal.c: 1 while the current goal is to be planned (ACCEPTED or PLANNING). */
+int gmmrrtd_goal_active(const gmmrrtd_t *d);
+
+/* goal.c: the cycle's verdicts on the current goal. reached: within tolerance_m and, when
+ * yaw_tolerance_rad > 0, the heading within it, judged on the pose (1 when it was). planned: a
+ * plan was published (remaining_m its length). unusable: a goal-side stop (FAILURE_* of the
+ * cause); after goal_fail_after_ms of those in a row the goal FAILS. finish: the goal ends in
+ * `state` (REACHED, CANCELLED, FAILED), its id joins the finished ring. */
+int gmmrrtd_goal_check_reached(gmmrrtd_t *d);
+void gmmrrtd_goal_planned(gmmrrtd_t *d, double length_m);
+void gmmrrtd_goal_unusable(gmmrrtd_t *d, int64_t now_us, int failure);
+void gmmrrtd_goal_finish(gmmrrtd_t *d, int8_t state, int8_t failure);
 
 /* counters.c: counts a rejection and logs it rate-limited. row = GMMRRTD_IN_* or
  * GMMRRTD_RL_PLANNER for the daemon's own reasons. */

@@ -21,6 +21,8 @@ static int reason_of(gmmrrt_msg_result_t r)
     case GMMRRT_MSG_COUNT_OVER_BOUND: return GMMRRT_PLANNER_STATUS_T_REJECT_COUNT_OVER_BOUND;
     case GMMRRT_MSG_NOT_FINITE: return GMMRRT_PLANNER_STATUS_T_REJECT_NOT_FINITE;
     case GMMRRT_MSG_BAD_VALUE: return GMMRRT_PLANNER_STATUS_T_REJECT_BAD_VALUE;
+    case GMMRRT_MSG_UNKNOWN_COMMAND: return GMMRRT_PLANNER_STATUS_T_REJECT_UNKNOWN_COMMAND;
+    case GMMRRT_MSG_WRONG_FRAME: return GMMRRT_PLANNER_STATUS_T_REJECT_WRONG_FRAME;
     default: return GMMRRT_PLANNER_STATUS_T_REJECT_DECODE;
     }
 }
@@ -86,10 +88,16 @@ static int accept_time(gmmrrtd_t *d, int input, int64_t utime, int64_t local_us)
     }
 }
 
-#define DECODE_INPUT(d, input, fn, buf, len, out)                                                   \
+/* Decodes through msg_decode.h, then refuses a frame other than [world] frame (msg_decode.h's
+ * rule). The frame string is released at once: every kept message is in the planning frame. */
+#define DECODE_INPUT(d, input, type, short_name, buf, len, out)                                     \
     do {                                                                                            \
         char err_[256];                                                                             \
-        gmmrrt_msg_result_t r_ = fn((buf), (len), (out), err_, sizeof err_);                        \
+        gmmrrt_msg_result_t r_ = gmmrrt_msg_decode_##short_name((buf), (len), (out), err_, sizeof err_); \
+        if (r_ == GMMRRT_MSG_OK) {                                                                  \
+            r_ = gmmrrt_msg_check_frame(#type, (out)->frame, (d)->set.frame, err_, sizeof err_);     \
+            gmmrrt_msg_release_##short_name(out);                                                   \
+        }                                                                                           \
         if (r_ != GMMRRT_MSG_OK) {                                                                  \
             gmmrrtd_reject((d), (input), reason_of(r_), "%s", err_);                                \
             return 0;                                                                               \
@@ -122,21 +130,21 @@ int gmmrrtd_inputs_decode(gmmrrtd_t *d, int input, int64_t local_us, const void 
     int64_t utime;
     switch (input) {
     case GMMRRTD_IN_POSE:
-        DECODE_INPUT(d, input, gmmrrt_msg_decode_pose2d, buf, len, &st->m.pose);
+        DECODE_INPUT(d, input, pose2d_t, pose2d, buf, len, &st->m.pose);
         utime = st->m.pose.utime;
         break;
     case GMMRRTD_IN_PEOPLE:
-        DECODE_INPUT(d, input, gmmrrt_msg_decode_people, buf, len, &st->m.people);
+        DECODE_INPUT(d, input, people_t, people, buf, len, &st->m.people);
         if (!people_speeds_ok(d, &st->m.people))
             return 0;
         utime = st->m.people.utime;
         break;
     case GMMRRTD_IN_GOAL:
-        DECODE_INPUT(d, input, gmmrrt_msg_decode_nav_goal, buf, len, &st->m.goal);
+        DECODE_INPUT(d, input, nav_goal_t, nav_goal, buf, len, &st->m.goal);
         utime = st->m.goal.utime;
         break;
     case GMMRRTD_IN_OBSTACLES:
-        DECODE_INPUT(d, input, gmmrrt_msg_decode_obstacles, buf, len, &st->m.obstacles);
+        DECODE_INPUT(d, input, obstacles_t, obstacles, buf, len, &st->m.obstacles);
         utime = st->m.obstacles.utime;
         break;
     default: return 0;
@@ -145,12 +153,6 @@ int gmmrrtd_inputs_decode(gmmrrtd_t *d, int input, int64_t local_us, const void 
         return 0;
     st->input = input;
     return 1;
-}
-
-static int same_goal(const gmmrrt_nav_goal_t *a, const gmmrrt_nav_goal_t *b)
-{
-    return a->x == b->x && a->y == b->y && a->yaw == b->yaw && a->tolerance_m == b->tolerance_m && a->task == b->task &&
-           a->target_person_id == b->target_person_id;
 }
 
 /* The obstacle content that matters (used entries only), compared to bump the version. */
@@ -177,20 +179,15 @@ void gmmrrtd_inputs_apply(gmmrrtd_t *d)
     d->stale_counted[input] = 0; /* a new message ends the gap */
     /* What starts an event-triggered cycle (main.c): a new pose or people list, a changed goal or
      * world. A re-sent goal or obstacle list with the same content does not. */
-    const int64_t goal_version = d->goal_version, obstacles_version = d->obstacles_version;
+    const int64_t obstacles_version = d->obstacles_version;
+    int goal_changed = 0;
     switch (input) {
     case GMMRRTD_IN_POSE: d->pose = st->m.pose; break;
     case GMMRRTD_IN_PEOPLE: d->people = st->m.people; break;
     case GMMRRTD_IN_GOAL:
-        if (!had || !same_goal(&st->m.goal, &d->goal)) {
-            d->goal_version++;
-            d->no_path_cycles = 0;
-            /* Rate-limited: a flood of changing goals must not flood the journal. */
-            gmmrrtd_log_limited(&d->rl_goal, gmmrrtd_mono_us() / 1000, (int64_t)d->set.log_interval_ms,
-                                GMMRRTD_LOG_INFO, "new goal (%.2f, %.2f) task %d target %d", st->m.goal.x,
-                                st->m.goal.y, (int)st->m.goal.task, (int)st->m.goal.target_person_id);
-        }
-        d->goal = st->m.goal;
+        /* The goal's life (goal.c): a new id, an update, a cancel; a reused id is refused there. */
+        d->have[input] = had;
+        goal_changed = gmmrrtd_goal_apply(d, &st->m.goal);
         break;
     case GMMRRTD_IN_OBSTACLES:
         if (!had || !same_obstacles(&st->m.obstacles, &d->obstacles))
@@ -199,7 +196,7 @@ void gmmrrtd_inputs_apply(gmmrrtd_t *d)
         break;
     default: break;
     }
-    if (input == GMMRRTD_IN_POSE || input == GMMRRTD_IN_PEOPLE || goal_version != d->goal_version ||
+    if (input == GMMRRTD_IN_POSE || input == GMMRRTD_IN_PEOPLE || goal_changed ||
         obstacles_version != d->obstacles_version)
         d->event_pending = 1;
     st->input = -1;

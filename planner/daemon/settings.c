@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "gmmrrt/drivable.h"
+#include "gmmrrt/msg_decode.h"
 #include "gmmrrt/rrtstar.h"
 #include "log.h"
 
@@ -74,6 +75,8 @@ static const key_t_ k_keys[] = {
     NUM("timing", "pose_timeout_ms", "pose-timeout-ms", K_F64, pose_timeout_ms, 1, 1e7, "stop when the pose is older, ms"),
     NUM("timing", "unreachable_after_cycles", "unreachable-after", K_I32, unreachable_after_cycles, 1, 1e6,
         "cycles without a path before a goal counts as unreachable"),
+    NUM("timing", "goal_fail_after_ms", "goal-fail-after-ms", K_F64, goal_fail_after_ms, 0, 1e9,
+        "a goal that could not be planned for this long fails (no path, blocked, no model or target), ms"),
     NUM("timing", "people_timeout_ms", "people-timeout-ms", K_F64, people_timeout_ms, 0, 1e7,
         "drop the people list when older, ms (0: never)"),
     NUM("timing", "obstacles_timeout_ms", "obstacles-timeout-ms", K_F64, obstacles_timeout_ms, 0, 1e7,
@@ -92,6 +95,7 @@ static const key_t_ k_keys[] = {
         "how fast a source's clock offset may follow its messages, ms per s"),
     NUM("timing", "long_step_ms", "long-step-ms", K_F64, long_step_ms, 100, 1e7,
         "watchdog interval granted around a step that may take long (world set-up, reload), ms"),
+    STR("world", "frame", "frame", frame, "planning frame: inputs whose frame differs are refused"),
     NUM("world", "bounds_margin_m", "bounds-margin", K_F64, bounds_margin_m, 0.1, 1e4, "planning bounds margin, m"),
     STR("world", "map", "map", map, "static map, map_server YAML + PGM/PNG (docs/world.md); reloaded on SIGHUP"),
     NUM("world", "map_max_cells", "map-max-cells", K_I32, map_max_cells, 1, GMMRRT_MAX_RASTER_CELLS,
@@ -180,6 +184,7 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->anytime_improvement = 0.05;
     s->pose_timeout_ms = 500.0;
     s->unreachable_after_cycles = 5;
+    s->goal_fail_after_ms = 3000.0;
     s->people_timeout_ms = 1000.0;
     s->obstacles_timeout_ms = 0.0;
     s->scan_timeout_ms = 500.0;
@@ -190,6 +195,7 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->clock_slew_ms_per_s = 10.0;
     s->long_step_ms = 30000.0;
     s->bounds_margin_m = 3.0;
+    snprintf(s->frame, sizeof s->frame, "map");
     s->map[0] = '\0';
     s->map_max_cells = 2048 * 2048; /* 36 MiB of raster; 102 x 102 m at 5 cm */
     s->map_max_side = 4096;
@@ -501,6 +507,9 @@ int gmmrrtd_settings_validate(const gmmrrtd_settings_t *s, char *err, size_t err
                         "names as regular expressions; use letters, digits, '_', '-', '/', ':')",
                         chan_keys[i], chans[i], chans[i][bad]);
     }
+    char frame_why[160];
+    if (gmmrrt_msg_check_frame_name(s->frame, frame_why, sizeof frame_why) != GMMRRT_MSG_OK)
+        return fail(err, errcap, "[world] frame = \"%s\": %s", s->frame, frame_why);
     const double period_ms = 1000.0 / s->rate_hz;
     if (s->budget_ms >= period_ms)
         return fail(err, errcap, "budget_ms = %g must be below the period %g ms (rate_hz = %g)", s->budget_ms,

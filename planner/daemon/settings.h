@@ -41,6 +41,7 @@ typedef struct {
     int64_t budget_iterations;   /* samples per cycle, >= 0; 0 = no cap. Deterministic replays use this */
     double pose_timeout_ms;      /* > 0: no pose newer than this -> stop */
     int32_t unreachable_after_cycles; /* consecutive cycles without a path before the goal counts unreachable */
+    double goal_fail_after_ms;   /* a goal that could not be planned for this long fails (docs/daemon.md) */
     double people_timeout_ms;    /* >= 0: a people list older than this is dropped (0: never) */
     double obstacles_timeout_ms; /* >= 0: an obstacle list older than this stops the robot (0: never) */
     double scan_timeout_ms;      /* reserved for a laser-scan input (stop when older) */
@@ -53,6 +54,7 @@ typedef struct {
     double long_step_ms;         /* watchdog interval granted around a step that may take long */
     /* [world] */
     double bounds_margin_m;      /* planning bounds: box around robot, goal, people, obstacles + this */
+    char frame[65];              /* the planning frame: inputs in any other are refused (msg_decode.h) */
     char map[GMMRRTD_PATH_MAX];  /* map_server YAML (docs/world.md); "" = no map */
     int32_t map_max_cells;       /* raster capacity, fixed at start-up: cells ... */
     int32_t map_max_side;        /* ... and cells a side; a larger map is refused */

@@ -13,6 +13,11 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 
 #include "gmmrrt/msg_decode.h"
 
@@ -43,6 +48,17 @@ static gmmrrt_planner_status_t g_status;
 static gmmrrt_demo_info_t g_info;
 static gmmrrt_planar_scan_t g_scan;
 
+/* An accepted frame: the promised name (1..64 printable bytes, no space), then released (a leak
+ * or a double free is the sanitizer's to catch). */
+static void require_frame(char **frame)
+{
+    REQUIRE(*frame != NULL);
+    const size_t n = strlen(*frame);
+    REQUIRE(n >= 1 && n <= GMMRRT_MSG_FRAME_MAX);
+    for (size_t i = 0; i < n; ++i)
+        REQUIRE((*frame)[i] > 0x20 && (*frame)[i] < 0x7f);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     char err[256];
@@ -51,8 +67,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     err[0] = '\0';
     r = gmmrrt_msg_decode_pose2d(data, size, &g_pose, err, sizeof err);
     require_message(r, err);
-    if (r == GMMRRT_MSG_OK)
+    if (r == GMMRRT_MSG_OK) {
         REQUIRE(isfinite(g_pose.x) && isfinite(g_pose.y) && isfinite(g_pose.yaw));
+        require_frame(&g_pose.frame);
+        gmmrrt_msg_release_pose2d(&g_pose);
+    } else
+        REQUIRE(g_pose.frame == NULL);
 
     err[0] = '\0';
     r = gmmrrt_msg_decode_people(data, size, &g_people, err, sizeof err);
@@ -62,14 +82,23 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         for (int32_t i = 0; i < g_people.num_people; ++i)
             REQUIRE(isfinite(g_people.people[i].x) && isfinite(g_people.people[i].y) &&
                     isfinite(g_people.people[i].yaw) && g_people.people[i].id >= 0);
+        require_frame(&g_people.frame);
+        gmmrrt_msg_release_people(&g_people);
     }
 
     err[0] = '\0';
     r = gmmrrt_msg_decode_nav_goal(data, size, &g_goal, err, sizeof err);
     require_message(r, err);
-    if (r == GMMRRT_MSG_OK)
-        REQUIRE(isfinite(g_goal.x) && isfinite(g_goal.y) && g_goal.tolerance_m > 0.0 && g_goal.task >= 0 &&
-                g_goal.task <= 2);
+    if (r == GMMRRT_MSG_OK) {
+        REQUIRE(g_goal.goal_id > 0);
+        REQUIRE(g_goal.command == GMMRRT_NAV_GOAL_T_COMMAND_NEW || g_goal.command == GMMRRT_NAV_GOAL_T_COMMAND_CANCEL);
+        if (g_goal.command == GMMRRT_NAV_GOAL_T_COMMAND_NEW)
+            REQUIRE(isfinite(g_goal.x) && isfinite(g_goal.y) && g_goal.tolerance_m > 0.0 && g_goal.task >= 0 &&
+                    g_goal.task <= 2 && g_goal.yaw_tolerance_rad >= 0.0 && g_goal.yaw_tolerance_rad <= M_PI &&
+                    g_goal.preferred_side >= -1 && g_goal.preferred_side <= 1);
+        require_frame(&g_goal.frame);
+        gmmrrt_msg_release_nav_goal(&g_goal);
+    }
 
     err[0] = '\0';
     r = gmmrrt_msg_decode_obstacles(data, size, &g_obst, err, sizeof err);
@@ -84,13 +113,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             REQUIRE(isfinite(g_obst.box_x[i]) && isfinite(g_obst.box_y[i]) && g_obst.box_width[i] > 0.0 &&
                     g_obst.box_height[i] > 0.0 && isfinite(g_obst.box_width[i]) && isfinite(g_obst.box_height[i]) &&
                     isfinite(g_obst.box_yaw[i]));
+        require_frame(&g_obst.frame);
+        gmmrrt_msg_release_obstacles(&g_obst);
     }
 
     err[0] = '\0';
     r = gmmrrt_msg_decode_waypoints(data, size, &g_wp, err, sizeof err);
     require_message(r, err);
-    if (r == GMMRRT_MSG_OK)
+    if (r == GMMRRT_MSG_OK) {
         REQUIRE(g_wp.num_waypoints >= 0 && g_wp.num_waypoints <= GMMRRT_WAYPOINTS_T_MAX_WAYPOINTS);
+        require_frame(&g_wp.frame);
+        gmmrrt_msg_release_waypoints(&g_wp);
+    }
 
     err[0] = '\0';
     r = gmmrrt_msg_decode_planner_status(data, size, &g_status, err, sizeof err);

@@ -4,12 +4,20 @@
  * LCM's generated decoders check only the wire format. These wrappers add what a
  * planner must not trust: counts within the declared capacity (MAX_* constants in
  * lcmtypes/), finite numbers in every meaningful field, positive sizes, known enum
- * values. All gmmrrt messages use fixed-capacity arrays, so decoding never
- * allocates and nothing on the wire sizes an allocation.
+ * values. All gmmrrt arrays have a fixed capacity, and the one string (the frame, below)
+ * is bounded before it is allocated: nothing on the wire sizes an allocation.
  *
  * Every function: decodes `len` bytes at `buf` into `*out` (caller-owned), returns
  * GMMRRT_MSG_OK or the reason for rejection, and on rejection writes a one-line
  * message naming the type and field into err[errcap] (may be NULL).
+ *
+ * Frames: pose2d_t, people_t, nav_goal_t, obstacles_t and waypoints_t carry a `frame`
+ * string (the frame of their coordinates). LCM's generated decoder allocates it; here its
+ * length is judged on the wire first (1..GMMRRT_MSG_FRAME_MAX bytes of printable ASCII
+ * without spaces, NUL-terminated), so the allocation is at most GMMRRT_MSG_FRAME_MAX + 1
+ * bytes. On GMMRRT_MSG_OK out->frame is that heap string, owned by the caller: release it
+ * with gmmrrt_msg_release_<type>(out). On rejection nothing is held (out->frame is NULL).
+ * Which frame is right is the receiver's to say: gmmrrt_msg_check_frame.
  */
 #ifndef GMMRRT_MSG_DECODE_H
 #define GMMRRT_MSG_DECODE_H
@@ -30,14 +38,20 @@ extern "C" {
 #endif
 
 /* Why a message was rejected. Maps one-to-one onto planner_status_t.REJECT_*
- * (decode, count over bound, not finite, bad value) as the daemon counts them. */
+ * (decode, count over bound, not finite, bad value, unknown command, wrong frame) as the
+ * daemon counts them. */
 typedef enum {
     GMMRRT_MSG_OK = 0,
     GMMRRT_MSG_DECODE_FAILED = 1,    /* wrong fingerprint, truncated, malformed */
     GMMRRT_MSG_COUNT_OVER_BOUND = 2, /* a count is negative or above its MAX_* */
     GMMRRT_MSG_NOT_FINITE = 3,       /* NaN or Inf in a meaningful field */
-    GMMRRT_MSG_BAD_VALUE = 4         /* out of range: radius <= 0, unknown task, ... */
+    GMMRRT_MSG_BAD_VALUE = 4,        /* out of range: radius <= 0, unknown task, ... */
+    GMMRRT_MSG_UNKNOWN_COMMAND = 5,  /* nav_goal_t.command is not COMMAND_NEW or COMMAND_CANCEL */
+    GMMRRT_MSG_WRONG_FRAME = 6       /* gmmrrt_msg_check_frame: not the receiver's frame */
 } gmmrrt_msg_result_t;
+
+/* Longest frame name (bytes, without the NUL). */
+#define GMMRRT_MSG_FRAME_MAX 64
 
 const char *gmmrrt_msg_result_str(gmmrrt_msg_result_t r);
 
@@ -60,6 +74,23 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_planner_status(const void *buf, size_t len
  * judged: NaN, +-inf and out-of-range values are "no return" and kept as they are. */
 gmmrrt_msg_result_t gmmrrt_msg_decode_planar_scan(const void *buf, size_t len, gmmrrt_planar_scan_t *out,
                                                   char *err, size_t errcap);
+/* The receiver's rule for frames: GMMRRT_MSG_OK when `frame` is `expected` (byte for byte),
+ * else GMMRRT_MSG_WRONG_FRAME with both named in err (type names the message, may be NULL). */
+gmmrrt_msg_result_t gmmrrt_msg_check_frame(const char *type, const char *frame, const char *expected, char *err,
+                                           size_t errcap);
+
+/* The rule for a frame's name, for a receiver's own setting: GMMRRT_MSG_OK when `name` is
+ * 1..GMMRRT_MSG_FRAME_MAX bytes of printable ASCII without spaces, else GMMRRT_MSG_BAD_VALUE. */
+gmmrrt_msg_result_t gmmrrt_msg_check_frame_name(const char *name, char *err, size_t errcap);
+
+/* Release the frame string of a message decoded with GMMRRT_MSG_OK (no-op on NULL, and on a
+ * message already released). */
+void gmmrrt_msg_release_pose2d(gmmrrt_pose2d_t *m);
+void gmmrrt_msg_release_people(gmmrrt_people_t *m);
+void gmmrrt_msg_release_nav_goal(gmmrrt_nav_goal_t *m);
+void gmmrrt_msg_release_obstacles(gmmrrt_obstacles_t *m);
+void gmmrrt_msg_release_waypoints(gmmrrt_waypoints_t *m);
+
 gmmrrt_msg_result_t gmmrrt_msg_decode_demo_info(const void *buf, size_t len, gmmrrt_demo_info_t *out,
                                                 char *err, size_t errcap);
 

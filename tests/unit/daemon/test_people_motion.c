@@ -26,6 +26,7 @@
 #include "daemon.h"
 #include "daemon_fixture.h"
 
+static char k_frame[] = "map"; /* the daemon's default [world] frame */
 #define MS ((int64_t)1000)
 #define T0 ((int64_t)1700000000000000)
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
@@ -55,6 +56,7 @@ static void send_pose(gmmrrtd_t *d, int64_t t, double x, double y)
     gmmrrt_pose2d_t m;
     memset(&m, 0, sizeof m);
     m.utime = T0 + t;
+    m.frame = k_frame;
     m.x = x;
     m.y = y;
     uint8_t buf[256];
@@ -69,6 +71,7 @@ static void send_people(gmmrrtd_t *d, int64_t t, const person_in_t *p, int n_peo
     static uint8_t buf[16384];
     memset(&m, 0, sizeof m);
     m.utime = T0 + t;
+    m.frame = k_frame;
     m.num_people = n_people;
     for (int i = 0; i < n_people; ++i) {
         m.people[i].utime = T0 + t;
@@ -89,11 +92,14 @@ static void send_goal(gmmrrtd_t *d, int64_t t, double x, double y, int8_t task, 
     gmmrrt_nav_goal_t m;
     memset(&m, 0, sizeof m);
     m.utime = T0 + t;
+    m.frame = k_frame;
     m.x = x;
     m.y = y;
     m.tolerance_m = 0.3;
     m.task = task;
     m.target_person_id = target;
+    m.goal_id = 1; /* one goal, updated: a changed content replans, as a new goal would */
+    m.command = GMMRRT_NAV_GOAL_T_COMMAND_NEW;
     uint8_t buf[256];
     const int n = gmmrrt_nav_goal_t_encode(buf, 0, (int)sizeof buf, &m);
     assert_true(n > 0);
@@ -106,6 +112,7 @@ static void send_circle(gmmrrtd_t *d, int64_t t, double x, double y, double r)
     static uint8_t buf[16384];
     memset(&m, 0, sizeof m);
     m.utime = T0 + t;
+    m.frame = k_frame;
     m.num_circles = 1;
     m.circle_x[0] = x;
     m.circle_y[0] = y;

@@ -21,6 +21,7 @@
 #include "daemon_fixture.h"
 
 #define S ((int64_t)1000000)
+static char k_frame[] = "map"; /* the daemon's default [world] frame */
 #define MS ((int64_t)1000)
 #define T0 ((int64_t)1700000000000000)
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
@@ -46,6 +47,7 @@ static void send_pose(gmmrrtd_t *d, int64_t recv, int64_t utime, double x)
     gmmrrt_pose2d_t m;
     memset(&m, 0, sizeof m);
     m.utime = utime;
+    m.frame = k_frame;
     m.x = x;
     uint8_t buf[256];
     const int n = gmmrrt_pose2d_t_encode(buf, 0, (int)sizeof buf, &m);
@@ -59,6 +61,7 @@ static void send_people(gmmrrtd_t *d, int64_t recv, int64_t utime, int n_people)
     static uint8_t buf[16384];
     memset(&m, 0, sizeof m);
     m.utime = utime;
+    m.frame = k_frame;
     m.num_people = n_people;
     for (int i = 0; i < n_people; ++i) {
         m.people[i].id = i + 1;
@@ -75,10 +78,13 @@ static void send_goal(gmmrrtd_t *d, int64_t recv, int64_t utime, double x, doubl
     gmmrrt_nav_goal_t m;
     memset(&m, 0, sizeof m);
     m.utime = utime;
+    m.frame = k_frame;
     m.x = x;
     m.y = y;
     m.tolerance_m = 0.3;
     m.task = GMMRRT_NAV_GOAL_T_TASK_AVOID;
+    m.goal_id = 1;
+    m.command = GMMRRT_NAV_GOAL_T_COMMAND_NEW;
     uint8_t buf[256];
     const int n = gmmrrt_nav_goal_t_encode(buf, 0, (int)sizeof buf, &m);
     assert_true(n > 0);
@@ -91,6 +97,7 @@ static void send_obstacles(gmmrrtd_t *d, int64_t recv, int64_t utime)
     static uint8_t buf[16384];
     memset(&m, 0, sizeof m);
     m.utime = utime;
+    m.frame = k_frame;
     m.num_circles = 1;
     m.circle_x[0] = 2.0;
     m.circle_y[0] = -1.5;

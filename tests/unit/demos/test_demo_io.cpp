@@ -99,9 +99,9 @@ gmmrrt::demo_info_t Info(int64_t utime, int32_t episode, int8_t task, int8_t hom
 }
 
 gmmrrt::pose2d_t Pose(int64_t utime, double x, double y, double yaw) {
-    gmmrrt::pose2d_t m;
-    std::memset(&m, 0, sizeof m);
+    gmmrrt::pose2d_t m{};
     m.utime = utime;
+    m.frame = "map";
     m.x = x;
     m.y = y;
     m.yaw = yaw;
@@ -111,9 +111,9 @@ gmmrrt::pose2d_t Pose(int64_t utime, double x, double y, double yaw) {
 
 // Two people: a distractor (id 7) and the person of the task.
 gmmrrt::people_t People(int64_t utime, int32_t id, double x, double y, double yaw) {
-    gmmrrt::people_t m;
-    std::memset(&m, 0, sizeof m);
+    gmmrrt::people_t m{};
     m.utime = utime;
+    m.frame = "map";
     m.num_people = 2;
     m.people[0].utime = utime;
     m.people[0].id = 7;

@@ -27,6 +27,14 @@
 static uint8_t g_buf[BUF_CAP];
 static uint8_t g_buf2[BUF_CAP];
 static char g_err[256];
+static char k_map[] = "map";
+
+/* Releases a decoded message's frame (msg_decode.h); types without one hold nothing. */
+static void release_nothing(const void *m) { (void)m; }
+#define RELEASE(m)                                                                                  \
+    _Generic((m), gmmrrt_pose2d_t *: gmmrrt_msg_release_pose2d, gmmrrt_people_t *: gmmrrt_msg_release_people, \
+             gmmrrt_nav_goal_t *: gmmrrt_msg_release_nav_goal, gmmrrt_obstacles_t *: gmmrrt_msg_release_obstacles, \
+             gmmrrt_waypoints_t *: gmmrrt_msg_release_waypoints, default: release_nothing)(m)
 
 /* ------------------------------------------------------------------ valid messages */
 
@@ -34,6 +42,7 @@ static void fill_pose(gmmrrt_pose2d_t *m)
 {
     memset(m, 0, sizeof *m);
     m->utime = 1700000000123456LL;
+    m->frame = k_map;
     m->x = 1.25;
     m->y = -2.5;
     m->yaw = 0.75;
@@ -47,6 +56,7 @@ static void fill_people(gmmrrt_people_t *m, int32_t n)
 {
     memset(m, 0, sizeof *m);
     m->utime = 1700000000200000LL;
+    m->frame = k_map;
     m->num_people = n;
     for (int32_t i = 0; i < GMMRRT_PEOPLE_T_MAX_PEOPLE; ++i) {
         gmmrrt_person_t *p = &m->people[i];
@@ -64,18 +74,24 @@ static void fill_goal(gmmrrt_nav_goal_t *m)
 {
     memset(m, 0, sizeof *m);
     m->utime = 1700000000300000LL;
+    m->frame = k_map;
     m->x = 8.0;
     m->y = 1.5;
     m->yaw = -0.5;
     m->tolerance_m = 0.3;
+    m->yaw_tolerance_rad = 0.2;
     m->task = GMMRRT_NAV_GOAL_T_TASK_APPROACH;
     m->target_person_id = 7;
+    m->goal_id = 5000000000LL; /* beyond 32 bits */
+    m->command = GMMRRT_NAV_GOAL_T_COMMAND_NEW;
+    m->preferred_side = GMMRRT_NAV_GOAL_T_SIDE_RIGHT;
 }
 
 static void fill_obstacles(gmmrrt_obstacles_t *m, int32_t nc, int32_t nb)
 {
     memset(m, 0, sizeof *m);
     m->utime = 1700000000400000LL;
+    m->frame = k_map;
     m->num_circles = nc;
     m->num_boxes = nb;
     for (int i = 0; i < GMMRRT_OBSTACLES_T_MAX_CIRCLES; ++i) {
@@ -96,6 +112,7 @@ static void fill_waypoints(gmmrrt_waypoints_t *m, int32_t n)
 {
     memset(m, 0, sizeof *m);
     m->utime = 1700000000500000LL;
+    m->frame = k_map;
     m->seq = 42;
     m->num_waypoints = n;
     for (int i = 0; i < GMMRRT_WAYPOINTS_T_MAX_WAYPOINTS; ++i) {
@@ -127,6 +144,11 @@ static void fill_status(gmmrrt_planner_status_t *m)
         m->rejected[i] = 1000 + i;
     m->escapes = 17;
     m->approach_model = 4;
+    m->goal_id = 77;
+    m->goal_state = GMMRRT_PLANNER_STATUS_T_GOAL_FAILED;
+    m->goal_failure = GMMRRT_PLANNER_STATUS_T_FAILURE_UNREACHABLE;
+    m->remaining_m = 4.5;
+    m->side_result = GMMRRT_PLANNER_STATUS_T_SIDE_NOT_FOUND;
 }
 
 static void fill_demo(gmmrrt_demo_info_t *m)
@@ -168,6 +190,7 @@ static void fill_scan(gmmrrt_planar_scan_t *m, int32_t n)
         int m_ = gmmrrt_##type##_encode(g_buf2, 0, BUF_CAP, (out));                                 \
         assert_int_equal(m_, n_);                                                                   \
         assert_memory_equal(g_buf, g_buf2, (size_t)n_);                                             \
+        RELEASE(out);                                                                               \
     } while (0)
 
 static void test_pose2d_round_trips(void **state)
@@ -307,6 +330,7 @@ static void test_demo_info_round_trips(void **state)
         gmmrrt_msg_result_t r_ = fn(g_buf, (size_t)n_, &out_, g_err, sizeof g_err);                 \
         if (r_ != GMMRRT_MSG_OK)                                                                    \
             fail_msg("%s:%d: rejected: %s", __FILE__, __LINE__, g_err);                             \
+        RELEASE(&out_);                                                                             \
     } while (0)
 
 static const double k_bad_numbers[] = {NAN, INFINITY, -INFINITY};
@@ -612,6 +636,130 @@ static void test_demo_info_rules(void **state)
     EXPECT_REJECT(demo_info_t, gmmrrt_msg_decode_demo_info, &m, GMMRRT_MSG_BAD_VALUE, "demo_info_t", "episode");
 }
 
+/* The goal's life fields: an unknown command is its own result, judged before anything else; a
+ * CANCEL is read for its id only; the id must be > 0; the heading tolerance is in [0, pi]; the
+ * side is one of three. */
+static void test_nav_goal_command_id_side_and_yaw_tolerance_rules(void **state)
+{
+    (void)state;
+    gmmrrt_nav_goal_t m;
+    const int8_t bad_commands[] = {0, 3, -1, 127};
+    for (size_t i = 0; i < sizeof bad_commands; ++i) {
+        fill_goal(&m); m.command = bad_commands[i]; m.x = NAN;
+        EXPECT_REJECT(nav_goal_t, gmmrrt_msg_decode_nav_goal, &m, GMMRRT_MSG_UNKNOWN_COMMAND, "nav_goal_t", "command");
+    }
+    const int64_t bad_ids[] = {0, -1, INT64_MIN};
+    for (size_t i = 0; i < sizeof bad_ids / sizeof bad_ids[0]; ++i) {
+        fill_goal(&m); m.goal_id = bad_ids[i];
+        EXPECT_REJECT(nav_goal_t, gmmrrt_msg_decode_nav_goal, &m, GMMRRT_MSG_BAD_VALUE, "nav_goal_t", "goal_id");
+        fill_goal(&m); m.goal_id = bad_ids[i]; m.command = GMMRRT_NAV_GOAL_T_COMMAND_CANCEL;
+        EXPECT_REJECT(nav_goal_t, gmmrrt_msg_decode_nav_goal, &m, GMMRRT_MSG_BAD_VALUE, "nav_goal_t", "goal_id");
+    }
+    /* A CANCEL needs no position, tolerance or task. */
+    fill_goal(&m); m.command = GMMRRT_NAV_GOAL_T_COMMAND_CANCEL; m.x = NAN; m.tolerance_m = 0.0; m.task = 9;
+    EXPECT_OK(nav_goal_t, gmmrrt_msg_decode_nav_goal, &m);
+    for (size_t b = 0; b < N_BAD; ++b) {
+        fill_goal(&m); m.yaw_tolerance_rad = k_bad_numbers[b];
+        EXPECT_REJECT(nav_goal_t, gmmrrt_msg_decode_nav_goal, &m, GMMRRT_MSG_NOT_FINITE, "nav_goal_t",
+                      "yaw_tolerance_rad");
+    }
+    fill_goal(&m); m.yaw_tolerance_rad = -0.01;
+    EXPECT_REJECT(nav_goal_t, gmmrrt_msg_decode_nav_goal, &m, GMMRRT_MSG_BAD_VALUE, "nav_goal_t", "yaw_tolerance_rad");
+    fill_goal(&m); m.yaw_tolerance_rad = 3.2;
+    EXPECT_REJECT(nav_goal_t, gmmrrt_msg_decode_nav_goal, &m, GMMRRT_MSG_BAD_VALUE, "nav_goal_t", "yaw_tolerance_rad");
+    fill_goal(&m); m.yaw_tolerance_rad = 0.0; /* heading not judged */
+    EXPECT_OK(nav_goal_t, gmmrrt_msg_decode_nav_goal, &m);
+    fill_goal(&m); m.yaw_tolerance_rad = M_PI;
+    EXPECT_OK(nav_goal_t, gmmrrt_msg_decode_nav_goal, &m);
+    const int8_t sides[] = {-1, 0, 1};
+    for (size_t i = 0; i < sizeof sides; ++i) {
+        fill_goal(&m); m.preferred_side = sides[i];
+        EXPECT_OK(nav_goal_t, gmmrrt_msg_decode_nav_goal, &m);
+    }
+    fill_goal(&m); m.preferred_side = 2;
+    EXPECT_REJECT(nav_goal_t, gmmrrt_msg_decode_nav_goal, &m, GMMRRT_MSG_BAD_VALUE, "nav_goal_t", "preferred_side");
+    fill_goal(&m); m.preferred_side = -2;
+    EXPECT_REJECT(nav_goal_t, gmmrrt_msg_decode_nav_goal, &m, GMMRRT_MSG_BAD_VALUE, "nav_goal_t", "preferred_side");
+}
+
+/* Frames, on every type that has one: 1..64 printable bytes without spaces; a 64-byte name
+ * round-trips; the frame's length on the wire is judged before anything is allocated (a length
+ * of 2^31 - 1 in a 40-byte message is refused, not allocated); the receiver's frame check. */
+#define EXPECT_FRAME_RULES(type, fn, msg)                                                           \
+    do {                                                                                            \
+        char name_[80];                                                                             \
+        memset(name_, 'a', sizeof name_);                                                           \
+        name_[GMMRRT_MSG_FRAME_MAX] = '\0';                                                         \
+        (msg)->frame = name_;                                                                       \
+        EXPECT_OK(type, fn, (msg));                                                                 \
+        name_[GMMRRT_MSG_FRAME_MAX] = 'a';                                                          \
+        name_[GMMRRT_MSG_FRAME_MAX + 1] = '\0';                                                     \
+        EXPECT_REJECT(type, fn, (msg), GMMRRT_MSG_BAD_VALUE, #type, "frame");                       \
+        (msg)->frame = (char *)"";                                                                  \
+        EXPECT_REJECT(type, fn, (msg), GMMRRT_MSG_BAD_VALUE, #type, "frame");                       \
+        (msg)->frame = (char *)"base link";                                                         \
+        EXPECT_REJECT(type, fn, (msg), GMMRRT_MSG_BAD_VALUE, #type, "frame");                       \
+        (msg)->frame = (char *)"odom\t";                                                            \
+        EXPECT_REJECT(type, fn, (msg), GMMRRT_MSG_BAD_VALUE, #type, "frame");                       \
+        (msg)->frame = (char *)"/map";                                                              \
+        EXPECT_OK(type, fn, (msg));                                                                 \
+        int n_ = gmmrrt_##type##_encode(g_buf, 0, BUF_CAP, (msg));                                  \
+        g_buf[16] = 0x7f; g_buf[17] = g_buf[18] = g_buf[19] = 0xff; /* length 2^31 - 1 */           \
+        __typeof__(*(msg)) o_;                                                                      \
+        assert_int_equal(fn(g_buf, 40, &o_, g_err, sizeof g_err), GMMRRT_MSG_DECODE_FAILED);         \
+        assert_int_equal(fn(g_buf, (size_t)n_, &o_, g_err, sizeof g_err), GMMRRT_MSG_DECODE_FAILED); \
+        assert_null(o_.frame == NULL ? NULL : "held");                                              \
+        g_buf[16] = 0x80; /* negative */                                                            \
+        assert_int_equal(fn(g_buf, (size_t)n_, &o_, g_err, sizeof g_err), GMMRRT_MSG_DECODE_FAILED); \
+        n_ = gmmrrt_##type##_encode(g_buf, 0, BUF_CAP, (msg));                                      \
+        g_buf[24] = (uint8_t)'x'; /* the NUL of "/map" */                                           \
+        assert_int_equal(fn(g_buf, (size_t)n_, &o_, g_err, sizeof g_err), GMMRRT_MSG_DECODE_FAILED); \
+        assert_non_null(strstr(g_err, "NUL"));                                                      \
+    } while (0)
+
+static void test_frames_are_bounded_printable_and_judged_before_allocation(void **state)
+{
+    (void)state;
+    gmmrrt_pose2d_t pose; fill_pose(&pose);
+    EXPECT_FRAME_RULES(pose2d_t, gmmrrt_msg_decode_pose2d, &pose);
+    gmmrrt_people_t people; fill_people(&people, 2);
+    EXPECT_FRAME_RULES(people_t, gmmrrt_msg_decode_people, &people);
+    gmmrrt_nav_goal_t goal; fill_goal(&goal);
+    EXPECT_FRAME_RULES(nav_goal_t, gmmrrt_msg_decode_nav_goal, &goal);
+    gmmrrt_obstacles_t obs; fill_obstacles(&obs, 1, 1);
+    EXPECT_FRAME_RULES(obstacles_t, gmmrrt_msg_decode_obstacles, &obs);
+    gmmrrt_waypoints_t wp; fill_waypoints(&wp, 2);
+    EXPECT_FRAME_RULES(waypoints_t, gmmrrt_msg_decode_waypoints, &wp);
+
+    /* A rejection after the frame was allocated holds nothing (ASan's leak check). */
+    fill_pose(&pose); pose.x = NAN;
+    int n = gmmrrt_pose2d_t_encode(g_buf, 0, BUF_CAP, &pose);
+    gmmrrt_pose2d_t out;
+    assert_int_equal(gmmrrt_msg_decode_pose2d(g_buf, (size_t)n, &out, g_err, sizeof g_err), GMMRRT_MSG_NOT_FINITE);
+    assert_null(out.frame);
+    /* An accepted one holds its frame until released; a second release is a no-op. */
+    fill_pose(&pose);
+    n = gmmrrt_pose2d_t_encode(g_buf, 0, BUF_CAP, &pose);
+    assert_int_equal(gmmrrt_msg_decode_pose2d(g_buf, (size_t)n, &out, g_err, sizeof g_err), GMMRRT_MSG_OK);
+    assert_string_equal(out.frame, "map");
+    assert_int_equal(gmmrrt_msg_check_frame("pose2d_t", out.frame, "map", g_err, sizeof g_err), GMMRRT_MSG_OK);
+    assert_int_equal(gmmrrt_msg_check_frame("pose2d_t", out.frame, "odom", g_err, sizeof g_err),
+                     GMMRRT_MSG_WRONG_FRAME);
+    assert_non_null(strstr(g_err, "pose2d_t.frame \"map\""));
+    assert_non_null(strstr(g_err, "\"odom\""));
+    assert_int_equal(gmmrrt_msg_check_frame("pose2d_t", "map2", "map", g_err, sizeof g_err), GMMRRT_MSG_WRONG_FRAME);
+    assert_int_equal(gmmrrt_msg_check_frame(NULL, NULL, "map", g_err, sizeof g_err), GMMRRT_MSG_WRONG_FRAME);
+    gmmrrt_msg_release_pose2d(&out);
+    assert_null(out.frame);
+    gmmrrt_msg_release_pose2d(&out);
+    gmmrrt_msg_release_pose2d(NULL);
+    /* The setting's rule is the same rule. */
+    assert_int_equal(gmmrrt_msg_check_frame_name("map", g_err, sizeof g_err), GMMRRT_MSG_OK);
+    assert_int_equal(gmmrrt_msg_check_frame_name("", g_err, sizeof g_err), GMMRRT_MSG_BAD_VALUE);
+    assert_int_equal(gmmrrt_msg_check_frame_name("my map", g_err, sizeof g_err), GMMRRT_MSG_BAD_VALUE);
+    assert_int_equal(gmmrrt_msg_check_frame_name(NULL, g_err, sizeof g_err), GMMRRT_MSG_BAD_VALUE);
+}
+
 /* ------------------------------------------------------------------ wire faults */
 
 /* Every prefix shorter than the encoding is DECODE_FAILED with the type named. The prefix
@@ -720,9 +868,10 @@ static void test_result_strings_are_distinct(void **state)
 {
     (void)state;
     const gmmrrt_msg_result_t all[] = {GMMRRT_MSG_OK, GMMRRT_MSG_DECODE_FAILED, GMMRRT_MSG_COUNT_OVER_BOUND,
-                                       GMMRRT_MSG_NOT_FINITE, GMMRRT_MSG_BAD_VALUE};
-    for (size_t i = 0; i < 5; ++i)
-        for (size_t j = i + 1; j < 5; ++j)
+                                       GMMRRT_MSG_NOT_FINITE, GMMRRT_MSG_BAD_VALUE, GMMRRT_MSG_UNKNOWN_COMMAND,
+                                       GMMRRT_MSG_WRONG_FRAME};
+    for (size_t i = 0; i < 7; ++i)
+        for (size_t j = i + 1; j < 7; ++j)
             assert_string_not_equal(gmmrrt_msg_result_str(all[i]), gmmrrt_msg_result_str(all[j]));
     assert_string_equal(gmmrrt_msg_result_str((gmmrrt_msg_result_t)99), "unknown");
 }
@@ -746,6 +895,8 @@ int main(void)
         cmocka_unit_test(test_people_non_finite_and_negative_id_are_rejected),
         cmocka_unit_test(test_people_slots_beyond_count_are_not_validated),
         cmocka_unit_test(test_nav_goal_rules),
+        cmocka_unit_test(test_nav_goal_command_id_side_and_yaw_tolerance_rules),
+        cmocka_unit_test(test_frames_are_bounded_printable_and_judged_before_allocation),
         cmocka_unit_test(test_obstacles_counts_out_of_bounds_are_rejected),
         cmocka_unit_test(test_obstacles_non_finite_and_sizes_are_rejected),
         cmocka_unit_test(test_waypoints_rules),

@@ -68,7 +68,9 @@ int main(int argc, char **argv)
     }
 #ifdef GMMRRT_CONSUMER_LCMTYPES
     static gmmrrt_waypoints_t msg, back;
+    static char frame[] = "map";
     msg.utime = 1;
+    msg.frame = frame;
     msg.num_waypoints = path.num_points;
     static uint8_t buf[1 << 16];
     const int n = gmmrrt_waypoints_t_encode(buf, 0, (int)sizeof buf, &msg);
