@@ -58,12 +58,13 @@ def msg_seeds():
                 seen.add(channel)
                 seeds.append(data)
     wp = waypoints_t()
-    wp.utime, wp.seq, wp.num_waypoints = 1, 1, 3
+    wp.utime, wp.frame, wp.seq, wp.num_waypoints = 1, "map", 1, 3
     wp.x[:3], wp.y[:3], wp.yaw[:3] = [0.0, 1.0, 2.0], [0.0, 0.5, 0.0], [0.0, 0.3, -0.3]
     wp.planner, wp.task = waypoints_t.PLANNER_GMM_RRT_STAR, 1
     seeds.append(wp.encode())
     st = planner_status_t()
     st.utime, st.state, st.rejected[0] = 1, planner_status_t.STATE_PLANNING, 2
+    st.goal_id, st.goal_state, st.remaining_m = 3, planner_status_t.GOAL_PLANNING, 4.5
     seeds.append(st.encode())
     for name in sorted(os.listdir(DEMOS)):
         if name.endswith(".lcmlog"):

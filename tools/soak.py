@@ -22,8 +22,8 @@ and LCM's buffers are touched for the first time there):
   * latency: median of the last third <= 1.5 x median of the first third + 5 ms, and the
     least-squares slope of all samples reported (ms/min);
   * the daemon is alive at the end, published a status every period (median interval within
-    15 %), rejected no message (decode, count, not finite, backwards, bad value, reload: the
-    inputs are clean), and exits 0 on SIGINT. Planning counts (unknown target, ...) are only
+    15 %), rejected no message (decode, count, not finite, backwards, bad value, reload, reused
+    goal id, unknown command, wrong frame: the inputs are clean), and exits 0 on SIGINT. Planning counts (unknown target, ...) are only
     reported: where one scenario hands over to the next, a cycle can fall between the new
     PEOPLE and the new NAV_GOAL, and the old approach goal's target is then rightly missing.
 Exit 0 when all hold, 1 otherwise; --json writes the samples' summary.
@@ -123,10 +123,12 @@ def soak(args):
     next_rss = start
     loops = 0
     sent_msgs = 0
+    goal_id = 0
     try:
         while time.monotonic() < end and proc.poll() is None:
             for name, evs in scenarios:
                 scen_start_wall = time.monotonic()
+                goal_id += 1  # every pass of a scenario is a new goal: a finished goal's id is refused
                 for off_us, ch, msg in evs:
                     due = scen_start_wall + off_us * 1e-6 / args.speed
                     while True:
@@ -143,6 +145,8 @@ def soak(args):
                             lc.handle()
                     last_utime = max(last_utime + 1, int(time.time() * 1e6))
                     msg.utime = last_utime
+                    if ch == "NAV_GOAL":
+                        msg.goal_id = goal_id
                     if ch == "PEOPLE":
                         for i in range(msg.num_people):
                             msg.people[i].utime = msg.utime
@@ -219,7 +223,9 @@ def soak(args):
         message_level = [planner_status_t.REJECT_DECODE, planner_status_t.REJECT_COUNT_OVER_BOUND,
                          planner_status_t.REJECT_NOT_FINITE, planner_status_t.REJECT_TIME_BACKWARDS,
                          planner_status_t.REJECT_BAD_VALUE, planner_status_t.REJECT_MODEL_RELOAD,
-                         planner_status_t.REJECT_TIME_FUTURE, planner_status_t.REJECT_CLOCK_RESYNC]
+                         planner_status_t.REJECT_TIME_FUTURE, planner_status_t.REJECT_CLOCK_RESYNC,
+                         planner_status_t.REJECT_GOAL_ID_REUSED, planner_status_t.REJECT_UNKNOWN_COMMAND,
+                         planner_status_t.REJECT_WRONG_FRAME]
         summary["rejected_nonzero"] = {i: int(v) for i, v in enumerate(final.rejected) if v}
         if any(final.rejected[i] for i in message_level):
             failures.append("the daemon rejected clean input: %s" % list(final.rejected))

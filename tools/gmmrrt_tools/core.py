@@ -113,6 +113,13 @@ def msg_lib() -> ctypes.CDLL:
             fn = getattr(_msg_lib, "gmmrrt_msg_decode_" + t)
             fn.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_void_p, ctypes.c_char_p, ctypes.c_size_t]
             fn.restype = ctypes.c_int
+        for t in FRAMED_TYPES:
+            fn = getattr(_msg_lib, "gmmrrt_msg_release_" + t)
+            fn.argtypes = [ctypes.c_void_p]
+            fn.restype = None
+        _msg_lib.gmmrrt_msg_check_frame.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p,
+                                                    ctypes.c_char_p, ctypes.c_size_t]
+        _msg_lib.gmmrrt_msg_check_frame.restype = ctypes.c_int
     return _msg_lib
 
 
@@ -165,12 +172,18 @@ MESSAGE_TYPES = ("pose2d", "people", "nav_goal", "obstacles", "waypoints", "plan
 # arrays of a few hundred doubles), so Python does not mirror the structs' layouts.
 _MSG_SCRATCH_BYTES = 1 << 20
 _msg_scratch = None
+# The types with a frame string (msg_decode.h): the decoder allocates it, the binding releases it.
+# In the generated struct it follows the int64_t utime: a char * at offset 8.
+FRAMED_TYPES = ("pose2d", "people", "nav_goal", "obstacles", "waypoints")
+MSG_WRONG_FRAME = 6  # GMMRRT_MSG_WRONG_FRAME
 
 
-def validate_message(type_name: str, data: bytes) -> Tuple[int, str]:
+def validate_message(type_name: str, data: bytes, frame: Optional[str] = None) -> Tuple[int, str]:
     """(result, reason) of gmmrrt_msg_decode_<type_name> on the encoded message `data`: result 0 is
     GMMRRT_MSG_OK, else the gmmrrt_msg_result_t the daemon would count (decode failed, count over
-    bound, not finite, bad value) and a reason naming the type and field."""
+    bound, not finite, bad value, unknown command) and a reason naming the type and field. With
+    `frame`, a message of a framed type in another frame is GMMRRT_MSG_WRONG_FRAME
+    (gmmrrt_msg_check_frame), as gmmrrtd judges it against its [world] frame."""
     global _msg_scratch
     if type_name not in MESSAGE_TYPES:
         raise ValueError(f"no validating decoder for message type {type_name!r}; known: {', '.join(MESSAGE_TYPES)}")
@@ -179,6 +192,13 @@ def validate_message(type_name: str, data: bytes) -> Tuple[int, str]:
         _msg_scratch = ctypes.create_string_buffer(_MSG_SCRATCH_BYTES)
     err = ctypes.create_string_buffer(256)
     r = fn(bytes(data), len(data), _msg_scratch, err, len(err))
+    if r == 0 and type_name in FRAMED_TYPES:
+        lib_ = msg_lib()
+        if frame is not None:
+            got = ctypes.c_void_p.from_buffer(_msg_scratch, 8).value
+            r = lib_.gmmrrt_msg_check_frame((type_name + "_t").encode(), ctypes.cast(got, ctypes.c_char_p).value,
+                                            frame.encode(), err, len(err))
+        getattr(lib_, "gmmrrt_msg_release_" + type_name)(_msg_scratch)
     return int(r), err.value.decode(errors="replace")
 
 

@@ -19,6 +19,7 @@ from .episodes import HOMOTOPIES, TASKS, Episode, EpisodeError, atomic_output, c
 # kMaxPersonAgeS); a writer that publishes PEOPLE less often makes poses the reader drops.
 MAX_PERSON_AGE_S = 5.0
 CH_INFO, CH_POSE, CH_PEOPLE = "DEMO_INFO", "ROBOT_POSE", "PEOPLE"
+FRAME = "map"  # the frame every written pose and people list is in (demonstrations need one, any)
 
 DEFAULT_START_UTIME = 1_700_000_000_000_000  # 2023-11-14: an arbitrary, fixed origin for written logs
 EPISODE_GAP_S = 10.0                          # pause between episodes in a written log
@@ -63,6 +64,7 @@ def write_demo_log(path: str, episodes: List[Episode], start_utime: int = DEFAUL
                 if i % people_every == 0:
                     people = people_t()
                     people.utime = ut
+                    people.frame = FRAME
                     others = distractors[e][i] if distractors else []
                     people.num_people = 1 + len(others)
                     for k, (pid, x, y, pyaw) in enumerate([(ep.person_id, ep.person_x[i], ep.person_y[i],
@@ -72,6 +74,7 @@ def write_demo_log(path: str, episodes: List[Episode], start_utime: int = DEFAUL
                     log.write_event(ut, CH_PEOPLE, people.encode())
                 pose = pose2d_t()
                 pose.utime, pose.x, pose.y, pose.yaw = ut, float(ep.robot_x[i]), float(ep.robot_y[i]), yaw[i]
+                pose.frame = FRAME
                 log.write_event(ut, CH_POSE, pose.encode())
             utime0 += int(round((float(ep.t[-1]) + EPISODE_GAP_S) * 1e6))
         log.close()

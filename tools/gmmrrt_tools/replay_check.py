@@ -58,6 +58,7 @@ def read_events(path):
     return out
 
 
+FRAME = "map"  # gmmrrtd's default [world] frame (docs/daemon.md): a message in another is refused
 MAX_UTIME = 1 << 53  # gmmrrtd takes utimes in 0..2^53 us only (GMMRRTD_MAX_UTIME, planner/daemon/daemon.h)
 
 # Input channel -> (validating decoder of lcmtypes/msg_decode.c, generated Python decoder).
@@ -69,9 +70,11 @@ def _valid(channel, data):
     """The message decoded when gmmrrtd would accept it on its own, else None. The message rules are
     the daemon's own (gmmrrt_msg_decode_* through gmmrrt_tools.core), never a copy of them."""
     kind = INPUTS.get(channel)
-    if kind is None or core.validate_message(kind[0], data)[0] != 0:
+    if kind is None or core.validate_message(kind[0], data, frame=FRAME)[0] != 0:
         return None
     m = kind[1].decode(data)
+    if channel == "NAV_GOAL" and m.command != nav_goal_t.COMMAND_NEW:
+        return None  # a cancel names a goal, it is none
     return m if 0 <= m.utime <= MAX_UTIME else None
 
 

@@ -26,6 +26,7 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 T0 = 1_700_000_000_000_000  # utime of every scenario's start, us
 PERIOD_US = 100_000         # 10 Hz inputs
+FRAME = "map"               # gmmrrtd's default [world] frame: every message is in it
 R = planner_status_t        # REJECT_* constants
 
 
@@ -57,6 +58,7 @@ class Scenario:
 def pose(t_s, x, y, yaw, utime=None):
     m = pose2d_t()
     m.utime = us(t_s) if utime is None else utime
+    m.frame = FRAME
     m.x, m.y, m.yaw = float(x), float(y), float(yaw)
     return m
 
@@ -65,6 +67,7 @@ def people(t_s, persons):
     """persons: (id, x, y, yaw, vx, vy)"""
     m = people_t()
     m.utime = us(t_s)
+    m.frame = FRAME
     m.num_people = len(persons)
     for i, (pid, x, y, yaw, vx, vy) in enumerate(persons):
         p = person_t()
@@ -74,10 +77,21 @@ def people(t_s, persons):
     return m
 
 
-def goal(t_s, x, y, task, target=-1, tol=0.3):
+def goal(t_s, x, y, task, target=-1, tol=0.3, goal_id=1, yaw=0.0, yaw_tol=0.0, side=0):
     m = nav_goal_t()
     m.utime = us(t_s)
-    m.x, m.y, m.yaw, m.tolerance_m, m.task, m.target_person_id = float(x), float(y), 0.0, tol, task, target
+    m.frame = FRAME
+    m.goal_id, m.command = goal_id, nav_goal_t.COMMAND_NEW
+    m.x, m.y, m.yaw, m.tolerance_m, m.task, m.target_person_id = float(x), float(y), float(yaw), tol, task, target
+    m.yaw_tolerance_rad, m.preferred_side = float(yaw_tol), side
+    return m
+
+
+def cancel(t_s, goal_id):
+    m = nav_goal_t()
+    m.utime = us(t_s)
+    m.frame = FRAME
+    m.goal_id, m.command = goal_id, nav_goal_t.COMMAND_CANCEL
     return m
 
 
@@ -85,6 +99,7 @@ def obstacles(t_s, circles=(), boxes=()):
     """circles: (x, y, r); boxes: (x, y, width, height, yaw)"""
     m = obstacles_t()
     m.utime = us(t_s)
+    m.frame = FRAME
     m.num_circles, m.num_boxes = len(circles), len(boxes)
     cx, cy, cr = [0.0] * 64, [0.0] * 64, [0.0] * 64
     for i, (x, y, r) in enumerate(circles):
@@ -176,7 +191,44 @@ def build_all():
     out.append(sc)
 
     out.append(build_faults())
+    out.append(build_goal_life())
     return out
+
+
+def build_goal_life():
+    """Each step of a goal's life, and each refusal of its messages (docs/daemon.md, "The goal's
+    life"). The robot stands at the origin until 3 s, then drives to (1.5, 0) at 1 m/s."""
+    sc = Scenario("goal_life", "goal lifecycle: cancel, reused id, unknown command, wrong frame, a goal replaced "
+                  "while planning, reached on position and heading, failed (goal in an obstacle)", 9.0)
+    circle = (6.0, -2.0, 0.5)
+    for k in range(int(round(sc.duration_s * 10)) + 1):
+        t = k * 0.1
+        x = min(max(t - 3.0, 0.0) * 1.0, 1.5)
+        sc.add(t, "ROBOT_POSE", pose(t, x, 0.0, 0.0))
+        if k % 2 == 0:
+            sc.add(t, "PEOPLE", people(t, [(1, 4.0, 0.1, math.pi, 0.0, 0.0)]))
+        if k % 10 == 0:
+            sc.add(t, "OBSTACLES", obstacles(t, [circle]))
+    sc.add(0.0, "NAV_GOAL", goal(0.0, 8.0, 0.0, AVOID, goal_id=1))      # accepted, planning
+    sc.add(0.5, "NAV_GOAL", goal(0.5, 8.0, 0.0, AVOID, goal_id=1))      # a re-send: nothing changes
+    sc.add(1.0, "NAV_GOAL", cancel(1.0, 1))                              # cancelled: one empty plan
+    sc.add(1.2, "NAV_GOAL", cancel(1.2, 1))                              # a re-sent cancel: ignored
+    sc.add(1.5, "NAV_GOAL", goal(1.5, 8.0, 0.0, AVOID, goal_id=1))      # a finished id again
+    sc.expect(R.REJECT_GOAL_ID_REUSED, 1)
+    bad = goal(1.6, 8.0, 0.0, AVOID, goal_id=2)
+    bad.command = 3
+    sc.add(1.6, "NAV_GOAL", bad)
+    sc.expect(R.REJECT_UNKNOWN_COMMAND, 1)
+    odom = pose(1.7, 0.0, 0.0, 0.0)
+    odom.frame = "odom"
+    sc.add(1.7, "ROBOT_POSE", odom)
+    sc.expect(R.REJECT_WRONG_FRAME, 1)
+    sc.add(2.0, "NAV_GOAL", goal(2.0, 8.0, 0.0, AVOID, goal_id=2))      # planning ...
+    sc.add(3.0, "NAV_GOAL", goal(3.0, 1.5, 0.0, AVOID, goal_id=3, yaw=0.0, yaw_tol=0.3))  # ... replaced
+    # goal 3 is reached at about 4.2 s (within 0.3 m, heading 0 within 0.3 rad): one empty plan
+    sc.add(5.0, "NAV_GOAL", goal(5.0, circle[0], circle[1], AVOID, goal_id=4))  # inside the circle
+    sc.expect(R.REJECT_GOAL_IN_COLLISION, 1)                             # and failed 3 s later
+    return sc
 
 
 def build_faults():
@@ -187,14 +239,18 @@ def build_faults():
     circle = (4.0, -2.0, 0.5)
     room = [(6.0, 4.0, 2.0, 0.2, 0.0), (6.0, 6.0, 2.0, 0.2, 0.0), (5.0, 5.0, 0.2, 2.2, 0.0), (7.0, 5.0, 0.2, 2.2, 0.0)]
 
-    def goal_at(t):
-        if 2.0 <= t < 3.0:
-            return goal(t, circle[0], circle[1], AVOID)          # inside the circle
-        if 3.5 <= t < 4.5:
-            return goal(t, 8.0, 0.0, APPROACH, target=99)       # nobody has id 99
-        if 4.5 <= t < 6.0:
-            return goal(t, 6.0, 5.0, AVOID)                     # free but walled in
-        return goal(t, 8.0, 0.0, AVOID)
+    def goal_at(t):  # each change is a new goal id; a finished id is never sent again
+        if t < 2.0:
+            return goal(t, 8.0, 0.0, AVOID, goal_id=1)
+        if t < 3.0:
+            return goal(t, circle[0], circle[1], AVOID, goal_id=2)        # inside the circle
+        if t < 3.5:
+            return goal(t, 8.0, 0.0, AVOID, goal_id=3)
+        if t < 4.5:
+            return goal(t, 8.0, 0.0, APPROACH, target=99, goal_id=4)     # nobody has id 99
+        if t < 6.0:
+            return goal(t, 6.0, 5.0, AVOID, goal_id=5)                    # free but walled in
+        return goal(t, 8.0, 0.0, AVOID, goal_id=6)
 
     def goal_at_half_seconds(sc_, t):
         g = goal_at(t)
