@@ -307,6 +307,17 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_planner_status(const void *buf, size_t len
     if (out->approach_model < -1 || out->approach_model > 7)
         return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
                       "planner_status_t.approach_model = %d is not -1 or a direction 0..7", (int)out->approach_model);
+    if (out->goal_state < GMMRRT_PLANNER_STATUS_T_GOAL_NONE || out->goal_state > GMMRRT_PLANNER_STATUS_T_GOAL_FAILED)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "planner_status_t.goal_state = %d is not a GOAL_* value",
+                      (int)out->goal_state);
+    if (out->goal_failure < GMMRRT_PLANNER_STATUS_T_FAILURE_NONE ||
+        out->goal_failure > GMMRRT_PLANNER_STATUS_T_FAILURE_SETUP)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "planner_status_t.goal_failure = %d is not a FAILURE_* value",
+                      (int)out->goal_failure);
+    if (out->side_result < GMMRRT_PLANNER_STATUS_T_SIDE_NOT_ASKED ||
+        out->side_result > GMMRRT_PLANNER_STATUS_T_SIDE_NOT_FOUND)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "planner_status_t.side_result = %d is not a SIDE_* value",
+                      (int)out->side_result);
     return GMMRRT_MSG_OK;
 }
 

@@ -58,6 +58,8 @@ def play(gmmrrtd, tmp_path, seconds, stamp, extra_goals=(), first_goal=None):
 
         def goal(utime):
             g = nav_goal_t()
+            g.frame = "map"
+            g.goal_id, g.command = 1, nav_goal_t.COMMAND_NEW
             g.utime, g.x, g.y, g.tolerance_m, g.task = utime, 3.0, 0.0, 0.3, nav_goal_t.TASK_NONE
             lc.publish("NAV_GOAL", g.encode())
 
@@ -72,10 +74,12 @@ def play(gmmrrtd, tmp_path, seconds, stamp, extra_goals=(), first_goal=None):
                 break
             now = int(time.time() * 1e6)
             p = pose2d_t()
+            p.frame = "map"
             p.utime, p.x = stamp("ROBOT_POSE", t, now), 0.0
             lc.publish("ROBOT_POSE", p.encode())
             if k % 2 == 0:
                 q = people_t()
+                q.frame = "map"
                 q.utime = stamp("PEOPLE", t, now)
                 q.num_people = 1
                 q.people[0].id, q.people[0].x, q.people[0].y = 1, 1.5, 1.2

@@ -50,11 +50,13 @@ class Live:
 
     def pose(self, x=0.0):
         m = pose2d_t()
+        m.frame = "map"
         m.utime, m.x, m.y, m.yaw = self.now_us(), x, 0.0, 0.0
         self.lc.publish("ROBOT_POSE", m.encode())
 
     def obstacles(self, r=0.5):
         m = obstacles_t()
+        m.frame = "map"
         m.utime, m.num_circles, m.num_boxes = self.now_us(), 1, 0
         cx, cy, cr = [0.0] * 64, [0.0] * 64, [0.0] * 64
         cx[0], cy[0], cr[0] = 4.0, -1.7, r
@@ -66,6 +68,7 @@ class Live:
         """Pose, people and goal (every 100 ms)."""
         self.pose()
         pm = people_t()
+        pm.frame = "map"
         pm.utime = self.now_us()
         pm.num_people = 1
         p = person_t()
@@ -73,6 +76,8 @@ class Live:
         pm.people[0] = p
         self.lc.publish("PEOPLE", pm.encode())
         g = nav_goal_t()
+        g.frame = "map"
+        g.goal_id, g.command = 1, nav_goal_t.COMMAND_NEW
         g.utime, g.x, g.y, g.tolerance_m, g.task, g.target_person_id = self.now_us(), 8.0, 0.0, 0.3, 1, -1
         self.lc.publish("NAV_GOAL", g.encode())
 

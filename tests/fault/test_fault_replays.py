@@ -61,8 +61,10 @@ def set_bytes(data, offset, raw):
     return data[:offset] + raw + data[offset + len(raw):]
 
 
-# LCM encodings are big-endian: 8-byte fingerprint, then the fields in order (utime first).
-OFF_FIRST_FIELD = 16
+# LCM encodings are big-endian: 8-byte fingerprint, then the fields in order: utime, the frame
+# ("map": a 4-byte length counting the NUL, then 4 bytes), then the type's own fields.
+OFF_FIRST_FIELD = 24
+OFF_GOAL_X = OFF_FIRST_FIELD + 8 + 1  # nav_goal_t: goal_id (int64) and command (int8) come first
 
 
 def test_corrupted_bytes(gmmrrtd, models, tmp_path):
@@ -91,7 +93,7 @@ def test_corrupted_bytes(gmmrrtd, models, tmp_path):
     sc.expect(R.REJECT_COUNT_OVER_BOUND, 3)
     # NaN and Inf written into the first double (pose x, goal x) as raw bytes.
     sc.add(t + 0.03, "ROBOT_POSE", set_bytes(ms.pose(t, 0, 0, 0).encode(), OFF_FIRST_FIELD, struct.pack(">d", math.nan)))
-    sc.add(t + 0.04, "NAV_GOAL", set_bytes(ms.goal(t, 8, 0, AVOID).encode(), OFF_FIRST_FIELD, struct.pack(">d", math.inf)))
+    sc.add(t + 0.04, "NAV_GOAL", set_bytes(ms.goal(t, 8, 0, AVOID).encode(), OFF_GOAL_X, struct.pack(">d", math.inf)))
     sc.expect(R.REJECT_NOT_FINITE, 2)
     # Values in range for the wire, out of range for the planner.
     sc.add(t + 0.05, "OBSTACLES", ms.obstacles(t, [CIRCLE], [(6.2, 1.7, -1.0, 0.6, 0.3)]).encode())

@@ -90,15 +90,19 @@ def poses_planned(gmmrrtd, models, tmp_path, trigger, n_poses=20, spacing_s=0.15
                 utime = int(time.time() * 1e6)
                 if k % 5 == 0:
                     g = nav_goal_t()
+                    g.frame = "map"
+                    g.goal_id, g.command = 1, nav_goal_t.COMMAND_NEW
                     g.utime, g.x, g.y, g.tolerance_m, g.task, g.target_person_id = utime, 6.0, 0.0, 0.3, 1, -1
                     lc.publish("NAV_GOAL", g.encode())
                     ppl = people_t()
+                    ppl.frame = "map"
                     q = person_t()
                     q.utime, q.id, q.x, q.y = utime, 1, 3.0, 0.2
                     ppl.utime, ppl.num_people = utime, 1
                     ppl.people = [q] + [person_t() for _ in range(len(ppl.people) - 1)]
                     lc.publish("PEOPLE", ppl.encode())
                 p = pose2d_t()
+                p.frame = "map"
                 p.utime, p.x = utime, 0.01 * k
                 lc.publish("ROBOT_POSE", p.encode())
                 if k >= 2:  # the first two only set the scene

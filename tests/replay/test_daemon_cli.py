@@ -207,9 +207,12 @@ def test_systemd_notify_ready_watchdog_reloading_stopping(gmmrrtd, models, tmp_p
         for _ in range(5):
             now = int(time.time() * 1e6)
             p = pose2d_t()
+            p.frame = "map"
             p.utime = now
             lc.publish("ROBOT_POSE", p.encode())
             g = nav_goal_t()
+            g.frame = "map"
+            g.goal_id, g.command = 1, nav_goal_t.COMMAND_NEW
             g.utime, g.x, g.tolerance_m, g.task = now, 3.0, 0.3, nav_goal_t.TASK_NONE
             lc.publish("NAV_GOAL", g.encode())
             collect(0.1)

@@ -114,12 +114,14 @@ def info(utime, episode, task=1, homotopy=1, person=3):
 
 def pose(utime, x):
     m = pose2d_t()
+    m.frame = "map"
     m.utime, m.x = utime, x
     return m
 
 
 def people(utime, pid=3):
     m = people_t()
+    m.frame = "map"
     m.utime, m.num_people = utime, 1
     m.people[0].utime, m.people[0].id, m.people[0].x = utime, pid, 1.0
     return m

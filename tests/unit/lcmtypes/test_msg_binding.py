@@ -23,6 +23,7 @@ OK, DECODE_FAILED, COUNT_OVER_BOUND, NOT_FINITE, BAD_VALUE = 0, 1, 2, 3, 4
 
 def pose(**kw):
     m = pose2d_t()
+    m.frame = "map"
     m.utime, m.x, m.y, m.yaw = 1_000_000, 1.0, 2.0, 0.5
     for k, v in kw.items():
         setattr(m, k, v)
@@ -31,6 +32,8 @@ def pose(**kw):
 
 def goal(**kw):
     m = nav_goal_t()
+    m.frame = "map"
+    m.goal_id, m.command = 1, nav_goal_t.COMMAND_NEW
     m.utime, m.x, m.y, m.yaw, m.tolerance_m, m.task, m.target_person_id = 1_000_000, 3.0, 0.0, 0.0, 0.3, 1, -1
     for k, v in kw.items():
         setattr(m, k, v)
@@ -39,6 +42,7 @@ def goal(**kw):
 
 def obstacles(circle_r=0.5, circle_x=0.0):
     m = obstacles_t()
+    m.frame = "map"
     m.utime = 1_000_000
     m.num_circles = 1
     m.circle_x = [circle_x] + [0.0] * (obstacles_t.MAX_CIRCLES - 1)
@@ -51,6 +55,7 @@ def obstacles(circle_r=0.5, circle_x=0.0):
 
 def people(n=1, pid=7):
     m = people_t()
+    m.frame = "map"
     m.utime = 1_000_000
     m.num_people = n
     ps = []

@@ -620,6 +620,16 @@ static void test_planner_status_bad_state_is_rejected(void **state)
     fill_status(&m); m.state = GMMRRT_PLANNER_STATUS_T_STATE_ERROR + 1;
     EXPECT_REJECT(planner_status_t, gmmrrt_msg_decode_planner_status, &m, GMMRRT_MSG_BAD_VALUE, "planner_status_t",
                   "state");
+    /* The goal's life fields: each enum's range. */
+    fill_status(&m); m.goal_state = GMMRRT_PLANNER_STATUS_T_GOAL_FAILED + 1;
+    EXPECT_REJECT(planner_status_t, gmmrrt_msg_decode_planner_status, &m, GMMRRT_MSG_BAD_VALUE, "planner_status_t",
+                  "goal_state");
+    fill_status(&m); m.goal_failure = -1;
+    EXPECT_REJECT(planner_status_t, gmmrrt_msg_decode_planner_status, &m, GMMRRT_MSG_BAD_VALUE, "planner_status_t",
+                  "goal_failure");
+    fill_status(&m); m.side_result = GMMRRT_PLANNER_STATUS_T_SIDE_NOT_FOUND + 1;
+    EXPECT_REJECT(planner_status_t, gmmrrt_msg_decode_planner_status, &m, GMMRRT_MSG_BAD_VALUE, "planner_status_t",
+                  "side_result");
 }
 
 static void test_demo_info_rules(void **state)

@@ -23,6 +23,7 @@ def _person(i):
 
 def make_pose():
     m = pose2d_t()
+    m.frame = "map"
     m.utime, m.x, m.y, m.yaw = 2**62, 1.25, -2.5, 0.75
     m.velocity_valid, m.vx, m.vy, m.yaw_rate = True, 0.3, -0.1, 0.05
     return m
@@ -30,6 +31,7 @@ def make_pose():
 
 def make_people():
     m = people_t()
+    m.frame = "map"
     m.utime = 1_700_000_000_200_000
     m.num_people = people_t.MAX_PEOPLE
     m.people = [_person(i) for i in range(people_t.MAX_PEOPLE)]
@@ -38,6 +40,8 @@ def make_people():
 
 def make_goal():
     m = nav_goal_t()
+    m.frame = "map"
+    m.goal_id, m.command = 1, nav_goal_t.COMMAND_NEW
     m.utime, m.x, m.y, m.yaw, m.tolerance_m = -1, 8.0, 1.5, -0.5, 0.3
     m.task, m.target_person_id = nav_goal_t.TASK_APPROACH, 7
     return m
@@ -45,6 +49,7 @@ def make_goal():
 
 def make_obstacles():
     m = obstacles_t()
+    m.frame = "map"
     n_c, n_b = obstacles_t.MAX_CIRCLES, obstacles_t.MAX_BOXES
     m.utime, m.num_circles, m.num_boxes = 1_700_000_000_400_000, n_c, n_b
     m.circle_x = [1.0 + i for i in range(n_c)]
@@ -60,6 +65,7 @@ def make_obstacles():
 
 def make_waypoints():
     m = waypoints_t()
+    m.frame = "map"
     n = waypoints_t.MAX_WAYPOINTS
     m.utime, m.seq, m.num_waypoints = 1_700_000_000_500_000, 42, n
     m.x = [0.1 * i for i in range(n)]

@@ -33,6 +33,7 @@ def write_log(path, robot, people_tracks):
     for k, (t, x, y) in enumerate(robot):
         u = T0 + int(round(t * 1e6))
         pe = people_t()
+        pe.frame = "map"
         pe.utime = u
         present = [(pid, tr[k]) for pid, tr in people_tracks.items() if tr is not None and k < len(tr)]
         pe.num_people = len(present)
@@ -41,6 +42,7 @@ def write_log(path, robot, people_tracks):
             q.utime, q.id, q.x, q.y, q.yaw = u, pid, px, py, yaw
         log.write_event(u, "PEOPLE", pe.encode())
         po = pose2d_t()
+        po.frame = "map"
         po.utime, po.x, po.y = u, x, y
         log.write_event(u, "ROBOT_POSE", po.encode())
     log.close()

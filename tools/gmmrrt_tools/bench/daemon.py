@@ -1,11 +1,14 @@
 """Latency benchmark of gmmrrtd: from a pose message to the plan it caused.
 
-Starts gmmrrtd (live clock) on a private UDP multicast port with ttl=0, sends one avoid
-scenario (a goal 8 m ahead, a person in the way, a circle obstacle) and robot poses at
---pose-hz stamped with the wall clock, and records every PLAN. waypoints_t.utime names the pose
-a plan started from, so latency = time the plan arrived - time that pose was sent. It includes
-the wait for the next tick (up to one period), the planning budget and LCM transport. Prints
-p50/p90/p99/max, the plans per second and the daemon's missed deadlines, for each --rate-hz.
+Starts gmmrrtd (live clock) on a private UDP multicast port with ttl=0 with the models `tools/run
+demo` plans with (learned by gmmrrt-learn fit from logs/demos/, the demo's seed), and plays the
+demo scenarios (logs/scenarios/avoid_obstacles and approach_obstacles, tools/demo.py's defaults):
+their people, obstacles and goal once a second and their robot poses at --pose-hz, all stamped
+with the wall clock, and records every PLAN. waypoints_t.utime names the pose a plan started
+from, so latency = time the plan arrived - time that pose was sent. It includes the wait for the
+next tick (up to one period), the planning budget and LCM transport. Prints p50/p90/p99/max,
+the plans per second, the daemon's missed deadlines and the machine's load (1-minute load
+average before and after each run, and the CPUs), for each scenario, trigger and --rate-hz.
 
 Two triggers (--trigger, both by default): "tick", cycles at rate_hz with poses at --pose-hz and one
 plan at the end of each budget; "event", poses at rate_hz each starting a cycle at once
@@ -14,6 +17,7 @@ improvement). Latency is to the first plan made from a pose.
 
     python -m gmmrrt_tools.bench.daemon                       # 10 Hz and 20 Hz, 20 s each
     python -m gmmrrt_tools.bench.daemon --rate-hz 10 --seconds 60 --json out.json
+    python -m gmmrrt_tools.bench.daemon --scenario logs/scenarios/avoid_crowd.lcmlog
 """
 import argparse
 import json
@@ -27,12 +31,41 @@ import tempfile
 import time
 
 import lcm
-from gmmrrt import nav_goal_t, planner_status_t, waypoints_t  # generated; on PYTHONPATH (tools/run env)
+from gmmrrt import nav_goal_t, obstacles_t, people_t, planner_status_t, pose2d_t, waypoints_t  # generated
 
-from gmmrrt_tools.scenario_logs import goal, obstacles, people, pose
-from gmmrrt_tools.scenario_models import write_models
+from gmmrrt_tools import runner
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+DEMO_SCENARIOS = ("avoid_obstacles", "approach_obstacles")  # tools/demo.py's DEFAULT_SCENARIOS
+DEMO_SEED = 1                                               # tools/demo.py's --seed default
+
+
+def learned_models(out_dir, bin_dir=None):
+    """The demo's models: gmmrrt-learn fit on every log of logs/demos/ (runner.fit_model, as tools/demo.py)."""
+    logs = sorted(os.path.join(ROOT, "logs", "demos", n) for n in os.listdir(os.path.join(ROOT, "logs", "demos"))
+                  if n.endswith(".lcmlog"))
+    if not logs:
+        raise SystemExit("no demonstration logs in logs/demos/")
+    return {task: str(runner.fit_model(os.path.join(out_dir, task + ".gmm"), task, logs, homotopy="all",
+                                       kind="features", seed=DEMO_SEED, bin_dir=bin_dir))
+            for task in ("avoid", "approach")}
+
+
+def scenario_inputs(path):
+    """(world, poses) of a scenario log: the first PEOPLE, OBSTACLES and NAV_GOAL (the world a
+    tracker and a map would re-send), and the ROBOT_POSE messages in order."""
+    types = {"PEOPLE": people_t, "OBSTACLES": obstacles_t, "NAV_GOAL": nav_goal_t}
+    world, poses = {}, []
+    log = lcm.EventLog(path, "r")
+    for e in log:
+        if e.channel == "ROBOT_POSE":
+            poses.append(pose2d_t.decode(e.data))
+        elif e.channel in types and e.channel not in world:
+            world[e.channel] = types[e.channel].decode(e.data)
+    log.close()
+    if not poses or "NAV_GOAL" not in world:
+        raise SystemExit("%s: no ROBOT_POSE or NAV_GOAL to play" % path)
+    return world, poses
 
 
 def percentile(values, q):
@@ -44,7 +77,7 @@ EVENT_FLAGS = ["--trigger", "event", "--min-period-ms", "5", "--anytime-max-plan
                "--anytime-improvement", "0.05"]
 
 
-def bench(gmmrrtd, rate_hz, budget_ms, seconds, pose_hz, port, models, trigger="tick"):
+def bench(gmmrrtd, rate_hz, budget_ms, seconds, pose_hz, port, models, scenario, trigger="tick"):
     url = "udpm://239.255.76.67:%d?ttl=0" % port
     err = tempfile.TemporaryFile(mode="w+")
     daemon = subprocess.Popen([gmmrrtd, "--lcm-url", url, "--rate-hz", str(rate_hz), "--budget-ms", str(budget_ms),
@@ -69,6 +102,8 @@ def bench(gmmrrtd, rate_hz, budget_ms, seconds, pose_hz, port, models, trigger="
 
     lc.subscribe("PLAN", on_plan)
     lc.subscribe("PLANNER_STATUS", lambda c, d: status.__setitem__(0, planner_status_t.decode(d)))
+    world, poses = scenario_inputs(scenario)
+    load_before = os.getloadavg()[0]
     try:
         time.sleep(0.5)
         t_start = time.monotonic()
@@ -78,14 +113,17 @@ def bench(gmmrrtd, rate_hz, budget_ms, seconds, pose_hz, port, models, trigger="
             now = time.monotonic()
             wall_us = int(time.time() * 1e6)
             if now >= next_world:  # the world once a second, as a tracker and a map would send it
-                for ch, m in (("PEOPLE", people(0, [(1, 4.0, 0.1, 3.1416, 0.0, 0.0)])),
-                              ("OBSTACLES", obstacles(0, [(4.0, -1.7, 0.5)])),
-                              ("NAV_GOAL", goal(0, 8.0, 0.0, nav_goal_t.TASK_AVOID))):
+                for ch, m in sorted(world.items()):
                     m.utime = wall_us
+                    if ch == "PEOPLE":
+                        for i in range(m.num_people):
+                            m.people[i].utime = wall_us
                     lc.publish(ch, m.encode())
                 next_world += 1.0
             if now >= next_pose:
-                p = pose(0, 0.0, 0.0, 0.0, utime=wall_us)
+                # The scenario's robot path at its own pace (10 Hz poses), looped.
+                p = poses[int((now - t_start) * 10.0) % len(poses)]
+                p.utime = wall_us
                 sent[wall_us] = time.monotonic()
                 lc.publish("ROBOT_POSE", p.encode())
                 next_pose += 1.0 / pose_hz
@@ -107,6 +145,8 @@ def bench(gmmrrtd, rate_hz, budget_ms, seconds, pose_hz, port, models, trigger="
         raise SystemExit("no plans at %g Hz; gmmrrtd said:\n%s" % (rate_hz, err.read()))
     st = status[0]
     return {
+        "scenario": os.path.splitext(os.path.basename(scenario))[0],
+        "load_1min": [round(load_before, 2), round(os.getloadavg()[0], 2)], "cpus": os.cpu_count(),
         "trigger": trigger, "rate_hz": rate_hz, "budget_ms": budget_ms, "seconds": seconds, "pose_hz": pose_hz,
         "plans": plans[0], "plans_nonempty": plans[1], "plans_per_s": round(plans[0] / seconds, 2),
         "latency_ms": {"p50": round(percentile(lat_ms, 50), 1), "p90": round(percentile(lat_ms, 90), 1),
@@ -128,22 +168,28 @@ def main():
     ap.add_argument("--port", type=int, default=7600 + os.getpid() % 50)
     ap.add_argument("--trigger", action="append", choices=["tick", "event"],
                     help="tick (poses at --pose-hz) and/or event (poses at the rate); default both")
+    ap.add_argument("--scenario", action="append",
+                    help="scenario log(s) to play (default: the demo's, logs/scenarios/%s)" % " and ".join(DEMO_SCENARIOS))
     ap.add_argument("--json", help="also write the results here")
     args = ap.parse_args()
     if not os.access(args.gmmrrtd, os.X_OK):
         sys.exit("gmmrrtd not found at %s (tools/run build)" % args.gmmrrtd)
+    scenarios = args.scenario or [os.path.join(ROOT, "logs", "scenarios", n + ".lcmlog") for n in DEMO_SCENARIOS]
     with tempfile.TemporaryDirectory() as tmp:
-        models = write_models(tmp)
+        models = learned_models(tmp, bin_dir=os.path.dirname(args.gmmrrtd))
         results = [bench(args.gmmrrtd, r, round(1000.0 / r * args.budget_fraction, 1), args.seconds,
-                         args.pose_hz if trig == "tick" else r, args.port, models, trig)
-                   for trig in (args.trigger or ["tick", "event"]) for r in (args.rate_hz or [10.0, 20.0])]
-    print("%-8s %-8s %-10s %-8s %-8s %-8s %-8s %-8s %-8s" % ("trigger", "rate", "budget", "plans/s", "p50 ms",
-                                                           "p90 ms", "p99 ms", "max ms", "missed"))
+                         args.pose_hz if trig == "tick" else r, args.port, models, sc, trig)
+                   for sc in scenarios for trig in (args.trigger or ["tick", "event"])
+                   for r in (args.rate_hz or [10.0, 20.0])]
+    print("models learned from logs/demos/ (gmmrrt-learn fit, seed %d); %d CPUs" % (DEMO_SEED, os.cpu_count()))
+    print("%-19s %-7s %-5s %-7s %-8s %-7s %-7s %-7s %-7s %-7s %-11s" % (
+        "scenario", "trigger", "rate", "budget", "plans/s", "p50 ms", "p90 ms", "p99 ms", "max ms", "missed",
+        "load 1 min"))
     for r in results:
         lat = r["latency_ms"]
-        print("%-8s %-8g %-10s %-8g %-8g %-8g %-8g %-8g %-8d" % (r["trigger"], r["rate_hz"], "%g ms" % r["budget_ms"],
-                                                               r["plans_per_s"], lat["p50"], lat["p90"], lat["p99"],
-                                                               lat["max"], r["missed_deadlines"]))
+        print("%-19s %-7s %-5g %-7s %-8g %-7g %-7g %-7g %-7g %-7d %-11s" % (
+            r["scenario"], r["trigger"], r["rate_hz"], "%g ms" % r["budget_ms"], r["plans_per_s"], lat["p50"],
+            lat["p90"], lat["p99"], lat["max"], r["missed_deadlines"], "%.2f -> %.2f" % tuple(r["load_1min"])))
     if args.json:
         with open(args.json, "w") as f:
             json.dump(results, f, indent=2)
