@@ -39,7 +39,10 @@ def test_bad_flags_are_named(gmmrrtd):
              # Channel names are literals: LCM would read "ROBOT.POSE" as a pattern (ROBOTXPOSE too).
              (["--channel-pose", "ROBOT.POSE"], "[channels] pose"),
              (["--channel-people", "PEOPLE|NAV_GOAL"], "[channels] people"),
-             (["--channel-goal", "NAV_GOAL.*"], "regular expressions")]
+             (["--channel-goal", "NAV_GOAL.*"], "regular expressions"),
+             # The planning frame follows the messages' frame rule (msg_decode.c): no space, 1..64 bytes.
+             (["--frame", "my map"], "[world] frame"), (["--frame", ""], "[world] frame"),
+             (["--frame", "m" * 65], "--frame"), (["--goal-fail-after-ms", "-1"], "--goal-fail-after-ms")]
     for args, named in cases:
         res = run(gmmrrtd, *args)
         assert res.returncode == 2, (args, res.returncode, res.stderr)

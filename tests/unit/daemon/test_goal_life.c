@@ -13,6 +13,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -286,6 +287,28 @@ static void test_bad_goal_messages_are_counted_and_the_goal_kept(void **state)
     assert_int_equal(d->status.goal_state, ST(GOAL_PLANNING));
 }
 
+/* Another planning frame: inputs in it are taken, "map" is refused, plans are published in it. */
+static void test_the_planning_frame_is_the_configured_one(void **state)
+{
+    gmmrrtd_t *d = *state;
+    snprintf(d->set.frame, sizeof d->set.frame, "odom");
+    send_pose_in(d, 0.0, 0.0, 0.0, k_map);
+    assert_int_equal(d->status.rejected[ST(REJECT_WRONG_FRAME)], 1);
+    assert_int_equal(d->have[GMMRRTD_IN_POSE], 0);
+    send_pose_in(d, 0.0, 0.0, 0.0, k_odom);
+    gmmrrt_nav_goal_t g = goal_msg(1, 4.0, 0.0);
+    g.frame = k_odom;
+    send_goal_msg(d, g);
+    assert_int_equal(d->life.state, ST(GOAL_ACCEPTED));
+    for (int k = 0; k < 2; ++k) {
+        g_t += 50 * MS;
+        send_pose_in(d, 0.0, 0.0, 0.0, k_odom);
+    }
+    assert_true(d->plan_msg.num_waypoints >= 2);
+    assert_string_equal(d->plan_msg.frame, "odom");
+    assert_int_equal(d->status.rejected[ST(REJECT_WRONG_FRAME)], 1);
+}
+
 /* A goal that no cycle can plan fails after goal_fail_after_ms with its reason, then idles. */
 static void test_goal_in_an_obstacle_fails_after_the_limit(void **state)
 {
@@ -365,6 +388,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_cancel_during_planning_stops_once, setup, teardown),
         cmocka_unit_test_setup_teardown(test_new_goal_during_planning_replaces_the_old_for_good, setup, teardown),
         cmocka_unit_test_setup_teardown(test_bad_goal_messages_are_counted_and_the_goal_kept, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_the_planning_frame_is_the_configured_one, setup, teardown),
         cmocka_unit_test_setup_teardown(test_goal_in_an_obstacle_fails_after_the_limit, setup, teardown),
         cmocka_unit_test_setup_teardown(test_preferred_side_is_kept_or_reported_not_found, setup, teardown),
     };

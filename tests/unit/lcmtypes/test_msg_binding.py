@@ -127,3 +127,30 @@ def test_replay_checker_drops_what_the_daemon_rejects():
     assert replay_check._valid("NAV_GOAL", goal(task=2, target_person_id=-1)) is None
     assert replay_check._valid("ROBOT_POSE", pose(utime=(1 << 53) + 1)) is None  # the daemon's utime range
     assert replay_check._valid("PLAN", pose()) is None  # not an input channel
+
+
+def test_frames_and_goal_commands_are_judged_by_the_core():
+    """The frame rules (msg_decode.c) and the receiver's frame check (gmmrrt_msg_check_frame) through
+    the binding, which also releases each decoded frame (a thousand decodes hold nothing)."""
+    UNKNOWN_COMMAND, WRONG_FRAME = 5, core.MSG_WRONG_FRAME
+    assert core.validate_message("pose2d", pose(), frame="map") == (OK, "")
+    r, why = core.validate_message("pose2d", pose(frame="odom"), frame="map")
+    assert r == WRONG_FRAME and '"odom"' in why and '"map"' in why
+    assert core.validate_message("pose2d", pose(frame="odom"))[0] == OK  # no receiver frame: any is fine
+    for bad in ("", "a b", "x" * 65, "tab\t"):
+        r, why = core.validate_message("pose2d", pose(frame=bad))
+        assert r == BAD_VALUE and "pose2d_t.frame" in why, (bad, r, why)
+    assert core.validate_message("pose2d", pose(frame="x" * 64))[0] == OK
+    for command in (0, 3, -1):
+        r, why = core.validate_message("nav_goal", goal(command=command))
+        assert r == UNKNOWN_COMMAND and "command" in why
+    assert core.validate_message("nav_goal", goal(goal_id=0))[0] == BAD_VALUE
+    assert core.validate_message("nav_goal", goal(command=nav_goal_t.COMMAND_CANCEL, tolerance_m=0.0))[0] == OK
+    assert core.validate_message("nav_goal", goal(yaw_tolerance_rad=float("nan")))[0] == NOT_FINITE
+    assert core.validate_message("nav_goal", goal(preferred_side=2))[0] == BAD_VALUE
+    for _ in range(1000):
+        assert core.validate_message("obstacles", obstacles(), frame="map")[0] == OK
+    # The replay checker drops what gmmrrtd refuses: a pose in another frame, a cancel as a goal.
+    assert replay_check._valid("ROBOT_POSE", pose(frame="odom")) is None
+    assert replay_check._valid("NAV_GOAL", goal(command=nav_goal_t.COMMAND_CANCEL)) is None
+    assert replay_check._valid("NAV_GOAL", goal()) is not None
