@@ -473,6 +473,48 @@ static int run_budget(gmmrrtd_t *d, int64_t now_us, int escaping, const gmmrrt_b
     return 0;
 }
 
+/* run_budget for the whole cycle, with nav_goal_t.preferred_side (docs/daemon.md, "The preferred
+ * side"): with a side and people, the side (rrtstar.h, problem.side) gets the first half of the
+ * budget; when it has no path by then, the problem is set again with either side for the rest,
+ * and side_result says the side was not found. Otherwise the rest goes on the same tree.
+ * 0, or -1 when a stop was published. */
+static int run_with_side(gmmrrtd_t *d, int64_t now_us, int escaping, const gmmrrt_budget_t *budget,
+                         gmmrrt_plan_stats_t *stats, gmmrrt_status_t *st, int *published, double *published_cost)
+{
+    d->life.side_result = ST(SIDE_NOT_ASKED);
+    if (d->problem.side == GMMRRT_SIDE_EITHER || d->problem.obstacles.num_people == 0)
+        return run_budget(d, now_us, escaping, budget, stats, st, published, published_cost);
+    gmmrrt_budget_t half = *budget, rest = *budget;
+    half.time_ms = budget->time_ms > 0.0 ? budget->time_ms * 0.5 : 0.0;
+    half.max_iterations = budget->max_iterations > 0 ? (budget->max_iterations + 1) / 2 : 0;
+    rest.max_iterations = budget->max_iterations > 0 ? budget->max_iterations - half.max_iterations : 0;
+    const int64_t half_start_us = gmmrrtd_mono_us();
+    if (run_budget(d, now_us, escaping, &half, stats, st, published, published_cost) < 0)
+        return -1;
+    if (budget->time_ms > 0.0)
+        rest.time_ms = fmax(budget->time_ms - (double)(gmmrrtd_mono_us() - half_start_us) * 1e-3, 1.0);
+    if (*published == 0 && *st == GMMRRT_NO_PATH_ON_SIDE) {
+        d->life.side_result = ST(SIDE_NOT_FOUND);
+        d->problem.side = GMMRRT_SIDE_EITHER;
+        const int64_t side_iterations = stats->iterations;
+        *st = gmmrrt_planner_set_problem(d->planner, &d->problem); /* the same world: it was valid */
+        if (*st != GMMRRT_OK && *st != GMMRRT_ESCAPE) {
+            reject_once_per_goal(d, ST(REJECT_SETUP), *st);
+            publish_stop(d, now_us, *st, ST(STATE_ERROR));
+            return -1;
+        }
+        *stats = (gmmrrt_plan_stats_t){.first_solution_iteration = -1, .first_solution_ms = -1.0, .best_cost = INFINITY};
+        const int r = run_budget(d, now_us, escaping, &rest, stats, st, published, published_cost);
+        stats->iterations += side_iterations;
+        return r;
+    }
+    if (*published > 0 || *st == GMMRRT_OK || *st == GMMRRT_POOL_FULL)
+        d->life.side_result = ST(SIDE_KEPT);
+    if ((rest.max_iterations > 0 || budget->max_iterations <= 0) && *published < d->set.anytime_max_plans)
+        return run_budget(d, now_us, escaping, &rest, stats, st, published, published_cost);
+    return 0;
+}
+
 void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
 {
     d->cycles++;
@@ -634,47 +676,8 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     gmmrrt_plan_stats_t stats = {.first_solution_iteration = -1, .first_solution_ms = -1.0, .best_cost = INFINITY};
     double published_cost = INFINITY;
     int published = 0;
-    const int side_asked = d->problem.side != GMMRRT_SIDE_EITHER && d->problem.obstacles.num_people > 0;
-    d->life.side_result = ST(SIDE_NOT_ASKED);
-    if (!side_asked) {
-        if (run_budget(d, now_us, escaping, &budget, &stats, &st, &published, &published_cost) < 0)
-            return;
-    } else {
-        /* The preferred side (rrtstar.h, problem.side) gets the first half of the budget; when it
-         * has no path by then, the problem is set again with either side for the rest, and the
-         * status says the side was not found. Otherwise the rest goes on the same tree. */
-        gmmrrt_budget_t half = budget, rest = budget;
-        half.time_ms = budget.time_ms > 0.0 ? budget.time_ms * 0.5 : 0.0;
-        half.max_iterations = budget.max_iterations > 0 ? (budget.max_iterations + 1) / 2 : 0;
-        rest.max_iterations = budget.max_iterations > 0 ? budget.max_iterations - half.max_iterations : 0;
-        const int64_t half_start_us = gmmrrtd_mono_us();
-        if (run_budget(d, now_us, escaping, &half, &stats, &st, &published, &published_cost) < 0)
-            return;
-        if (budget.time_ms > 0.0)
-            rest.time_ms = fmax(budget.time_ms - (double)(gmmrrtd_mono_us() - half_start_us) * 1e-3, 1.0);
-        if (published == 0 && st == GMMRRT_NO_PATH_ON_SIDE) {
-            d->life.side_result = ST(SIDE_NOT_FOUND);
-            d->problem.side = GMMRRT_SIDE_EITHER;
-            const int64_t first_iterations = stats.iterations;
-            st = gmmrrt_planner_set_problem(d->planner, &d->problem);
-            if (st != GMMRRT_OK && st != GMMRRT_ESCAPE) {
-                reject_once_per_goal(d, ST(REJECT_SETUP), st);
-                publish_stop(d, now_us, st, ST(STATE_ERROR));
-                return;
-            }
-            gmmrrt_plan_stats_t either = {.first_solution_iteration = -1, .first_solution_ms = -1.0, .best_cost = INFINITY};
-            if (run_budget(d, now_us, escaping, &rest, &either, &st, &published, &published_cost) < 0)
-                return;
-            stats = either;
-            stats.iterations += first_iterations;
-        } else {
-            if (published > 0 || st == GMMRRT_OK || st == GMMRRT_POOL_FULL)
-                d->life.side_result = ST(SIDE_KEPT);
-            if ((rest.max_iterations > 0 || budget.max_iterations <= 0) && published < d->set.anytime_max_plans &&
-                run_budget(d, now_us, escaping, &rest, &stats, &st, &published, &published_cost) < 0)
-                return;
-        }
-    }
+    if (run_with_side(d, now_us, escaping, &budget, &stats, &st, &published, &published_cost) < 0)
+        return;
     d->status.iterations = stats.iterations;
     d->status.nodes = stats.nodes;
     d->status.first_solution_ms = stats.first_solution_ms;
