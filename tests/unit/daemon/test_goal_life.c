@@ -333,6 +333,44 @@ static void test_goal_in_an_obstacle_fails_after_the_limit(void **state)
     assert_int_equal(d->status.goal_state, ST(GOAL_FAILED));
 }
 
+/* Each cause fails with its own reason: an approach target nobody tracks, a goal walled in (no
+ * path). A stale pose is the robot's problem, not the goal's: it never fails a goal. */
+static void test_each_failure_has_its_reason_and_a_stale_pose_fails_nothing(void **state)
+{
+    gmmrrtd_t *d = *state;
+    d->set.goal_fail_after_ms = 500.0;
+    send_pose_in(d, 0.0, 0.0, 0.0, k_map);
+    gmmrrt_nav_goal_t g = goal_msg(20, 4.0, 0.0);
+    g.task = GMMRRT_NAV_GOAL_T_TASK_APPROACH;
+    g.target_person_id = 99;
+    send_goal_msg(d, g);
+    hold_pose(d, 0.0, 0.0, 0.0, 800);
+    assert_int_equal(d->status.goal_state, ST(GOAL_FAILED));
+    assert_int_equal(d->status.goal_failure, ST(FAILURE_UNKNOWN_TARGET));
+
+    const double room[4][4] = {{4.0, 1.0, 2.2, 0.2}, {4.0, -1.0, 2.2, 0.2}, {3.0, 0.0, 0.2, 2.2}, {5.0, 0.0, 0.2, 2.2}};
+    send_boxes(d, 4, room);
+    send_goal_msg(d, goal_msg(21, 4.0, 0.0)); /* free, inside the walls */
+    hold_pose(d, 0.0, 0.0, 0.0, 800);
+    assert_int_equal(d->status.goal_state, ST(GOAL_FAILED));
+    assert_int_equal(d->status.goal_failure, ST(FAILURE_UNREACHABLE));
+    assert_true(d->status.rejected[ST(REJECT_GOAL_UNREACHABLE)] >= 1);
+
+    /* No pose for 2 s (four times the limit): stops for a stale pose, the goal stays planned. */
+    send_goal_msg(d, goal_msg(22, 0.0, 3.0));
+    hold_pose(d, 0.0, 0.0, 0.0, 200);
+    assert_int_equal(d->status.goal_state, ST(GOAL_PLANNING));
+    for (int k = 0; k < 20; ++k) { /* only the obstacles arrive: the log time moves on */
+        g_t += 100 * MS;
+        send_boxes(d, 4, room);
+    }
+    assert_int_equal(d->plan_msg.status, GMMRRTD_STOP_POSE_STALE);
+    assert_int_equal(d->status.goal_state, ST(GOAL_PLANNING));
+    hold_pose(d, 0.0, 0.0, 0.0, 100);
+    assert_true(d->plan_msg.num_waypoints >= 2);
+    assert_int_equal(d->status.goal_state, ST(GOAL_PLANNING));
+}
+
 /* The middle of a plan's waypoints at x near `x`: the y it passes at. */
 static double y_at(const gmmrrt_waypoints_t *m, double x)
 {
@@ -390,6 +428,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_bad_goal_messages_are_counted_and_the_goal_kept, setup, teardown),
         cmocka_unit_test_setup_teardown(test_the_planning_frame_is_the_configured_one, setup, teardown),
         cmocka_unit_test_setup_teardown(test_goal_in_an_obstacle_fails_after_the_limit, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_each_failure_has_its_reason_and_a_stale_pose_fails_nothing, setup, teardown),
         cmocka_unit_test_setup_teardown(test_preferred_side_is_kept_or_reported_not_found, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
