@@ -503,7 +503,8 @@ static int run_with_side(gmmrrtd_t *d, int64_t now_us, int escaping, const gmmrr
             publish_stop(d, now_us, *st, ST(STATE_ERROR));
             return -1;
         }
-        *stats = (gmmrrt_plan_stats_t){.first_solution_iteration = -1, .first_solution_ms = -1.0, .best_cost = INFINITY};
+        *stats = (gmmrrt_plan_stats_t){
+            .first_solution_iteration = -1, .first_solution_ms = -1.0, .best_cost = INFINITY};
         const int r = run_budget(d, now_us, escaping, &rest, stats, st, published, published_cost);
         stats->iterations += side_iterations;
         return r;

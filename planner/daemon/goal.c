@@ -54,8 +54,9 @@ int gmmrrtd_goal_apply(gmmrrtd_t *d, const gmmrrt_nav_goal_t *m)
         }
         if (is_finished(g, m->goal_id))
             return 0; /* a re-sent cancel, or a cancel of a goal that ended meanwhile: nothing to do */
-        gmmrrtd_reject(d, GMMRRTD_IN_GOAL, ST(REJECT_BAD_VALUE), "CANCEL of goal %lld, which is not the current goal (%lld)",
-                       (long long)m->goal_id, (long long)g->id);
+        gmmrrtd_reject(d, GMMRRTD_IN_GOAL, ST(REJECT_BAD_VALUE),
+                       "CANCEL of goal %lld, which is not the current goal (%lld)", (long long)m->goal_id,
+                       (long long)g->id);
         return 0;
     }
     if (is_finished(g, m->goal_id)) {

@@ -49,7 +49,8 @@ PUBLISH = textwrap.dedent("""
         now = int(time.time() * 1e6)
         p = pose2d_t(); p.utime = now; p.x = 0.0; p.y = 0.0; p.frame = "map"
         lc.publish("ROBOT_POSE", p.encode())
-        g = nav_goal_t(); g.utime = now; g.x = 3.0; g.y = 0.0; g.tolerance_m = 0.3; g.task = 0; g.frame = "map"; g.goal_id = 1; g.command = nav_goal_t.COMMAND_NEW
+        g = nav_goal_t(); g.utime = now; g.x = 3.0; g.y = 0.0; g.tolerance_m = 0.3; g.task = 0
+        g.frame, g.goal_id, g.command = "map", 1, nav_goal_t.COMMAND_NEW
         lc.publish("NAV_GOAL", g.encode())
         time.sleep(0.05)
 """)
