@@ -23,6 +23,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, ".."))
 import lcm  # noqa: E402
 from gmmrrt import demo_info_t, planar_scan_t, planner_status_t, waypoints_t  # noqa: E402
+from gmmrrt_tools.scenario_logs import cancel  # noqa: E402
 from gmmrrt_tools.scenario_models import APPROACH, AVOID, TASK_APPROACH, TASK_AVOID, encode_features_model  # noqa: E402
 
 SCENARIOS = os.path.join(ROOT, "logs", "scenarios")
@@ -74,6 +75,7 @@ def msg_seeds():
                     break
     di = demo_info_t()
     seeds.append(di.encode())
+    seeds.append(cancel(0.0, 7).encode())  # a CANCEL: only its id and frame are judged
     sc = planar_scan_t()  # a 270-degree scan of 541 beams, one NaN and one beyond range_max_m
     sc.utime, sc.rad0, sc.radstep, sc.range_min_m, sc.range_max_m = 1, -2.356194, 0.00872665, 0.05, 30.0
     sc.sensor_x, sc.num_ranges = 0.2, 541
