@@ -66,8 +66,12 @@ def _fmt(v: float) -> str:
 def plan_argv(scene: Scene, planner: str, seed: int, model: Optional[str] = None,
               iterations: Optional[int] = None, budget_ms: Optional[int] = None,
               bias: Optional[float] = None, robot_radius_m: Optional[float] = None,
-              extra: Sequence[str] = (), bin_dir: Optional[str] = None) -> List[str]:
-    """The gmmrrt-plan command line for one run (docs/planner.md)."""
+              extra: Sequence[str] = (), bin_dir: Optional[str] = None,
+              settings: Optional[Dict[str, object]] = None) -> List[str]:
+    """The gmmrrt-plan command line for one run (docs/planner.md). `bias` and `robot_radius_m` are
+    the planner settings gmm_bias and robot_radius_m; `settings` gives any other by its name in the
+    core's table (docs/settings.md), turned into its flag by gmmrrt_tools.core.planner_flags."""
+    from gmmrrt_tools import core
     argv = [find_tool("gmmrrt-plan", bin_dir)]
     if model:
         argv += ["--model", str(model)]
@@ -84,10 +88,12 @@ def plan_argv(scene: Scene, planner: str, seed: int, model: Optional[str] = None
         argv += ["--iterations", str(int(iterations))]
     if budget_ms is not None:
         argv += ["--budget-ms", str(int(budget_ms))]
+    named = dict(settings or {})
     if bias is not None:
-        argv += ["--bias", _fmt(bias)]
+        named["gmm_bias"] = float(bias)
     if robot_radius_m is not None:
-        argv += ["--robot-radius", _fmt(robot_radius_m)]
+        named["robot_radius_m"] = float(robot_radius_m)
+    argv += core.planner_flags(named)
     argv += list(extra)
     argv.append("--json")
     return argv
