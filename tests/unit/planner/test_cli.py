@@ -325,6 +325,14 @@ def test_approach_model_set_picks_the_start_direction_and_refuses_a_missing_one(
         assert out["drive"]["arrival_met"]  # approach arrives facing the person by default
         assert abs(math.atan2(math.sin(out["yaw"][-1] - math.pi), math.cos(out["yaw"][-1] - math.pi))) <= \
             math.radians(15)
+    # --face-target=0: no turn to face the person at the end; the path arrives on its own tangent
+    # (from the right side, about 73 degrees, far from the 180 that faces the person).
+    for flag, facing in (("--face-target=0", False), ("--face-target=1", True), ("--face-target", True)):
+        r = run(*base, "--start", "0.3,-3", flag)
+        assert r.returncode == 0, r.stderr
+        yaw = json.loads(r.stdout)["yaw"][-1]
+        off = abs(math.atan2(math.sin(yaw - math.pi), math.cos(yaw - math.pi)))
+        assert (off <= math.radians(15)) == facing, (flag, math.degrees(yaw))
     (tmp_path / "6-135_left.gmm").unlink()
     r = run(*base, "--start", "-3,0.2")
     assert r.returncode == 1 and r.stdout == ""
