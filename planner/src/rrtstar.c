@@ -17,11 +17,13 @@
 #include "gmmrrt/rrtstar.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
 #include "block_layout.h"
 #include "planner_internal.h"
+#include "tree_check.h"
 
 #define GMMRRT_SAME_POINT_M 1e-9
 
@@ -798,6 +800,10 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
         }
         iterate(p);
     }
+#ifdef GMMRRT_TREE_CHECKS
+    if (!gmmrrt_tree_check(p, NULL, 0))
+        abort(); /* a broken tree invariant (tree_check.h); Debug builds only */
+#endif
     p->time_ms = base_ms + (now_ms() - t0);
     p->run_t0_ms = -1.0; /* outside run() (seed_path): time counts as before the run */
     p->run_base_ms = p->time_ms;
