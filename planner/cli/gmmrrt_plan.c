@@ -1,5 +1,5 @@
 /*
- * gmmrrt_plan.c - gmmrrt-plan: plans one path with the gmmrrt core (rrtstar.h) from the
+ * gmmrrt_plan.c - gmmrrt-plan: plans one path with the gmmrrt core (planner.h) from the
  * command line and prints it as x,y CSV or, with --json, one JSON object
  * (docs/planner.md). The model is read with gmmrrt_model_load_file.
  *
@@ -21,7 +21,7 @@
 #include "gmmrrt/map_file.h"
 #include "gmmrrt/model_file.h"
 #include "gmmrrt/model_set.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 
 #define EXIT_BAD_INPUT 1
 #define EXIT_NO_PATH 3

@@ -445,7 +445,7 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     gmmrrt_status_t st = gmmrrt_planner_set_problem(d->planner, &d->problem);
     gmmrrtd_watchdog_long_step(d, 0);
     d->status.setup_time_ms = (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3;
-    /* A start inside a person's disc or an inflated obstacle plans an escape (rrtstar.h): the
+    /* A start inside a person's disc or an inflated obstacle plans an escape (planner.h): the
      * plan first leaves along the shortest way out, then goes on to the goal. */
     const int escaping = st == GMMRRT_ESCAPE;
     if (escaping) {

@@ -20,7 +20,7 @@
 
 #include "gmmrrt/config_keys.h"
 #include "gmmrrt/drivable.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #include "log.h"
 
 #ifndef GMMRRT_VERSION_STRING

@@ -9,7 +9,7 @@
 #include <stdint.h>
 
 #include "gmmrrt/rng.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #include "nn.h"
 
 /* Near-set scratch: choose-parent and rewire look at no more than this many nodes; when the

@@ -1,5 +1,5 @@
 /*
- * rrtstar.c - the anytime planner of rrtstar.h: RRT* (Karaman & Frazzoli 2011, Alg. 6:
+ * rrtstar.c - the anytime planner of planner.h: RRT* (Karaman & Frazzoli 2011, Alg. 6:
  * extend, choose-parent, rewire) over one caller-owned block, with the paper's mixture
  * sampling and task cost (Sect. 4) and the GMM-RRT baseline (an RRT: parent = nearest,
  * no rewiring, length cost).
@@ -14,7 +14,7 @@
  * halved while more than GMMRRT_NEAR_CAP nodes fall inside it. Rewiring a node shifts
  * the cost of its whole subtree by the same amount (walked through child/sibling links).
  */
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -160,7 +160,7 @@ gmmrrt_status_t gmmrrt_planner_model_fits(const gmmrrt_planner_config_t *cfg, co
     return GMMRRT_OK;
 }
 
-/* The preferred side as a ray no edge may cross (rrtstar.h, gmmrrt_side_t). Seen from the
+/* The preferred side as a ray no edge may cross (planner.h, gmmrrt_side_t). Seen from the
  * person, the start and goal bearings split the circle into a counterclockwise arc from start
  * to goal (LEFT) and a clockwise one (RIGHT). A path of one side sweeps its arc and does not
  * cross a ray through the middle of the other arc; a path of the other side must cross it.
@@ -635,7 +635,7 @@ static void iterate(struct gmmrrt_planner *p)
 
 /* ---------------------------------------------------------------- pruning */
 
-/* Informed pruning of a full pool (rrtstar.h, gmmrrt_planner_run): keeps the root, the best
+/* Informed pruning of a full pool (planner.h, gmmrrt_planner_run): keeps the root, the best
  * path and every node whose parent is kept and whose f = cost-to-come + unit x distance to
  * the goal is below the best cost (f never falls along an edge: the edge costs at least unit x
  * its length, and the distance to the goal falls by at most that length, so whole subtrees go).

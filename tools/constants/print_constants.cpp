@@ -1,6 +1,6 @@
 // print_constants.cpp - writes gmmrrt_constants.py, the numbers the Python tools judge the
 // programs by, as the compiler reads them from the one header that defines each: the walking-people
-// model of the core (rrtstar.h), gmmrrtd's accepted utime range (planner/daemon/clock.h) and the
+// model of the core (planner.h), gmmrrtd's accepted utime range (planner/daemon/clock.h) and the
 // demonstration reader's pairing limit (learner demo_io.hpp). Python imports the module instead
 // of writing the numbers again. Usage: gmmrrt-print-constants OUT.py (written whole or not at all).
 #include <cstdint>
@@ -9,7 +9,7 @@
 #include <string>
 
 #include "clock.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #include "gmmrrt_learner/demo_io.hpp"
 
 // A Python float literal of v: the shortest of 15 or 17 significant digits that reads back to v,
@@ -40,7 +40,7 @@ int main(int argc, char **argv)
     }
     std::fprintf(f, "\"\"\"Constants of the C and C++ code, for the Python tools; generated at build time by\n"
                     "tools/constants/print_constants.cpp from the headers that define them. Do not edit.\"\"\"\n\n");
-    std::fprintf(f, "# planner/include/gmmrrt/rrtstar.h: walking people\n");
+    std::fprintf(f, "# planner/include/gmmrrt/planner.h: walking people\n");
     std::fprintf(f, "GMMRRT_STANDING_SPEED_M_S = %s\n", py_float(GMMRRT_STANDING_SPEED_M_S).c_str());
     std::fprintf(f, "GMMRRT_DEFAULT_NOMINAL_SPEED_M_S = %s\n", py_float(GMMRRT_DEFAULT_NOMINAL_SPEED_M_S).c_str());
     std::fprintf(f, "GMMRRT_DEFAULT_PREDICTION_HORIZON_S = %s\n", py_float(GMMRRT_DEFAULT_PREDICTION_HORIZON_S).c_str());

@@ -43,7 +43,7 @@ ESCAPE_STATUS = 43
 # How much an escape's sampled clearance may dip (the core keeps the exact clearance from falling
 # along its straight exit; samples of the smoothed path near the exit's end may differ by rounding).
 ESCAPE_SLACK_M = 1e-3
-# Walking people as gmmrrtd predicts them with its defaults (rrtstar.h, read by the compiler into
+# Walking people as gmmrrtd predicts them with its defaults (planner.h, read by the compiler into
 # gmmrrt_constants), which the replays do not override.
 STANDING_SPEED_M_S = gmmrrt_constants.GMMRRT_STANDING_SPEED_M_S
 NOMINAL_SPEED_M_S = gmmrrt_constants.GMMRRT_DEFAULT_NOMINAL_SPEED_M_S
@@ -137,7 +137,7 @@ def _dist_point_box(px, py, b):
 def _person_gap(px, py, q, t):
     """Centre distance from (px, py) to person q = (x, y, vx, vy) when the robot is there at t s: a
     standing person where they are; a walker where constant velocity takes them (gmmrrtd plans
-    against that, rrtstar.h "Walking people"), not judged beyond the prediction horizon."""
+    against that, planner.h "Walking people"), not judged beyond the prediction horizon."""
     qx, qy, vx, vy = q
     if math.hypot(vx, vy) < STANDING_SPEED_M_S:
         return math.hypot(px - qx, py - qy)

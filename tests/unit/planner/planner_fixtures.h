@@ -13,7 +13,7 @@
 
 #include "gmmrrt/gmm.h"
 #include "gmmrrt/model.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 
 /* Closed form of the disc detour, so the tests do not carry a magic number. */
 static inline double disc_detour_length(double half_span_m, double radius_m)
