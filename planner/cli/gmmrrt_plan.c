@@ -21,6 +21,7 @@
 #include "gmmrrt/map_file.h"
 #include "gmmrrt/model_file.h"
 #include "gmmrrt/model_set.h"
+#include "gmmrrt/problem_bounds.h"
 #include "gmmrrt/planner.h"
 
 #define EXIT_BAD_INPUT 1
@@ -50,7 +51,7 @@ static void usage(FILE *out)
     fprintf(out,
             "usage: %s [--model FILE] --start x,y --goal x,y[,yaw] [--person x,y,yaw[,vx,vy] ...]\n"
             "       [--obstacle circle:x,y,r | box:cx,cy,w,h,yaw ...]\n"
-            "       [--budget-ms N] [--iterations N] [--bounds xmin,ymin,xmax,ymax]\n"
+            "       [--budget-ms N] [--iterations N] [--bounds xmin,ymin,xmax,ymax] [--bounds-margin M]\n"
             "       [--task avoid|approach] [--target-person I] [--goal-tolerance M] [--json]\n"
             "       [--goal-yaw-tolerance DEG] [--min-turn-radius M] [--nominal-speed M_S] [--raw-path]\n"
             "       [--face-target[=0|1]] [--approach-models DIR] [--map FILE.yaml]\n"
@@ -61,7 +62,7 @@ static void usage(FILE *out)
             "  {\"status\": ..., \"path\": [[x, y], ...], \"stats\": {\"iterations\": ..., \"nodes\": ...,\n"
             "   \"first_solution_ms\": ..., \"best_cost\": ..., \"length_m\": ..., \"time_ms\": ...,\n"
             "   \"setup_ms\": ..., \"cost_history\": [[iteration, best cost], ...], \"cost_history_complete\": true,\n"
-            "   \"max_nodes\": ..., \"pruned\": ..., \"pool_full\": false}}\n"
+            "   \"max_nodes\": ..., \"pruned\": ..., \"pool_full\": false}, \"bounds\": [xmin, ymin, xmax, ymax]}\n"
             "setup_ms is the time from the problem to the first iteration (planner init and set-up);\n"
             "first_solution_ms and time_ms count from the first iteration.\n"
             "A full node pool is pruned (nodes that cannot lie on a cheaper path are recycled; pruned\n"
@@ -74,7 +75,7 @@ static void usage(FILE *out)
             prog);
     fprintf(out,
             "  --map FILE.yaml     static map (map_server YAML + PGM/PNG, docs/world.md); unknown cells\n"
-            "                      block; default bounds: the map\n"
+            "                      block; read inside the bounds\n"
             "  --model FILE        mixture model (gmmrrt-learn); features kind for gmm-rrt-star,\n"
             "                      xy kind for gmm-rrt; optional for rrt-star\n"
             "  --start x,y         start position [m]\n"
@@ -95,7 +96,9 @@ static void usage(FILE *out)
             "  --obstacle SPEC     circle:x,y,r or box:cx,cy,w,h,yaw [m, rad]; repeat\n"
             "  --budget-ms N       wall-clock budget [ms] (default 1000 unless --iterations)\n"
             "  --iterations N      iteration cap (samples drawn); with no --budget-ms, no time limit\n"
-            "  --bounds ...        planning area [m] (default: everything given, padded 3 m)\n"
+            "  --bounds ...        planning area [m] (default: the box around start and goal grown by\n"
+            "                      --bounds-margin, the rule gmmrrtd plans with; docs/planner.md)\n"
+            "  --bounds-margin M   margin of that box [m] (default 3)\n"
             "  --task NAME         avoid or approach (default: the model's task, else avoid); a model\n"
             "                      learned for the other task is refused, as gmmrrtd does\n"
             "  --target-person I   person index (0-based) for approach (default 0)\n"
@@ -212,23 +215,12 @@ static void json_number(double v)
         printf("null");
 }
 
-static void grow(gmmrrt_bounds_t *b, double x, double y, double r)
-{
-    if (x - r < b->xmin)
-        b->xmin = x - r;
-    if (y - r < b->ymin)
-        b->ymin = y - r;
-    if (x + r > b->xmax)
-        b->xmax = x + r;
-    if (y + r > b->ymax)
-        b->ymax = y + r;
-}
-
 int main(int argc, char **argv)
 {
     enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_BUDGET, OPT_ITER, OPT_BOUNDS,
            OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_YAW_TOL, OPT_TURN_RADIUS, OPT_SPEED, OPT_RAW, OPT_SET,
-           OPT_MAP, OPT_SIDE, OPT_SIDE_PERSON, OPT_BG, OPT_FACE, OPT_RENAMED = 1000, OPT_SETTING = 2000 };
+           OPT_MAP, OPT_SIDE, OPT_SIDE_PERSON, OPT_BG, OPT_FACE, OPT_MARGIN, OPT_RENAMED = 1000,
+           OPT_SETTING = 2000 };
     static const struct option own_opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
         {"goal", required_argument, NULL, OPT_GOAL},         {"person", required_argument, NULL, OPT_PERSON},
@@ -243,6 +235,7 @@ int main(int argc, char **argv)
         {"map", required_argument, NULL, OPT_MAP},
         {"side", required_argument, NULL, OPT_SIDE},         {"side-person", required_argument, NULL, OPT_SIDE_PERSON},
         {"background-model", required_argument, NULL, OPT_BG}, {"face-target", optional_argument, NULL, OPT_FACE},
+        {"bounds-margin", required_argument, NULL, OPT_MARGIN},
         {"help", no_argument, NULL, 'h'}};
     /* This program's own options, then every planner setting of the core's table, then the old
      * spellings (refused with their new name). */
@@ -263,6 +256,7 @@ int main(int argc, char **argv)
     const char *model_path = NULL, *set_dir = NULL, *map_path = NULL, *bg_path = NULL;
     int have_start = 0, have_goal = 0, have_bounds = 0, json = 0, planner = 0, task = 0, raw = 0, have_yaw = 0;
     int face_target = 1, have_grid_cells = 0;
+    double bounds_margin_m = GMMRRT_DEFAULT_BOUNDS_MARGIN_M;
     gmmrrt_drive_options_t drive;
     gmmrrt_drive_options_default(&drive);
     double budget_ms = -1.0;
@@ -412,6 +406,11 @@ int main(int argc, char **argv)
         case OPT_BG:
             bg_path = optarg;
             break;
+        case OPT_MARGIN:
+            if (!parse_numbers(optarg, v, 1) || !(v[0] > 0.0))
+                return fail("--bounds-margin '%s': expected metres > 0%s", optarg, "");
+            bounds_margin_m = v[0];
+            break;
         case OPT_FACE:
             if (optarg == NULL || strcmp(optarg, "1") == 0)
                 face_target = 1;
@@ -530,32 +529,11 @@ int main(int argc, char **argv)
         return fail("--side-person is out of range (fewer --person given)%s%s", "", "");
     pr.side_person = (int32_t)side_person;
     pr.side = side > 0 ? side : GMMRRT_SIDE_EITHER;
-    if (!have_bounds && map_path) {
-        /* The map's extent: the box around its four corners. */
-        gmmrrt_bounds_t *b = &pr.obstacles.bounds;
-        const double w = map.width * map.resolution_m, h = map.height * map.resolution_m;
-        *b = (gmmrrt_bounds_t){map.origin_x, map.origin_y, map.origin_x, map.origin_y};
-        const double cx[3] = {w, 0.0, w}, cy[3] = {0.0, h, h};
-        for (int k = 0; k < 3; ++k)
-            grow(b, map.origin_x + cx[k] * map.cos_yaw - cy[k] * map.sin_yaw,
-                 map.origin_y + cx[k] * map.sin_yaw + cy[k] * map.cos_yaw, 0.0);
-    } else if (!have_bounds) {
-        gmmrrt_bounds_t *b = &pr.obstacles.bounds;
-        *b = (gmmrrt_bounds_t){pr.start_x, pr.start_y, pr.start_x, pr.start_y};
-        grow(b, pr.goal_x, pr.goal_y, 0.0);
-        for (int32_t i = 0; i < pr.obstacles.num_people; ++i)
-            grow(b, pr.obstacles.people[i].x, pr.obstacles.people[i].y, 0.0);
-        for (int32_t i = 0; i < pr.obstacles.num_circles; ++i)
-            grow(b, pr.obstacles.circles[i].x, pr.obstacles.circles[i].y, pr.obstacles.circles[i].radius_m);
-        for (int32_t i = 0; i < pr.obstacles.num_boxes; ++i) {
-            const gmmrrt_box_t *bx = &pr.obstacles.boxes[i];
-            grow(b, bx->x, bx->y, 0.5 * hypot(bx->width_m, bx->height_m));
-        }
-        b->xmin -= 3.0;
-        b->ymin -= 3.0;
-        b->xmax += 3.0;
-        b->ymax += 3.0;
-    }
+    /* Without --bounds, the core's rule (problem_bounds.h), as gmmrrtd plans: the box around
+     * start and goal grown by --bounds-margin. */
+    if (!have_bounds)
+        (void)gmmrrt_problem_bounds(pr.start_x, pr.start_y, pr.goal_x, pr.goal_y, bounds_margin_m,
+                                    &pr.obstacles.bounds); /* inputs checked finite, margin > 0 */
     /* The clearance grid must cover the bounds: size it from them (at most the config's ceiling). */
     const double cells = ceil((pr.obstacles.bounds.xmax - pr.obstacles.bounds.xmin) / cfg.grid_resolution_m) *
                          ceil((pr.obstacles.bounds.ymax - pr.obstacles.bounds.ymin) / cfg.grid_resolution_m);
@@ -682,6 +660,8 @@ int main(int argc, char **argv)
         printf("], \"cost_history_complete\": %s, \"max_nodes\": %d, \"pruned\": %lld, \"pool_full\": %s}",
                num_hist < GMMRRT_CLI_MAX_HISTORY ? "true" : "false", (int)cfg.max_nodes, (long long)stats.pruned,
                pool_full ? "true" : "false");
+        printf(", \"bounds\": [%.17g, %.17g, %.17g, %.17g]", pr.obstacles.bounds.xmin, pr.obstacles.bounds.ymin,
+               pr.obstacles.bounds.xmax, pr.obstacles.bounds.ymax);
         if (pr.side != GMMRRT_SIDE_EITHER)
             printf(", \"side\": \"%s\"", pr.side == GMMRRT_SIDE_LEFT ? "left" : "right");
         if (side == GMMRRT_SIDE_EITHER) {

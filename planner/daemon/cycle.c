@@ -19,6 +19,7 @@
 #include <time.h>
 
 #include "daemon.h"
+#include "gmmrrt/problem_bounds.h"
 
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
 
@@ -143,8 +144,8 @@ static int find_person(const gmmrrt_people_t *people, int32_t id)
     return -1;
 }
 
-/* The planning problem from the latest inputs. Bounds: the box around robot and goal grown
- * by bounds_margin_m (obstacles and people outside it cannot matter to a path inside). */
+/* The planning problem from the latest inputs. Bounds: the core's rule (problem_bounds.h), the
+ * box around robot and goal grown by bounds_margin_m, as gmmrrt-plan and the Python tools. */
 static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_index)
 {
     gmmrrt_problem_t *p = &d->problem;
@@ -157,11 +158,10 @@ static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_
     p->task = d->goal.task;
     p->target_person = target_index;
     p->model = model;
-    const double m = d->set.bounds_margin_m;
-    p->obstacles.bounds.xmin = fmin(p->start_x, p->goal_x) - m;
-    p->obstacles.bounds.xmax = fmax(p->start_x, p->goal_x) + m;
-    p->obstacles.bounds.ymin = fmin(p->start_y, p->goal_y) - m;
-    p->obstacles.bounds.ymax = fmax(p->start_y, p->goal_y) + m;
+    /* Inputs and the margin are checked finite and positive where they enter; a failure would
+     * leave empty bounds, which set_problem refuses (a counted stop). */
+    (void)gmmrrt_problem_bounds(p->start_x, p->start_y, p->goal_x, p->goal_y, d->set.bounds_margin_m,
+                                &p->obstacles.bounds);
     p->obstacles.raster = d->have_map ? &d->map : NULL; /* read only inside the bounds */
     if (d->have[GMMRRTD_IN_OBSTACLES]) {
         const gmmrrt_obstacles_t *o = &d->obstacles;

@@ -20,6 +20,7 @@
 
 #include "gmmrrt/config_keys.h"
 #include "gmmrrt/drivable.h"
+#include "gmmrrt/problem_bounds.h"
 #include "gmmrrt/planner.h"
 #include "log.h"
 
@@ -173,7 +174,7 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->time_resync_ms = 1000.0;
     s->clock_slew_ms_per_s = 10.0;
     s->long_step_ms = 30000.0;
-    s->bounds_margin_m = 3.0;
+    s->bounds_margin_m = GMMRRT_DEFAULT_BOUNDS_MARGIN_M;
     s->map[0] = '\0';
     s->map_max_cells = 2048 * 2048; /* 36 MiB of raster; 102 x 102 m at 5 cm */
     s->map_max_side = 4096;

@@ -16,8 +16,8 @@
  */
 #include "gmmrrt/planner.h"
 
+#include <assert.h>
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -800,9 +800,8 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
         }
         iterate(p);
     }
-#ifdef GMMRRT_TREE_CHECKS
-    if (!gmmrrt_tree_check(p, NULL, 0))
-        abort(); /* a broken tree invariant (tree_check.h); Debug builds only */
+#ifdef GMMRRT_TREE_CHECKS /* Debug builds (planner/CMakeLists.txt), where assert is on */
+    assert(gmmrrt_tree_check(p, NULL, 0) && "a broken tree invariant (tree_check.h)");
 #endif
     p->time_ms = base_ms + (now_ms() - t0);
     p->run_t0_ms = -1.0; /* outside run() (seed_path): time counts as before the run */

@@ -1,6 +1,6 @@
 // print_constants.cpp - writes gmmrrt_constants.py, the numbers the Python tools judge the
 // programs by, as the compiler reads them from the one header that defines each: the walking-people
-// model of the core (planner.h), gmmrrtd's accepted utime range (planner/daemon/clock.h) and the
+// model of the core (planner.h), the planning bounds' margin (problem_bounds.h), gmmrrtd's accepted utime range (planner/daemon/clock.h) and the
 // demonstration reader's pairing limit (learner demo_io.hpp). Python imports the module instead
 // of writing the numbers again. Usage: gmmrrt-print-constants OUT.py (written whole or not at all).
 #include <cstdint>
@@ -10,6 +10,7 @@
 
 #include "clock.h"
 #include "gmmrrt/planner.h"
+#include "gmmrrt/problem_bounds.h"
 #include "gmmrrt_learner/demo_io.hpp"
 
 // A Python float literal of v: the shortest of 15 or 17 significant digits that reads back to v,
@@ -44,6 +45,8 @@ int main(int argc, char **argv)
     std::fprintf(f, "GMMRRT_STANDING_SPEED_M_S = %s\n", py_float(GMMRRT_STANDING_SPEED_M_S).c_str());
     std::fprintf(f, "GMMRRT_DEFAULT_NOMINAL_SPEED_M_S = %s\n", py_float(GMMRRT_DEFAULT_NOMINAL_SPEED_M_S).c_str());
     std::fprintf(f, "GMMRRT_DEFAULT_PREDICTION_HORIZON_S = %s\n", py_float(GMMRRT_DEFAULT_PREDICTION_HORIZON_S).c_str());
+    std::fprintf(f, "# planner/include/gmmrrt/problem_bounds.h: margin of the planning bounds round start and goal (m)\n");
+    std::fprintf(f, "GMMRRT_DEFAULT_BOUNDS_MARGIN_M = %s\n", py_float(GMMRRT_DEFAULT_BOUNDS_MARGIN_M).c_str());
     std::fprintf(f, "# planner/daemon/clock.h: utimes gmmrrtd accepts, 0..this (microseconds)\n");
     std::fprintf(f, "GMMRRTD_MAX_UTIME = %lld\n", static_cast<long long>(GMMRRTD_MAX_UTIME));
     std::fprintf(f, "# learner/include/gmmrrt_learner/demo_io.hpp: oldest PEOPLE entry a pose is paired with (s)\n");

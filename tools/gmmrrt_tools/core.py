@@ -108,6 +108,8 @@ def lib() -> ctypes.CDLL:
         _lib.gmmrrt_config_key_count.restype = ctypes.c_int32
         _lib.gmmrrt_config_key_at.argtypes = [ctypes.c_int32]
         _lib.gmmrrt_config_key_at.restype = pk
+        _lib.gmmrrt_problem_bounds.argtypes = [d, d, d, d, d, ctypes.POINTER(ctypes.c_double * 4)]
+        _lib.gmmrrt_problem_bounds.restype = ctypes.c_int
         for fn in (_lib.gmmrrt_config_key_default, _lib.gmmrrt_config_key_range):
             fn.argtypes = [pk, ctypes.c_char_p, sz]
             fn.restype = ctypes.c_char_p
@@ -184,6 +186,26 @@ def planner_flags(settings: Dict[str, object]) -> List[str]:
             raise KeyError(f"no planner setting {name!r}; the core's are: {', '.join(keys)}")
         argv += [keys[name].flag, repr(float(value)) if isinstance(value, float) else str(value)]
     return argv
+
+
+# ------------------------------------------------------------------ planning bounds (problem_bounds.h)
+
+def problem_bounds(start: Tuple[float, float], goal: Tuple[float, float],
+                   margin_m: Optional[float] = None) -> Tuple[float, float, float, float]:
+    """(xmin, ymin, xmax, ymax) of the problem from start to goal by the core's one rule, the one
+    gmmrrtd and gmmrrt-plan plan with (gmmrrt_problem_bounds): the box around start and goal grown
+    by margin_m (default GMMRRT_DEFAULT_BOUNDS_MARGIN_M). ValueError for a point or margin that is
+    not finite or a margin <= 0."""
+    if margin_m is None:
+        import gmmrrt_constants
+        margin_m = gmmrrt_constants.GMMRRT_DEFAULT_BOUNDS_MARGIN_M
+    out = (ctypes.c_double * 4)()
+    st = lib().gmmrrt_problem_bounds(float(start[0]), float(start[1]), float(goal[0]), float(goal[1]),
+                                     float(margin_m), ctypes.byref(out))
+    if st != 0:
+        raise ValueError(f"no planning bounds for start {start}, goal {goal}, margin {margin_m}: "
+                         f"{lib().gmmrrt_status_str(st).decode()}")
+    return (out[0], out[1], out[2], out[3])
 
 
 def _pair(fn, person: Tuple[float, float, float], a: float, b: float) -> Tuple[float, float]:

@@ -45,7 +45,9 @@ class Scene:
     start: Tuple[float, float]
     goal: Tuple[float, float]
     people: List[Tuple[float, float, float]]          # (x, y, yaw) each
-    bounds: Tuple[float, float, float, float]          # xmin, ymin, xmax, ymax
+    # xmin, ymin, xmax, ymax: the scene's workspace; None: the core's rule (core.problem_bounds),
+    # the box gmmrrtd would plan in.
+    bounds: Optional[Tuple[float, float, float, float]]
     circles: List[Tuple[float, float, float]] = field(default_factory=list)          # x, y, r
     boxes: List[Tuple[float, float, float, float, float]] = field(default_factory=list)  # cx, cy, w, h, yaw
 
@@ -75,9 +77,10 @@ def plan_argv(scene: Scene, planner: str, seed: int, model: Optional[str] = None
     argv = [find_tool("gmmrrt-plan", bin_dir)]
     if model:
         argv += ["--model", str(model)]
+    bounds = scene.bounds if scene.bounds is not None else core.problem_bounds(scene.start, scene.goal)
     argv += ["--planner", planner, "--seed", str(int(seed)),
              "--start", ",".join(map(_fmt, scene.start)), "--goal", ",".join(map(_fmt, scene.goal)),
-             "--bounds", ",".join(map(_fmt, scene.bounds))]
+             "--bounds", ",".join(map(_fmt, bounds))]
     for p in scene.people:
         argv += ["--person", ",".join(map(_fmt, p))]
     for c in scene.circles:
