@@ -47,6 +47,17 @@ static inline gmmrrt_problem_t disc_problem(void)
     return pr;
 }
 
+/* Avoid one person standing at the origin facing -x, from (-4, 0) to (4, 0), with `model`. */
+static inline gmmrrt_problem_t avoid_problem(const gmmrrt_model_t *model)
+{
+    gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
+    pr.task = GMMRRT_TASK_AVOID;
+    pr.model = model;
+    pr.obstacles.num_people = 1;
+    pr.obstacles.people[0] = (gmmrrt_pose_t){0.0, 0.0, M_PI};
+    return pr;
+}
+
 static inline gmmrrt_planner_config_t point_robot_config(int32_t kind)
 {
     gmmrrt_planner_config_t cfg;

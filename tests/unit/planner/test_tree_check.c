@@ -23,6 +23,17 @@ static void assert_tree_holds(const gmmrrt_planner_t *p)
         fail_msg("tree invariant broken: %s", why);
 }
 
+/* A point-robot planner of `kind` (pool of max_nodes; 0: the fixture's) on the disc problem. */
+static void make_disc_planner(test_planner_t *t, int32_t kind, int32_t max_nodes)
+{
+    gmmrrt_planner_config_t cfg = point_robot_config(kind);
+    if (max_nodes > 0)
+        cfg.max_nodes = max_nodes;
+    assert_int_equal(test_planner_make(t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = disc_problem();
+    assert_int_equal(gmmrrt_planner_set_problem(t->p, &pr), GMMRRT_OK);
+}
+
 static void run_iterations(gmmrrt_planner_t *p, int64_t n)
 {
     gmmrrt_budget_t budget = {0.0, n, 0.0, 0};
@@ -35,11 +46,8 @@ static void test_every_planner_kind_keeps_the_invariants(void **state)
     (void)state;
     const int32_t kinds[] = {GMMRRT_PLANNER_RRT_STAR, GMMRRT_PLANNER_GMM_RRT_STAR, GMMRRT_PLANNER_GMM_RRT};
     for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; ++k) {
-        gmmrrt_planner_config_t cfg = point_robot_config(kinds[k]);
         test_planner_t t;
-        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
-        gmmrrt_problem_t pr = disc_problem();
-        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        make_disc_planner(&t, kinds[k], 0);
         assert_tree_holds(t.p);
         for (int round = 0; round < 4; ++round) { /* the check between runs, as Debug builds do */
             run_iterations(t.p, 1500);
@@ -59,11 +67,7 @@ static void test_task_cost_tree_keeps_the_invariants(void **state)
     assert_int_equal(make_features_model(&model, theta, 2, 1.2, 0.2, 0.25), GMMRRT_OK);
     test_planner_t t;
     assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
-    gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
-    pr.task = GMMRRT_TASK_AVOID;
-    pr.model = &model;
-    pr.obstacles.num_people = 1;
-    pr.obstacles.people[0] = (gmmrrt_pose_t){0.0, 0.0, M_PI};
+    gmmrrt_problem_t pr = avoid_problem(&model);
     assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
     run_iterations(t.p, 4000);
     assert_true(gmmrrt_planner_node_count(t.p) > 100);
@@ -75,18 +79,15 @@ static void test_task_cost_tree_keeps_the_invariants(void **state)
 static void test_pruning_and_seeding_keep_the_invariants(void **state)
 {
     (void)state;
-    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
-    cfg.max_nodes = 600;
     test_planner_t t;
-    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
-    gmmrrt_problem_t pr = disc_problem();
-    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    make_disc_planner(&t, GMMRRT_PLANNER_RRT_STAR, 600);
     gmmrrt_plan_stats_t stats;
     gmmrrt_budget_t budget = {0.0, 20000, 0.0, 0};
     gmmrrt_planner_run(t.p, &budget, &stats);
     assert_true(stats.pruned > 0);
     assert_tree_holds(t.p);
 
+    gmmrrt_problem_t pr = disc_problem();
     assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
     const double sx[] = {-5.0, -3.0, 0.0, 3.0, 5.0}, sy[] = {0.0, 2.5, 2.5, 2.5, 0.0};
     assert_int_equal(gmmrrt_planner_seed_path(t.p, sx, sy, 5), GMMRRT_OK);
@@ -100,11 +101,8 @@ static void test_pruning_and_seeding_keep_the_invariants(void **state)
 static void test_a_broken_tree_is_found(void **state)
 {
     (void)state;
-    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
     test_planner_t t;
-    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
-    gmmrrt_problem_t pr = disc_problem();
-    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    make_disc_planner(&t, GMMRRT_PLANNER_RRT_STAR, 0);
     run_iterations(t.p, 800);
     struct gmmrrt_planner *p = t.p;
     assert_tree_holds(p);
