@@ -355,8 +355,8 @@ void gmmrrtd_settings_print_help(const char *argv0)
         char left[64], def[64], range[128];
         snprintf(left, sizeof left, "--%s V", k->flag);
         printf("      %-26s %s; %s; default %s  [%s] %s\n", left, k->help,
-               gmmrrt_config_key_range(k, range, sizeof range), gmmrrt_config_key_format(&defaults.cfg, k, def, sizeof def),
-               PLANNER_SECTION, k->name);
+               gmmrrt_config_key_range(k, range, sizeof range),
+               gmmrrt_config_key_format(&defaults.cfg, k, def, sizeof def), PLANNER_SECTION, k->name);
     }
     printf("\nDefault LCM URL: %s (ttl=0: messages stay on this host).\n"
            "Signals: SIGINT/SIGTERM exit cleanly; SIGHUP reloads the config file and the models.\n"

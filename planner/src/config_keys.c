@@ -28,23 +28,29 @@ static const gmmrrt_config_key_t k_keys[] = {
      "the search: GMM-RRT* (the paper's), plain RRT* or the GMM-RRT baseline"},
     {"seed", "seed", GMMRRT_KEY_SEED, OFF(seed), 0, 0, 0, 0, {NULL}, "random seed; same seed, same problem, same tree"},
     INT(max_nodes, "max-nodes", 2, GMMRRT_MAX_NODES_CEILING, "tree node pool (memory grows with it)"),
-    INT(grid_max_cells, "grid-max-cells", 1, GMMRRT_MAX_GRID_CELLS, "clearance grid capacity, cells (memory: 4 bytes a cell)"),
+    INT(grid_max_cells, "grid-max-cells", 1, GMMRRT_MAX_GRID_CELLS,
+         "clearance grid capacity, cells (memory: 4 bytes a cell)"),
     REAL(robot_radius_m, "robot-radius", 0.0, 0, INFINITY, 0, "robot disc radius, m (0: a point robot)"),
     REAL(person_radius_m, "person-radius", 0.0, 0, INFINITY, 0, "person disc radius, m"),
     REAL(grid_resolution_m, "grid-resolution", 0.0, 1, INFINITY, 0, "clearance grid cell, m"),
-    REAL(edge_resolution_m, "edge-resolution", 0.0, 1, INFINITY, 0, "spacing of the collision checks and cost quadrature on an edge, m"),
+    REAL(edge_resolution_m, "edge-resolution", 0.0, 1, INFINITY, 0,
+         "spacing of the collision checks and cost quadrature on an edge, m"),
     REAL(step_m, "step", 0.0, 1, INFINITY, 0, "longest new edge, m"),
     REAL(goal_bias, "goal-bias", 0.0, 0, 1.0, 1, "probability of sampling the goal"),
     REAL(gmm_bias, "gmm-bias", 0.0, 0, 1.0, 0, "probability of a mixture sample (paper: 0.95)"),
-    REAL(rewire_gamma, "rewire-gamma", 0.0, 1, INFINITY, 0, "near radius gamma sqrt(ln n / n), m, when rewire_k_factor is 0"),
-    REAL(rewire_k_factor, "rewire-k", 0.0, 0, 64.0, 0, "near set: at least this times ln(n+1) nearest nodes (0: radius rewiring)"),
+    REAL(rewire_gamma, "rewire-gamma", 0.0, 1, INFINITY, 0,
+         "near radius gamma sqrt(ln n / n), m, when rewire_k_factor is 0"),
+    REAL(rewire_k_factor, "rewire-k", 0.0, 0, 64.0, 0,
+         "near set: at least this times ln(n+1) nearest nodes (0: radius rewiring)"),
     {"informed_sampling", "informed", GMMRRT_KEY_SWITCH, OFF(informed_sampling), 0, 1, 0, 0, {NULL},
      "1: sample the informed ellipse once a path exists, 0: off"},
     REAL(w_length, "w-length", 0.0, 0, GMMRRT_MAX_COST_WEIGHT, 0, "weight of length in the edge cost"),
-    REAL(w_task, "w-task", 0.0, 0, GMMRRT_MAX_COST_WEIGHT, 0, "weight of the task cost c(f) in the edge cost (paper Sect. 4)"),
+    REAL(w_task, "w-task", 0.0, 0, GMMRRT_MAX_COST_WEIGHT, 0,
+         "weight of the task cost c(f) in the edge cost (paper Sect. 4)"),
     {"task_cost", "task-cost", GMMRRT_KEY_CHOICE, OFF(task_cost), 1, 3, 0, 0, {"paper", "inward", "background", NULL},
      "task cost: paper delta / max(p, delta), inward (gmm.h) or background (needs a background model)"},
-    REAL(delta, "delta", 0.0, 0, INFINITY, 0, "task-cost floor delta of c = delta / max(p, delta) (0: the model's; paper 0.001)"),
+    REAL(delta, "delta", 0.0, 0, INFINITY, 0,
+         "task-cost floor delta of c = delta / max(p, delta) (0: the model's; paper 0.001)"),
     REAL(person_influence_m, "person-influence", 0.0, 1, INFINITY, 0,
          "the avoid model applies to people within this of the segment start-goal, m"),
     REAL(waypoint_spacing_m, "waypoint-spacing", 0.0, 1, INFINITY, 0, "spacing of the output path, m"),
@@ -106,7 +112,8 @@ const char *gmmrrt_config_key_range(const gmmrrt_config_key_t *k, char *out, siz
     case GMMRRT_KEY_CHOICE: {
         size_t used = 0;
         for (int i = 0; i < GMMRRT_KEY_MAX_CHOICES && k->choices[i] != NULL && used < cap; ++i) {
-            const char *sep = i == 0 ? "" : (i + 1 < GMMRRT_KEY_MAX_CHOICES && k->choices[i + 1] != NULL ? ", " : " or ");
+            const int last = i + 1 == GMMRRT_KEY_MAX_CHOICES || k->choices[i + 1] == NULL;
+            const char *sep = i == 0 ? "" : (last ? " or " : ", ");
             const int n = snprintf(out + used, cap - used, "%s%s", sep, k->choices[i]);
             used += n > 0 ? (size_t)n : 0;
         }
