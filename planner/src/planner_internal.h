@@ -31,6 +31,15 @@ typedef struct {
     int32_t stages;     /* 1: the GMM-RRT baseline's staged sampling of the xy model (gmm_rrt.c) */
 } gmmrrt_strategy_t;
 
+/* The GMM-RRT baseline's state (gmm_rrt.c): the model's components in order of mean progress s,
+ * the current stage, and the inverse of each component's (x', y') marginal covariance. */
+typedef struct {
+    int32_t stage;
+    int32_t order[GMMRRT_MAX_K];
+    double xy_mean[GMMRRT_MAX_K][2];
+    double xy_inv_cov[GMMRRT_MAX_K][3]; /* a, b, c of [[a, b], [b, c]] */
+} gmmrrt_gmm_rrt_t;
+
 /* strategy.c: the strategy of planner kind `planner` (a validated gmmrrt_planner_kind_t). */
 gmmrrt_strategy_t gmmrrt_strategy_of(int32_t planner);
 
@@ -103,12 +112,7 @@ struct gmmrrt_planner {
     /* Informed sampling (sampler.c): the ellipse's centre, axis direction and focal distance. */
     double inf_cx, inf_cy, inf_cos, inf_sin, inf_cmin;
 
-    /* GMM-RRT baseline (gmm_rrt.c): components in order of mean progress s, the current stage,
-     * and the inverse of each component's (x', y') marginal covariance. */
-    int32_t stage;
-    int32_t order[GMMRRT_MAX_K];
-    double xy_mean[GMMRRT_MAX_K][2];
-    double xy_inv_cov[GMMRRT_MAX_K][3]; /* a, b, c of [[a, b], [b, c]] */
+    gmmrrt_gmm_rrt_t gmm_rrt;      /* the GMM-RRT baseline's own state (gmm_rrt.c) */
 
     /* Tree and search state */
     int32_t num_nodes;

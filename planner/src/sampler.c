@@ -83,7 +83,7 @@ void gmmrrt_sampler_prepare(struct gmmrrt_planner *p)
     p->inf_cy = 0.5 * (p->problem.start_y + p->problem.goal_y);
     p->inf_cos = p->inf_cmin > 0.0 ? gx / p->inf_cmin : 1.0;
     p->inf_sin = p->inf_cmin > 0.0 ? gy / p->inf_cmin : 0.0;
-    p->stage = 0;
+    p->gmm_rrt.stage = 0;
     if (p->strategy.stages && p->problem.model)
         gmmrrt_gmm_rrt_prepare(p);
 }
