@@ -95,6 +95,18 @@ def test_delta_is_a_daemon_setting_too(tmp_path):
     assert r.returncode == 2 and "task_cost = background" in r.stderr, r.stderr
 
 
+def test_switches_take_an_optional_value_on_both_command_lines():
+    """--face-target alone is 1, --face-target=0 switches it off (gmmrrtd's [drive] face_target,
+    gmmrrt-plan's arrival): both accept 0 and 1 and refuse anything else, naming the flag."""
+    r = run("gmmrrtd", "--face-target=maybe")
+    assert r.returncode == 2 and "--face-target" in r.stderr, r.stderr
+    # Accepted: the next error is another flag's.
+    r = run("gmmrrtd", "--face-target=0", "--use-goal-yaw", "--rate-hz", "0")
+    assert r.returncode == 2 and "--rate-hz" in r.stderr and "face-target" not in r.stderr, r.stderr
+    r = run("gmmrrt-plan", *PROBLEM, "--face-target=maybe")
+    assert r.returncode == 1 and "--face-target" in r.stderr, r.stderr
+
+
 def test_old_cli_spellings_are_refused_with_the_new_name():
     for old, new in (("--bias", "--gmm-bias"), ("--cost", "--task-cost")):
         r = run("gmmrrt-plan", *PROBLEM, old, "0.5")
