@@ -406,11 +406,16 @@ int main(int argc, char **argv)
         case OPT_BG:
             bg_path = optarg;
             break;
-        case OPT_MARGIN:
-            if (!parse_numbers(optarg, v, 1) || !(v[0] > 0.0))
-                return fail("--bounds-margin '%s': expected metres > 0%s", optarg, "");
+        case OPT_MARGIN: {
+            gmmrrt_bounds_t scratch; /* the core's range of the margin: a box round (0, 0) */
+            if (!parse_numbers(optarg, v, 1) || gmmrrt_problem_bounds(0.0, 0.0, 0.0, 0.0, v[0], &scratch) != GMMRRT_OK) {
+                char range[64];
+                snprintf(range, sizeof range, "%g..%g", GMMRRT_MIN_BOUNDS_MARGIN_M, GMMRRT_MAX_BOUNDS_MARGIN_M);
+                return fail("--bounds-margin '%s': expected metres in %s", optarg, range);
+            }
             bounds_margin_m = v[0];
             break;
+        }
         case OPT_FACE:
             if (optarg == NULL || strcmp(optarg, "1") == 0)
                 face_target = 1;

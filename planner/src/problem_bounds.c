@@ -10,7 +10,7 @@ gmmrrt_status_t gmmrrt_problem_bounds(double start_x, double start_y, double goa
                                       gmmrrt_bounds_t *out)
 {
     if (out == NULL || !isfinite(start_x) || !isfinite(start_y) || !isfinite(goal_x) || !isfinite(goal_y) ||
-        !isfinite(margin_m) || !(margin_m > 0.0))
+        !(margin_m >= GMMRRT_MIN_BOUNDS_MARGIN_M && margin_m <= GMMRRT_MAX_BOUNDS_MARGIN_M))
         return GMMRRT_ERR_INVALID_ARGUMENT;
     out->xmin = fmin(start_x, goal_x) - margin_m;
     out->xmax = fmax(start_x, goal_x) + margin_m;

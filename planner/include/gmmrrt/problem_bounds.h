@@ -22,10 +22,15 @@ extern "C" {
 /* Default margin around start and goal, m: a detour of 3 m round a person or an obstacle near
  * the straight line fits (gmmrrtd's [world] bounds_margin_m, gmmrrt-plan's --bounds-margin). */
 #define GMMRRT_DEFAULT_BOUNDS_MARGIN_M 3.0
+/* The margins accepted, m: below 0.1 m a robot disc has no room round start or goal; above 10 km
+ * the box is no longer a local planning area. */
+#define GMMRRT_MIN_BOUNDS_MARGIN_M 0.1
+#define GMMRRT_MAX_BOUNDS_MARGIN_M 1e4
 
-/* The bounds of the problem from (start_x, start_y) to (goal_x, goal_y) with margin_m (> 0,
- * finite) into *out. GMMRRT_OK, or GMMRRT_ERR_INVALID_ARGUMENT (out untouched) for a point or
- * margin that is not finite, a margin <= 0 or a NULL out. */
+/* The bounds of the problem from (start_x, start_y) to (goal_x, goal_y) with margin_m (in
+ * [GMMRRT_MIN_BOUNDS_MARGIN_M, GMMRRT_MAX_BOUNDS_MARGIN_M]) into *out. GMMRRT_OK, or
+ * GMMRRT_ERR_INVALID_ARGUMENT (out untouched) for a point that is not finite, a margin outside
+ * that range (NaN included) or a NULL out. */
 gmmrrt_status_t gmmrrt_problem_bounds(double start_x, double start_y, double goal_x, double goal_y, double margin_m,
                                       gmmrrt_bounds_t *out);
 

@@ -43,10 +43,10 @@ def test_cli_python_and_runner_build_the_same_bounds():
 
 def test_the_margin_is_one_setting_and_explicit_bounds_win():
     assert plan_bounds("--bounds-margin", "1.5") == core.problem_bounds(START, GOAL, 1.5) == (-1.0, -2.5, 6.5, 2.5)
-    assert plan_bounds("--bounds", "-6,-6,12,12") == (-6.0, -6.0, 12.0, 12.0)
+    assert plan_bounds("--bounds", "-6,-6,12,12", "--bounds-margin", "1") == (-6.0, -6.0, 12.0, 12.0)
 
 
 def test_bad_margins_are_refused():
-    for bad in (0.0, -1.0, float("nan"), float("inf")):
+    for bad in (0.0, 0.05, -1.0, 2e4, float("nan"), float("inf")):
         with pytest.raises(ValueError, match="no planning bounds"):
             core.problem_bounds(START, GOAL, bad)
