@@ -1,5 +1,5 @@
 /*
- * gmmrrt_plan.c - gmmrrt-plan: plans one path with the gmmrrt core (rrtstar.h) from the
+ * gmmrrt_plan.c - gmmrrt-plan: plans one path with the gmmrrt core (planner.h) from the
  * command line and prints it as x,y CSV or, with --json, one JSON object
  * (docs/planner.md). The model is read with gmmrrt_model_load_file.
  *
@@ -16,11 +16,13 @@
 #include <string.h>
 #include <time.h>
 
+#include "gmmrrt/config_keys.h"
 #include "gmmrrt/drivable.h"
 #include "gmmrrt/map_file.h"
 #include "gmmrrt/model_file.h"
 #include "gmmrrt/model_set.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/problem_bounds.h"
+#include "gmmrrt/planner.h"
 
 #define EXIT_BAD_INPUT 1
 #define EXIT_NO_PATH 3
@@ -49,20 +51,18 @@ static void usage(FILE *out)
     fprintf(out,
             "usage: %s [--model FILE] --start x,y --goal x,y[,yaw] [--person x,y,yaw[,vx,vy] ...]\n"
             "       [--obstacle circle:x,y,r | box:cx,cy,w,h,yaw ...]\n"
-            "       [--planner gmm-rrt-star|rrt-star|gmm-rrt] [--bias B] [--budget-ms N]\n"
-            "       [--iterations N] [--seed S] [--robot-radius R] [--bounds xmin,ymin,xmax,ymax]\n"
-            "       [--task avoid|approach] [--target-person I] [--goal-tolerance M]\n"
-            "       [--delta D] [--w-task W] [--rewire-k F] [--informed 0|1] [--max-nodes N] [--json]\n"
+            "       [--budget-ms N] [--iterations N] [--bounds xmin,ymin,xmax,ymax] [--bounds-margin M]\n"
+            "       [--task avoid|approach] [--target-person I] [--goal-tolerance M] [--json]\n"
             "       [--goal-yaw-tolerance DEG] [--min-turn-radius M] [--nominal-speed M_S] [--raw-path]\n"
-            "       [--approach-models DIR] [--map FILE.yaml]\n"
-            "       [--side left|right|either] [--cost paper|inward|background] [--background-model FILE]\n"
+            "       [--face-target[=0|1]] [--approach-models DIR] [--map FILE.yaml]\n"
+            "       [--side left|right|either] [--background-model FILE] [PLANNER SETTING ...]\n"
             "\n"
             "Plans a path with GMM-RRT* (the paper's planner), plain RRT* or the GMM-RRT baseline\n"
             "and prints it as x,y CSV (header line first), or with --json one object:\n"
             "  {\"status\": ..., \"path\": [[x, y], ...], \"stats\": {\"iterations\": ..., \"nodes\": ...,\n"
             "   \"first_solution_ms\": ..., \"best_cost\": ..., \"length_m\": ..., \"time_ms\": ...,\n"
             "   \"setup_ms\": ..., \"cost_history\": [[iteration, best cost], ...], \"cost_history_complete\": true,\n"
-            "   \"max_nodes\": ..., \"pruned\": ..., \"pool_full\": false}}\n"
+            "   \"max_nodes\": ..., \"pruned\": ..., \"pool_full\": false}, \"bounds\": [xmin, ymin, xmax, ymax]}\n"
             "setup_ms is the time from the problem to the first iteration (planner init and set-up);\n"
             "first_solution_ms and time_ms count from the first iteration.\n"
             "A full node pool is pruned (nodes that cannot lie on a cheaper path are recycled; pruned\n"
@@ -75,12 +75,14 @@ static void usage(FILE *out)
             prog);
     fprintf(out,
             "  --map FILE.yaml     static map (map_server YAML + PGM/PNG, docs/world.md); unknown cells\n"
-            "                      block; default bounds: the map\n"
+            "                      block; read inside the bounds\n"
             "  --model FILE        mixture model (gmmrrt-learn); features kind for gmm-rrt-star,\n"
             "                      xy kind for gmm-rrt; optional for rrt-star\n"
             "  --start x,y         start position [m]\n"
             "  --goal x,y[,yaw]    goal position [m] and the heading to arrive with [rad]; approach\n"
             "                      arrives facing the target person unless a yaw is given\n"
+            "  --face-target[=0|1] approach arrives facing the target person (default 1; 0: any heading\n"
+            "                      unless --goal gives one)\n"
             "  --person x,y,yaw[,vx,vy]  a person [m, m, rad facing, m/s]; repeat for several;\n"
             "                      below 0.2 m/s standing, above 3 m/s (or NaN) refused\n"
             "  --goal-yaw-tolerance DEG  arrival heading tolerance, > 0 (default 15)\n"
@@ -92,24 +94,15 @@ static void usage(FILE *out)
             "                      directions of the UPO lab's models): the one of the start's bearing\n"
             "                      in the target's frame plans (\"approach_model\" in --json)\n"
             "  --obstacle SPEC     circle:x,y,r or box:cx,cy,w,h,yaw [m, rad]; repeat\n"
-            "  --planner NAME      default gmm-rrt-star with --model, rrt-star without\n"
-            "  --bias B            probability of a mixture sample, [0, 1] (default 0.95)\n"
             "  --budget-ms N       wall-clock budget [ms] (default 1000 unless --iterations)\n"
             "  --iterations N      iteration cap (samples drawn); with no --budget-ms, no time limit\n"
-            "  --seed S            random seed (default 1); same seed, same path\n"
-            "  --robot-radius R    robot disc radius [m] (default 0.3; 0 = point robot)\n"
-            "  --bounds ...        planning area [m] (default: everything given, padded 3 m)\n"
+            "  --bounds ...        planning area [m] (default: the box around start and goal grown by\n"
+            "                      --bounds-margin, the rule gmmrrtd plans with; docs/planner.md)\n"
+            "  --bounds-margin M   margin of that box [m] (default 3)\n"
             "  --task NAME         avoid or approach (default: the model's task, else avoid); a model\n"
             "                      learned for the other task is refused, as gmmrrtd does\n"
             "  --target-person I   person index (0-based) for approach (default 0)\n"
             "  --goal-tolerance M  goal region radius [m] (default 0.1)\n"
-            "  --delta D           task-cost floor delta > 0 of c = delta / max(p, delta) (default: the\n"
-            "                      model file's delta)\n"
-            "  --w-task W          weight >= 0 of the task cost in the edge cost (default 2)\n"
-            "  --rewire-k F        near set: at least the F ln(n+1) nearest nodes (default 4.485,\n"
-            "                      OMPL's k_rrg); 0: the radius 15 sqrt(ln n / n)\n"
-            "  --informed 0|1      informed sampling once a path exists (default 1)\n"
-            "  --max-nodes N       tree node pool, 2..%d (default %d); memory grows with it\n"
             "  --side S            left: the path goes counterclockwise round the person (the person\n"
             "                      stays on the robot's left), right: clockwise; either: plan both and\n"
             "                      print the cheaper, with each side's path and cost under \"sides\".\n"
@@ -117,18 +110,29 @@ static void usage(FILE *out)
             "                      within the budget: status \"no path on the preferred side\", exit 3\n"
             "  --side-person I     person index (0-based) the side is about (default: the person\n"
             "                      nearest the segment start-goal)\n"
-            "  --cost NAME         task cost: paper (default, delta / max(p, delta)), inward (gmm.h) or\n"
-            "                      background ((p_bg + delta) / (p + p_bg + 2 delta), needs the next)\n"
             "  --background-model FILE  features model of where walkers go without the person\n"
             "  --json              print one JSON object instead of CSV\n"
             "  -h, --help          this text\n"
+            "\n"
+            "Planner settings (the same names as gmmrrtd's [planner] keys and flags, docs/settings.md);\n"
+            "--planner defaults to gmm-rrt-star with --model and rrt-star without, --grid-max-cells to\n"
+            "what the bounds need:\n");
+    gmmrrt_planner_config_t defaults;
+    gmmrrt_planner_config_default(&defaults);
+    for (int32_t i = 0; i < gmmrrt_config_key_count(); ++i) {
+        const gmmrrt_config_key_t *k = gmmrrt_config_key_at(i);
+        char left[48], range[128], def[48];
+        snprintf(left, sizeof left, "--%s V", k->flag);
+        fprintf(out, "  %-19s %s; %s; default %s\n", left, k->help, gmmrrt_config_key_range(k, range, sizeof range),
+                gmmrrt_config_key_format(&defaults, k, def, sizeof def));
+    }
+    fprintf(out,
             "\n"
             "The path printed is drivable (docs/planner.md): shortcut, corners rounded to the turning\n"
             "radius, yaw = tangent (--json adds \"yaw\" and \"drive\"). A start inside a person's disc\n"
             "or an obstacle escapes first (status \"escaping...\", status_code 43, exit 0).\n"
             "Exit: 0 path found, 1 bad input or refused problem (or frozen: no way out), 3 no path\n"
-            "within the budget.\n",
-            GMMRRT_MAX_NODES_CEILING, GMMRRT_DEFAULT_MAX_NODES);
+            "within the budget.\n");
 }
 
 /* set_problem accepted the problem: as asked (OK) or starting with an escape (ESCAPE). */
@@ -147,18 +151,9 @@ static int fail(const char *fmt, const char *a, const char *b)
     return EXIT_BAD_INPUT;
 }
 
-/* The ranges of the planner's settings live in config.c (gmmrrt_planner_config_validate), not
- * here: a flag that sets a field of cfg is parsed here for its syntax, stored, and the whole
- * configuration validated at once. The configuration was valid before the flag, so a failure is
- * this flag's, and the message names it and the rule that config.c states. */
-static int check_config_flag(const gmmrrt_planner_config_t *cfg, const char *flag, const char *value)
-{
-    char reason[256];
-    if (gmmrrt_planner_config_validate(cfg, reason, sizeof reason) == GMMRRT_OK)
-        return 0;
-    fprintf(stderr, "%s: error: %s '%s': %s\n", prog, flag, value, reason);
-    return EXIT_BAD_INPUT;
-}
+/* Old spellings of planner settings, refused with the name that replaced them. */
+static const char *const k_renamed[][2] = {{"bias", "gmm-bias"}, {"cost", "task-cost"}};
+#define N_RENAMED ((int)(sizeof k_renamed / sizeof k_renamed[0]))
 
 /* Parses exactly n comma-separated finite numbers. */
 static int parse_numbers(const char *s, double *out, int n)
@@ -220,51 +215,48 @@ static void json_number(double v)
         printf("null");
 }
 
-static void grow(gmmrrt_bounds_t *b, double x, double y, double r)
-{
-    if (x - r < b->xmin)
-        b->xmin = x - r;
-    if (y - r < b->ymin)
-        b->ymin = y - r;
-    if (x + r > b->xmax)
-        b->xmax = x + r;
-    if (y + r > b->ymax)
-        b->ymax = y + r;
-}
-
 int main(int argc, char **argv)
 {
-    enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_PLANNER, OPT_BIAS, OPT_BUDGET,
-           OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_DELTA,
-           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_YAW_TOL, OPT_TURN_RADIUS, OPT_SPEED, OPT_RAW, OPT_SET, OPT_MAX_NODES, OPT_MAP,
-           OPT_SIDE, OPT_SIDE_PERSON, OPT_COST, OPT_BG };
-    static const struct option opts[] = {
+    enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_BUDGET, OPT_ITER, OPT_BOUNDS,
+           OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_YAW_TOL, OPT_TURN_RADIUS, OPT_SPEED, OPT_RAW, OPT_SET,
+           OPT_MAP, OPT_SIDE, OPT_SIDE_PERSON, OPT_BG, OPT_FACE, OPT_MARGIN, OPT_RENAMED = 1000,
+           OPT_SETTING = 2000 };
+    static const struct option own_opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
         {"goal", required_argument, NULL, OPT_GOAL},         {"person", required_argument, NULL, OPT_PERSON},
-        {"obstacle", required_argument, NULL, OPT_OBSTACLE}, {"planner", required_argument, NULL, OPT_PLANNER},
-        {"bias", required_argument, NULL, OPT_BIAS},         {"budget-ms", required_argument, NULL, OPT_BUDGET},
-        {"iterations", required_argument, NULL, OPT_ITER},   {"seed", required_argument, NULL, OPT_SEED},
-        {"robot-radius", required_argument, NULL, OPT_RADIUS}, {"bounds", required_argument, NULL, OPT_BOUNDS},
+        {"obstacle", required_argument, NULL, OPT_OBSTACLE}, {"budget-ms", required_argument, NULL, OPT_BUDGET},
+        {"iterations", required_argument, NULL, OPT_ITER},   {"bounds", required_argument, NULL, OPT_BOUNDS},
         {"task", required_argument, NULL, OPT_TASK},         {"target-person", required_argument, NULL, OPT_TARGET},
         {"goal-tolerance", required_argument, NULL, OPT_TOL}, {"json", no_argument, NULL, OPT_JSON},
-        {"delta", required_argument, NULL, OPT_DELTA},       {"w-task", required_argument, NULL, OPT_WTASK},
-        {"rewire-k", required_argument, NULL, OPT_REWIRE_K}, {"informed", required_argument, NULL, OPT_INFORMED},
-        {"max-nodes", required_argument, NULL, OPT_MAX_NODES},
         {"goal-yaw-tolerance", required_argument, NULL, OPT_YAW_TOL},
         {"min-turn-radius", required_argument, NULL, OPT_TURN_RADIUS},
         {"nominal-speed", required_argument, NULL, OPT_SPEED},  {"raw-path", no_argument, NULL, OPT_RAW},
         {"approach-models", required_argument, NULL, OPT_SET},
         {"map", required_argument, NULL, OPT_MAP},
         {"side", required_argument, NULL, OPT_SIDE},         {"side-person", required_argument, NULL, OPT_SIDE_PERSON},
-        {"cost", required_argument, NULL, OPT_COST},         {"background-model", required_argument, NULL, OPT_BG},
-        {"help", no_argument, NULL, 'h'},                    {NULL, 0, NULL, 0}};
+        {"background-model", required_argument, NULL, OPT_BG}, {"face-target", optional_argument, NULL, OPT_FACE},
+        {"bounds-margin", required_argument, NULL, OPT_MARGIN},
+        {"help", no_argument, NULL, 'h'}};
+    /* This program's own options, then every planner setting of the core's table, then the old
+     * spellings (refused with their new name). */
+    enum { N_OWN = (int)(sizeof own_opts / sizeof own_opts[0]) };
+    struct option opts[N_OWN + GMMRRT_CONFIG_MAX_KEYS + N_RENAMED + 1];
+    int n_opts = 0;
+    for (int i = 0; i < N_OWN; ++i)
+        opts[n_opts++] = own_opts[i];
+    for (int32_t i = 0; i < gmmrrt_config_key_count(); ++i)
+        opts[n_opts++] = (struct option){gmmrrt_config_key_at(i)->flag, required_argument, NULL, OPT_SETTING + i};
+    for (int i = 0; i < N_RENAMED; ++i)
+        opts[n_opts++] = (struct option){k_renamed[i][0], required_argument, NULL, OPT_RENAMED + i};
+    opts[n_opts] = (struct option){NULL, 0, NULL, 0};
 
     static gmmrrt_problem_t pr; /* large (obstacle arrays): static, zeroed */
     gmmrrt_planner_config_t cfg;
     gmmrrt_planner_config_default(&cfg);
-    int rc;
     const char *model_path = NULL, *set_dir = NULL, *map_path = NULL, *bg_path = NULL;
     int have_start = 0, have_goal = 0, have_bounds = 0, json = 0, planner = 0, task = 0, raw = 0, have_yaw = 0;
+    int face_target = 1, have_grid_cells = 0;
+    double bounds_margin_m = GMMRRT_DEFAULT_BOUNDS_MARGIN_M;
     gmmrrt_drive_options_t drive;
     gmmrrt_drive_options_default(&drive);
     double budget_ms = -1.0;
@@ -355,23 +347,6 @@ int main(int argc, char **argv)
                 return fail("--obstacle '%s': expected circle:x,y,r or box:cx,cy,w,h,yaw%s", optarg, "");
             }
             break;
-        case OPT_PLANNER:
-            if (strcmp(optarg, "gmm-rrt-star") == 0)
-                planner = GMMRRT_PLANNER_GMM_RRT_STAR;
-            else if (strcmp(optarg, "rrt-star") == 0)
-                planner = GMMRRT_PLANNER_RRT_STAR;
-            else if (strcmp(optarg, "gmm-rrt") == 0)
-                planner = GMMRRT_PLANNER_GMM_RRT;
-            else
-                return fail("--planner '%s': unknown planner (gmm-rrt-star, rrt-star or gmm-rrt)%s", optarg, "");
-            break;
-        case OPT_BIAS:
-            if (!parse_numbers(optarg, v, 1))
-                return fail("--bias '%s': expected a number%s", optarg, "");
-            cfg.gmm_bias = v[0];
-            if ((rc = check_config_flag(&cfg, "--bias", optarg)) != 0)
-                return rc;
-            break;
         case OPT_BUDGET:
             if (!parse_numbers(optarg, v, 1) || v[0] <= 0.0)
                 return fail("--budget-ms '%s': expected a number of milliseconds > 0%s", optarg, "");
@@ -381,18 +356,6 @@ int main(int argc, char **argv)
             if (!parse_int64(optarg, &n) || n <= 0)
                 return fail("--iterations '%s': expected an integer > 0%s", optarg, "");
             iterations = n;
-            break;
-        case OPT_SEED:
-            if (!parse_int64(optarg, &n) || n < 0) /* syntax: config.seed is any uint64 */
-                return fail("--seed '%s': expected an integer >= 0%s", optarg, "");
-            cfg.seed = (uint64_t)n;
-            break;
-        case OPT_RADIUS:
-            if (!parse_numbers(optarg, v, 1))
-                return fail("--robot-radius '%s': expected a number of metres%s", optarg, "");
-            cfg.robot_radius_m = v[0];
-            if ((rc = check_config_flag(&cfg, "--robot-radius", optarg)) != 0)
-                return rc;
             break;
         case OPT_BOUNDS:
             if (!parse_numbers(optarg, v, 4) || v[0] >= v[2] || v[1] >= v[3])
@@ -422,44 +385,8 @@ int main(int argc, char **argv)
         case OPT_JSON:
             json = 1;
             break;
-        case OPT_DELTA:
-            if (!parse_numbers(optarg, v, 1))
-                return fail("--delta '%s': expected a number%s", optarg, "");
-            cfg.delta = v[0];
-            if ((rc = check_config_flag(&cfg, "--delta", optarg)) != 0)
-                return rc;
-            break;
-        case OPT_WTASK:
-            if (!parse_numbers(optarg, v, 1))
-                return fail("--w-task '%s': expected a number%s", optarg, "");
-            cfg.w_task = v[0];
-            if ((rc = check_config_flag(&cfg, "--w-task", optarg)) != 0)
-                return rc;
-            break;
-        case OPT_REWIRE_K:
-            if (!parse_numbers(optarg, v, 1))
-                return fail("--rewire-k '%s': expected a number%s", optarg, "");
-            cfg.rewire_k_factor = v[0];
-            if ((rc = check_config_flag(&cfg, "--rewire-k", optarg)) != 0)
-                return rc;
-            break;
         case OPT_MAP:
             map_path = optarg;
-            break;
-        case OPT_INFORMED:
-            if (!parse_int64(optarg, &n) || n < INT32_MIN || n > INT32_MAX)
-                return fail("--informed '%s': expected an integer%s", optarg, "");
-            cfg.informed_sampling = (int32_t)n;
-            if ((rc = check_config_flag(&cfg, "--informed", optarg)) != 0)
-                return rc;
-            break;
-        case OPT_MAX_NODES:
-            if (!parse_int64(optarg, &n) || n < 2 || n > GMMRRT_MAX_NODES_CEILING) {
-                char ceiling[16];
-                snprintf(ceiling, sizeof ceiling, "%d", GMMRRT_MAX_NODES_CEILING);
-                return fail("--max-nodes '%s': expected an integer in 2..%s (limits.h)", optarg, ceiling);
-            }
-            cfg.max_nodes = (int32_t)n;
             break;
         case OPT_SIDE:
             if (strcmp(optarg, "left") == 0)
@@ -479,19 +406,44 @@ int main(int argc, char **argv)
         case OPT_BG:
             bg_path = optarg;
             break;
-        case OPT_COST:
-            if (strcmp(optarg, "inward") == 0)
-                cfg.task_cost = GMMRRT_TASK_COST_INWARD;
-            else if (strcmp(optarg, "paper") == 0)
-                cfg.task_cost = GMMRRT_TASK_COST_PAPER;
-            else if (strcmp(optarg, "background") == 0)
-                cfg.task_cost = GMMRRT_TASK_COST_BACKGROUND;
+        case OPT_MARGIN: {
+            gmmrrt_bounds_t scratch; /* the core's range of the margin: a box round (0, 0) */
+            if (!parse_numbers(optarg, v, 1) || gmmrrt_problem_bounds(0.0, 0.0, 0.0, 0.0, v[0], &scratch) != GMMRRT_OK) {
+                char range[64];
+                snprintf(range, sizeof range, "%g..%g", GMMRRT_MIN_BOUNDS_MARGIN_M, GMMRRT_MAX_BOUNDS_MARGIN_M);
+                return fail("--bounds-margin '%s': expected metres in %s", optarg, range);
+            }
+            bounds_margin_m = v[0];
+            break;
+        }
+        case OPT_FACE:
+            if (optarg == NULL || strcmp(optarg, "1") == 0)
+                face_target = 1;
+            else if (strcmp(optarg, "0") == 0)
+                face_target = 0;
             else
-                return fail("--cost '%s': expected paper, inward or background%s", optarg, "");
+                return fail("--face-target='%s': expected 0 or 1%s", optarg, "");
             break;
         case ':':
             return fail("option '%s' needs a value (see --help)%s", argv[optind - 1], "");
         default:
+            if (c >= OPT_SETTING && c < OPT_SETTING + GMMRRT_CONFIG_MAX_KEYS) {
+                /* A planner setting: its syntax and range are the core table's (config_keys.h). */
+                const gmmrrt_config_key_t *k = gmmrrt_config_key_at(c - OPT_SETTING);
+                char why[256];
+                if (gmmrrt_config_key_set(&cfg, k, optarg, why, sizeof why) != GMMRRT_OK) {
+                    fprintf(stderr, "%s: error: --%s '%s': %s\n", prog, k->flag, optarg, why);
+                    return EXIT_BAD_INPUT;
+                }
+                if (strcmp(k->name, "planner") == 0)
+                    planner = cfg.planner;
+                if (strcmp(k->name, "grid_max_cells") == 0)
+                    have_grid_cells = 1;
+                break;
+            }
+            if (c >= OPT_RENAMED && c < OPT_RENAMED + N_RENAMED)
+                return fail("--%s was renamed --%s (see --help)", k_renamed[c - OPT_RENAMED][0],
+                            k_renamed[c - OPT_RENAMED][1]);
             return fail("unknown option '%s' (see --help)%s", argv[optind - 1], "");
         }
     }
@@ -551,7 +503,7 @@ int main(int argc, char **argv)
         pr.background_model = &background;
     }
     if (cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND && !bg_path)
-        return fail("--cost background needs --background-model%s%s", "", "");
+        return fail("--task-cost background needs --background-model%s%s", "", "");
     if (planner == 0)
         planner = model_path ? GMMRRT_PLANNER_GMM_RRT_STAR : GMMRRT_PLANNER_RRT_STAR;
     if (planner != GMMRRT_PLANNER_RRT_STAR && !model_path)
@@ -582,38 +534,18 @@ int main(int argc, char **argv)
         return fail("--side-person is out of range (fewer --person given)%s%s", "", "");
     pr.side_person = (int32_t)side_person;
     pr.side = side > 0 ? side : GMMRRT_SIDE_EITHER;
-    if (!have_bounds && map_path) {
-        /* The map's extent: the box around its four corners. */
-        gmmrrt_bounds_t *b = &pr.obstacles.bounds;
-        const double w = map.width * map.resolution_m, h = map.height * map.resolution_m;
-        *b = (gmmrrt_bounds_t){map.origin_x, map.origin_y, map.origin_x, map.origin_y};
-        const double cx[3] = {w, 0.0, w}, cy[3] = {0.0, h, h};
-        for (int k = 0; k < 3; ++k)
-            grow(b, map.origin_x + cx[k] * map.cos_yaw - cy[k] * map.sin_yaw,
-                 map.origin_y + cx[k] * map.sin_yaw + cy[k] * map.cos_yaw, 0.0);
-    } else if (!have_bounds) {
-        gmmrrt_bounds_t *b = &pr.obstacles.bounds;
-        *b = (gmmrrt_bounds_t){pr.start_x, pr.start_y, pr.start_x, pr.start_y};
-        grow(b, pr.goal_x, pr.goal_y, 0.0);
-        for (int32_t i = 0; i < pr.obstacles.num_people; ++i)
-            grow(b, pr.obstacles.people[i].x, pr.obstacles.people[i].y, 0.0);
-        for (int32_t i = 0; i < pr.obstacles.num_circles; ++i)
-            grow(b, pr.obstacles.circles[i].x, pr.obstacles.circles[i].y, pr.obstacles.circles[i].radius_m);
-        for (int32_t i = 0; i < pr.obstacles.num_boxes; ++i) {
-            const gmmrrt_box_t *bx = &pr.obstacles.boxes[i];
-            grow(b, bx->x, bx->y, 0.5 * hypot(bx->width_m, bx->height_m));
-        }
-        b->xmin -= 3.0;
-        b->ymin -= 3.0;
-        b->xmax += 3.0;
-        b->ymax += 3.0;
-    }
+    /* Without --bounds, the core's rule (problem_bounds.h), as gmmrrtd plans: the box around
+     * start and goal grown by --bounds-margin. */
+    if (!have_bounds)
+        (void)gmmrrt_problem_bounds(pr.start_x, pr.start_y, pr.goal_x, pr.goal_y, bounds_margin_m,
+                                    &pr.obstacles.bounds); /* inputs checked finite, margin > 0 */
     /* The clearance grid must cover the bounds: size it from them (at most the config's ceiling). */
     const double cells = ceil((pr.obstacles.bounds.xmax - pr.obstacles.bounds.xmin) / cfg.grid_resolution_m) *
                          ceil((pr.obstacles.bounds.ymax - pr.obstacles.bounds.ymin) / cfg.grid_resolution_m);
     if (cells > (double)(1 << 26))
         return fail("--bounds: area too large for a %s m clearance grid%s", "0.05", "");
-    cfg.grid_max_cells = (int32_t)cells < 1 ? 1 : (int32_t)cells;
+    if (!have_grid_cells)
+        cfg.grid_max_cells = (int32_t)cells < 1 ? 1 : (int32_t)cells;
 
     cfg.history_capacity = GMMRRT_CLI_MAX_HISTORY;
     if (gmmrrt_planner_config_validate(&cfg, err, sizeof err) != GMMRRT_OK)
@@ -643,7 +575,8 @@ int main(int argc, char **argv)
                                                     : "");
     }
     drive.arrival = have_yaw ? GMMRRT_ARRIVAL_YAW
-                             : (pr.task == GMMRRT_TASK_APPROACH ? GMMRRT_ARRIVAL_FACE_TARGET : GMMRRT_ARRIVAL_ANY);
+                             : (pr.task == GMMRRT_TASK_APPROACH && face_target ? GMMRRT_ARRIVAL_FACE_TARGET
+                                                                               : GMMRRT_ARRIVAL_ANY);
     gmmrrt_budget_t budget = {0.0, iterations, 0.0, 0};
     budget.time_ms = budget_ms > 0.0 ? budget_ms : (iterations > 0 ? 0.0 : 1000.0);
     /* --side either: one plan per side (same seed and budget each); the cheaper is the answer. */
@@ -732,6 +665,8 @@ int main(int argc, char **argv)
         printf("], \"cost_history_complete\": %s, \"max_nodes\": %d, \"pruned\": %lld, \"pool_full\": %s}",
                num_hist < GMMRRT_CLI_MAX_HISTORY ? "true" : "false", (int)cfg.max_nodes, (long long)stats.pruned,
                pool_full ? "true" : "false");
+        printf(", \"bounds\": [%.17g, %.17g, %.17g, %.17g]", pr.obstacles.bounds.xmin, pr.obstacles.bounds.ymin,
+               pr.obstacles.bounds.xmax, pr.obstacles.bounds.ymax);
         if (pr.side != GMMRRT_SIDE_EITHER)
             printf(", \"side\": \"%s\"", pr.side == GMMRRT_SIDE_LEFT ? "left" : "right");
         if (side == GMMRRT_SIDE_EITHER) {

@@ -19,6 +19,7 @@
 #include <time.h>
 
 #include "daemon.h"
+#include "gmmrrt/problem_bounds.h"
 
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
 
@@ -176,8 +177,8 @@ static int find_person(const gmmrrt_people_t *people, int32_t id)
     return -1;
 }
 
-/* The planning problem from the latest inputs. Bounds: the box around robot and goal grown
- * by bounds_margin_m (obstacles and people outside it cannot matter to a path inside). */
+/* The planning problem from the latest inputs. Bounds: the core's rule (problem_bounds.h), the
+ * box around robot and goal grown by bounds_margin_m, as gmmrrt-plan and the Python tools. */
 static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_index)
 {
     gmmrrt_problem_t *p = &d->problem;
@@ -190,11 +191,10 @@ static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_
     p->task = d->goal.task;
     p->target_person = target_index;
     p->model = model;
-    const double m = d->set.bounds_margin_m;
-    p->obstacles.bounds.xmin = fmin(p->start_x, p->goal_x) - m;
-    p->obstacles.bounds.xmax = fmax(p->start_x, p->goal_x) + m;
-    p->obstacles.bounds.ymin = fmin(p->start_y, p->goal_y) - m;
-    p->obstacles.bounds.ymax = fmax(p->start_y, p->goal_y) + m;
+    /* Inputs and the margin are checked finite and positive where they enter; a failure would
+     * leave empty bounds, which set_problem refuses (a counted stop). */
+    (void)gmmrrt_problem_bounds(p->start_x, p->start_y, p->goal_x, p->goal_y, d->set.bounds_margin_m,
+                                &p->obstacles.bounds);
     p->obstacles.raster = d->have_map ? &d->map : NULL; /* read only inside the bounds */
     if (d->have[GMMRRTD_IN_OBSTACLES]) {
         const gmmrrt_obstacles_t *o = &d->obstacles;
@@ -474,7 +474,7 @@ static int run_budget(gmmrrtd_t *d, int64_t now_us, int escaping, const gmmrrt_b
 }
 
 /* run_budget for the whole cycle, with nav_goal_t.preferred_side (docs/daemon.md, "The preferred
- * side"): with a side and people, the side (rrtstar.h, problem.side) gets the first half of the
+ * side"): with a side and people, the side (planner.h, problem.side) gets the first half of the
  * budget; when it has no path by then, the problem is set again with either side for the rest,
  * and side_result says the side was not found. Otherwise the rest goes on the same tree.
  * 0, or -1 when a stop was published. */
@@ -611,7 +611,7 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     gmmrrt_status_t st = gmmrrt_planner_set_problem(d->planner, &d->problem);
     gmmrrtd_watchdog_long_step(d, 0);
     d->status.setup_time_ms = (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3;
-    /* A start inside a person's disc or an inflated obstacle plans an escape (rrtstar.h): the
+    /* A start inside a person's disc or an inflated obstacle plans an escape (planner.h): the
      * plan first leaves along the shortest way out, then goes on to the goal. */
     const int escaping = st == GMMRRT_ESCAPE;
     if (escaping) {

@@ -23,7 +23,7 @@
 #include "gmmrrt/model_set.h"
 #include "gmmrrt/msg_decode.h"
 #include "gmmrrt/raster.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #include "log.h"
 #include "settings.h"
 #include "clock.h"

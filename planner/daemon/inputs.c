@@ -104,7 +104,7 @@ static int accept_time(gmmrrtd_t *d, int input, int64_t utime, int64_t local_us)
         }                                                                                           \
     } while (0)
 
-/* Walking people are predicted from their velocity (rrtstar.h): a speed above
+/* Walking people are predicted from their velocity (planner.h): a speed above
  * GMMRRT_MAX_PERSON_SPEED_M_S (the core's bound; faster than a running person is a tracking
  * error) refuses the whole list, counted as REJECT_PERSON_SPEED, and the last good list stays.
  * A velocity that is not finite was already refused by the decoder (REJECT_NOT_FINITE). */

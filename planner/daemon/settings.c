@@ -1,12 +1,12 @@
 /*
  * settings.c - gmmrrtd's settings: defaults, INI file (inih) and getopt_long command line
- * from one key table (see settings.h; reference in docs/daemon.md).
+ * from one key table (see settings.h; reference in docs/daemon.md). The [planner] section is
+ * the core's settings table (gmmrrt/config_keys.h), the one gmmrrt-plan reads too.
  */
 #include "settings.h"
 
 #include <errno.h>
 #include <fcntl.h>
-#include <float.h>
 #include <getopt.h>
 #include <ini.h>
 #include <math.h>
@@ -18,33 +18,31 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "gmmrrt/config_keys.h"
 #include "gmmrrt/drivable.h"
+#include "gmmrrt/problem_bounds.h"
+#include "gmmrrt/planner.h"
 #include "gmmrrt/msg_decode.h"
-#include "gmmrrt/rrtstar.h"
 #include "log.h"
 
 #ifndef GMMRRT_VERSION_STRING
 #define GMMRRT_VERSION_STRING "unknown"
 #endif
 
-typedef enum { K_STR, K_F64, K_I32, K_I64, K_U64, K_BOOL, K_PLANNER } key_type_t;
+typedef enum { K_STR, K_F64, K_I32, K_I64, K_BOOL } key_type_t;
 
 typedef struct {
     const char *section, *key; /* INI [section] key */
     const char *flag;          /* --flag (long option name) */
     key_type_t type;
     size_t offset, size;       /* into gmmrrtd_settings_t; size for K_STR */
-    double min, max;           /* numeric range, inclusive; for a planner key, the stored type's */
+    double min, max;           /* numeric range, inclusive */
     const char *help;
-    int planner_key;           /* a field of cfg: its range is config.c's (check_planner_key) */
 } key_t_;
 
 #define OFF(f) offsetof(gmmrrtd_settings_t, f)
-#define STR(sec, k, fl, f, h) {sec, k, fl, K_STR, OFF(f), sizeof(((gmmrrtd_settings_t *)0)->f), 0, 0, h, 0}
-#define NUM(sec, k, fl, ty, f, lo, hi, h) {sec, k, fl, ty, OFF(f), 0, lo, hi, h, 0}
-/* A field of the planner's configuration: no range here, gmmrrt_planner_config_validate has it. */
-#define CFG_F64(sec, k, fl, f, h) {sec, k, fl, K_F64, OFF(cfg.f), 0, -DBL_MAX, DBL_MAX, h, 1}
-#define CFG_I32(sec, k, fl, f, h) {sec, k, fl, K_I32, OFF(cfg.f), 0, INT32_MIN, INT32_MAX, h, 1}
+#define STR(sec, k, fl, f, h) {sec, k, fl, K_STR, OFF(f), sizeof(((gmmrrtd_settings_t *)0)->f), 0, 0, h}
+#define NUM(sec, k, fl, ty, f, lo, hi, h) {sec, k, fl, ty, OFF(f), 0, lo, hi, h}
 
 static const key_t_ k_keys[] = {
     STR("lcm", "url", "lcm-url", lcm_url, "LCM URL to subscribe (and publish) on"),
@@ -96,7 +94,8 @@ static const key_t_ k_keys[] = {
     NUM("timing", "long_step_ms", "long-step-ms", K_F64, long_step_ms, 100, 1e7,
         "watchdog interval granted around a step that may take long (world set-up, reload), ms"),
     STR("world", "frame", "frame", frame, "planning frame: inputs whose frame differs are refused"),
-    NUM("world", "bounds_margin_m", "bounds-margin", K_F64, bounds_margin_m, 0.1, 1e4, "planning bounds margin, m"),
+    NUM("world", "bounds_margin_m", "bounds-margin", K_F64, bounds_margin_m, GMMRRT_MIN_BOUNDS_MARGIN_M,
+        GMMRRT_MAX_BOUNDS_MARGIN_M, "planning bounds margin, m (problem_bounds.h)"),
     STR("world", "map", "map", map, "static map, map_server YAML + PGM/PNG (docs/world.md); reloaded on SIGHUP"),
     NUM("world", "map_max_cells", "map-max-cells", K_I32, map_max_cells, 1, GMMRRT_MAX_RASTER_CELLS,
         "map raster capacity, cells (memory: 9 bytes a cell, allocated at start-up when a map is set)"),
@@ -123,33 +122,20 @@ static const key_t_ k_keys[] = {
         "arrival heading tolerance, degrees"),
     NUM("drive", "arrival_leg_m", "arrival-leg", K_F64, arrival_leg_m, 0.001, 100,
         "shortest straight final leg on the arrival heading, m"),
-    NUM("planner", "planner", "planner", K_PLANNER, cfg.planner, 0, 0, "gmm-rrt-star | rrt-star | gmm-rrt"),
-    NUM("planner", "seed", "seed", K_U64, cfg.seed, 0, 18446744073709551615.0, "RNG seed"),
-    CFG_I32("planner", "max_nodes", "max-nodes", max_nodes, "tree node pool (memory)"),
-    CFG_I32("planner", "grid_max_cells", "grid-max-cells", grid_max_cells, "clearance grid cells (memory)"),
-    CFG_F64("planner", "robot_radius_m", "robot-radius", robot_radius_m, "robot radius, m"),
-    CFG_F64("planner", "person_radius_m", "person-radius", person_radius_m, "person radius, m"),
-    CFG_F64("planner", "grid_resolution_m", "grid-resolution", grid_resolution_m, "clearance grid cell, m"),
-    CFG_F64("planner", "step_m", "step", step_m, "longest new edge, m"),
-    CFG_F64("planner", "goal_bias", "goal-bias", goal_bias, "probability of sampling the goal"),
-    CFG_F64("planner", "gmm_bias", "gmm-bias", gmm_bias, "probability of a mixture sample"),
-    CFG_F64("planner", "rewire_k_factor", "rewire-k", rewire_k_factor,
-        "near set: at least this times ln(n+1) nearest nodes (0: radius rewiring)"),
-    CFG_I32("planner", "informed_sampling", "informed", informed_sampling,
-        "1: sample the informed ellipse once a path exists, 0: off"),
-    CFG_F64("planner", "w_length", "w-length", w_length, "weight of length in the cost"),
-    CFG_F64("planner", "w_task", "w-task", w_task, "weight of the task cost"),
-    CFG_F64("planner", "waypoint_spacing_m", "waypoint-spacing", waypoint_spacing_m, "plan spacing, m"),
+    /* [planner]: every key of the core's settings table (gmmrrt/config_keys.h), not listed here. */
     STR("log", "level", "log-level", log_level, "error | warn | info | debug"),
     NUM("log", "interval_ms", "log-interval-ms", K_F64, log_interval_ms, 0, 1e9, "one line per reason per interval, ms"),
 };
 #define N_KEYS ((int)(sizeof k_keys / sizeof k_keys[0]))
 
-static const char *const k_planner_names[] = {NULL, "gmm-rrt-star", "rrt-star", "gmm-rrt"};
+/* The [planner] section, where the core's table has the keys. */
+#define PLANNER_SECTION "planner"
 
 const char *gmmrrtd_planner_name(int32_t planner)
 {
-    return planner >= 1 && planner <= 3 ? k_planner_names[planner] : "?";
+    const gmmrrt_config_key_t *k = gmmrrt_config_key_find("planner");
+    return planner >= 1 && planner <= GMMRRT_KEY_MAX_CHOICES && k->choices[planner - 1] ? k->choices[planner - 1]
+                                                                                        : "?";
 }
 
 static int fail(char *err, size_t errcap, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
@@ -194,7 +180,7 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->time_resync_ms = 1000.0;
     s->clock_slew_ms_per_s = 10.0;
     s->long_step_ms = 30000.0;
-    s->bounds_margin_m = 3.0;
+    s->bounds_margin_m = GMMRRT_DEFAULT_BOUNDS_MARGIN_M;
     snprintf(s->frame, sizeof s->frame, "map");
     s->map[0] = '\0';
     s->map_max_cells = 2048 * 2048; /* 36 MiB of raster; 102 x 102 m at 5 cm */
@@ -215,21 +201,6 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     gmmrrt_planner_config_default(&s->cfg);
     snprintf(s->log_level, sizeof s->log_level, "info");
     s->log_interval_ms = 5000.0;
-}
-
-/* The planner's ranges live in config.c (gmmrrt_planner_config_validate), not in the key table:
- * a planner key's value is tried on the default configuration, so a failure is this key's and
- * the reason is the one config.c states. Rules across keys (w_length and w_task not both 0) are
- * checked once every key is read (gmmrrtd_settings_validate). 0 or -1 with the reason. */
-static int check_planner_key(const key_t_ *k, const void *v, size_t n, const char *value, char *err, size_t errcap)
-{
-    gmmrrt_planner_config_t probe;
-    gmmrrt_planner_config_default(&probe);
-    memcpy((char *)&probe + (k->offset - OFF(cfg)), v, n);
-    char why[200];
-    if (gmmrrt_planner_config_validate(&probe, why, sizeof why) != GMMRRT_OK)
-        return fail(err, errcap, "%s = %s: %s", k->key, value, why);
-    return 0;
 }
 
 /* Parses `value` into the field of key k. 0 or -1 with the reason (without location). */
@@ -255,14 +226,6 @@ static int set_key(gmmrrtd_settings_t *s, const key_t_ *k, const char *value, ch
         memcpy(field, &b, sizeof b);
         return 0;
     }
-    if (k->type == K_PLANNER) {
-        for (int32_t i = 1; i <= 3; ++i)
-            if (!strcmp(value, k_planner_names[i])) {
-                memcpy(field, &i, sizeof i);
-                return 0;
-            }
-        return fail(err, errcap, "%s = \"%s\": expected gmm-rrt-star, rrt-star or gmm-rrt", k->key, value);
-    }
     /* Each number is parsed once, by the parser of the type it is stored in: a whole-number
      * key takes digits only ("1e3" or "2.5" are errors, never 1 or 2). */
     errno = 0;
@@ -273,37 +236,16 @@ static int set_key(gmmrrtd_settings_t *s, const key_t_ *k, const char *value, ch
             return fail(err, errcap, "%s = \"%s\": not a number", k->key, value);
         if (v < k->min || v > k->max)
             return fail(err, errcap, "%s = %s: outside %g..%g", k->key, value, k->min, k->max);
-        if (k->planner_key && check_planner_key(k, &v, sizeof v, value, err, errcap) != 0)
-            return -1;
         memcpy(field, &v, sizeof v);
-        return 0;
-    }
-    if (k->type == K_U64) {
-        const char *p = value;
-        while (*p == ' ' || *p == '\t')
-            ++p;
-        if (*p == '-' || *p == '+')
-            return fail(err, errcap, "%s = \"%s\": expected a whole number of digits 0..%g", k->key, value, k->max);
-        const unsigned long long x = strtoull(value, &end, 10);
-        if (end == value || *end != '\0' || errno == ERANGE)
-            return fail(err, errcap, "%s = \"%s\": expected a whole number of digits 0..%g", k->key, value, k->max);
-        if ((double)x < k->min || (double)x > k->max)
-            return fail(err, errcap, "%s = %s: outside %g..%g", k->key, value, k->min, k->max);
-        const uint64_t u = (uint64_t)x;
-        memcpy(field, &u, sizeof u);
         return 0;
     }
     const long long x = strtoll(value, &end, 10);
     if (end == value || *end != '\0' || errno == ERANGE)
         return fail(err, errcap, "%s = \"%s\": expected a whole number of digits", k->key, value);
-    if (k->planner_key && ((double)x < k->min || (double)x > k->max))
-        return fail(err, errcap, "%s = %s: not a 32-bit whole number", k->key, value);
     if ((double)x < k->min || (double)x > k->max)
         return fail(err, errcap, "%s = %s: outside %g..%g", k->key, value, k->min, k->max);
     if (k->type == K_I32) {
         const int32_t v = (int32_t)x;
-        if (k->planner_key && check_planner_key(k, &v, sizeof v, value, err, errcap) != 0)
-            return -1;
         memcpy(field, &v, sizeof v);
     } else {
         const int64_t v = (int64_t)x;
@@ -321,6 +263,16 @@ static int on_ini_line(void *user, const char *section, const char *name, const 
 {
     ini_ctx_t *ctx = user;
     char why[256];
+    if (strcmp(section, PLANNER_SECTION) == 0) {
+        const gmmrrt_config_key_t *pk = gmmrrt_config_key_find(name);
+        if (pk != NULL && strcmp(pk->name, name) == 0) {
+            if (gmmrrt_config_key_set(&ctx->s->cfg, pk, value ? value : "", why, sizeof why) == GMMRRT_OK)
+                return 1;
+            if (ctx->first_err[0] == '\0')
+                snprintf(ctx->first_err, sizeof ctx->first_err, "[%s] %s = %s: %s", section, name, value, why);
+            return 0;
+        }
+    }
     for (int i = 0; i < N_KEYS; ++i) {
         if (strcmp(k_keys[i].section, section) != 0 || strcmp(k_keys[i].key, name) != 0)
             continue;
@@ -387,26 +339,31 @@ void gmmrrtd_settings_print_help(const char *argv0)
         const key_t_ *k = &k_keys[i];
         const char *field = (const char *)&defaults + k->offset;
         char left[64], def[80] = "";
-        snprintf(left, sizeof left, "--%s%s", k->flag, k->type == K_BOOL ? "" : " V");
+        snprintf(left, sizeof left, "--%s%s", k->flag, k->type == K_BOOL ? "[=0|1]" : " V");
         if (k->type == K_STR && field[0] != '\0') {
             snprintf(def, sizeof def, "; default %.60s", field);
         } else if (k->type == K_F64) {
             double v;
             memcpy(&v, field, sizeof v);
             snprintf(def, sizeof def, "; default %g", v);
-        } else if (k->type == K_I32 || k->type == K_BOOL || k->type == K_PLANNER) {
+        } else if (k->type == K_I32 || k->type == K_BOOL) {
             int32_t v;
             memcpy(&v, field, sizeof v);
-            if (k->type == K_PLANNER && v >= 1 && v <= 3)
-                snprintf(def, sizeof def, "; default %s", k_planner_names[v]);
-            else
-                snprintf(def, sizeof def, "; default %d", (int)v);
-        } else if (k->type == K_I64 || k->type == K_U64) {
+            snprintf(def, sizeof def, "; default %d", (int)v);
+        } else if (k->type == K_I64) {
             int64_t v;
             memcpy(&v, field, sizeof v);
             snprintf(def, sizeof def, "; default %lld", (long long)v);
         }
         printf("      %-26s %s%s  [%s] %s\n", left, k->help, def, k->section, k->key);
+    }
+    for (int32_t i = 0; i < gmmrrt_config_key_count(); ++i) {
+        const gmmrrt_config_key_t *k = gmmrrt_config_key_at(i);
+        char left[64], def[64], range[128];
+        snprintf(left, sizeof left, "--%s V", k->flag);
+        printf("      %-26s %s; %s; default %s  [%s] %s\n", left, k->help,
+               gmmrrt_config_key_range(k, range, sizeof range),
+               gmmrrt_config_key_format(&defaults.cfg, k, def, sizeof def), PLANNER_SECTION, k->name);
     }
     printf("\nDefault LCM URL: %s (ttl=0: messages stay on this host).\n"
            "Signals: SIGINT/SIGTERM exit cleanly; SIGHUP reloads the config file and the models.\n"
@@ -416,15 +373,17 @@ void gmmrrtd_settings_print_help(const char *argv0)
 
 int gmmrrtd_settings_from_args(gmmrrtd_settings_t *s, int argc, char **argv, char *err, size_t errcap)
 {
-    enum { OPT_BASE = 1000 };
-    struct option opts[N_KEYS + 4];
+    enum { OPT_BASE = 1000, OPT_PLANNER_BASE = 2000 };
+    struct option opts[N_KEYS + GMMRRT_CONFIG_MAX_KEYS + 4];
     int n = 0;
     opts[n++] = (struct option){"help", no_argument, NULL, 'h'};
     opts[n++] = (struct option){"version", no_argument, NULL, 'V'};
     opts[n++] = (struct option){"config", required_argument, NULL, 'c'};
     for (int i = 0; i < N_KEYS; ++i)
-        opts[n++] = (struct option){k_keys[i].flag, k_keys[i].type == K_BOOL ? no_argument : required_argument, NULL,
-                                    OPT_BASE + i};
+        opts[n++] = (struct option){k_keys[i].flag, k_keys[i].type == K_BOOL ? optional_argument : required_argument,
+                                    NULL, OPT_BASE + i};
+    for (int32_t i = 0; i < gmmrrt_config_key_count(); ++i)
+        opts[n++] = (struct option){gmmrrt_config_key_at(i)->flag, required_argument, NULL, OPT_PLANNER_BASE + i};
     opts[n] = (struct option){NULL, 0, NULL, 0};
 
     /* Pass 1: --help, --version, --config, and any syntax error. */
@@ -461,9 +420,16 @@ int gmmrrtd_settings_from_args(gmmrrtd_settings_t *s, int argc, char **argv, cha
     while ((c = getopt_long(argc, argv, ":hVc:", opts, NULL)) != -1) {
         if (c < OPT_BASE)
             continue;
-        const key_t_ *k = &k_keys[c - OPT_BASE];
         char why[256];
-        if (set_key(s, k, k->type == K_BOOL ? "1" : optarg, why, sizeof why) != 0)
+        if (c >= OPT_PLANNER_BASE) {
+            const gmmrrt_config_key_t *pk = gmmrrt_config_key_at(c - OPT_PLANNER_BASE);
+            if (gmmrrt_config_key_set(&s->cfg, pk, optarg, why, sizeof why) != GMMRRT_OK)
+                return fail(err, errcap, "--%s: %s = %s: %s", pk->flag, pk->name, optarg, why);
+            continue;
+        }
+        const key_t_ *k = &k_keys[c - OPT_BASE];
+        /* A switch: --flag alone is 1, --flag=0 switches it off. */
+        if (set_key(s, k, k->type == K_BOOL && optarg == NULL ? "1" : optarg, why, sizeof why) != 0)
             return fail(err, errcap, "--%s: %s", k->flag, why);
     }
     return 0;
@@ -524,5 +490,8 @@ int gmmrrtd_settings_validate(const gmmrrtd_settings_t *s, char *err, size_t err
     char why[200];
     if (gmmrrt_planner_config_validate(&s->cfg, why, sizeof why) != GMMRRT_OK)
         return fail(err, errcap, "planner settings: %s", why);
+    if (s->cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND)
+        return fail(err, errcap, "[planner] task_cost = background needs a background model, which gmmrrtd does not "
+                                 "load (paper or inward)");
     return 0;
 }

@@ -63,7 +63,7 @@ typedef struct {
     double warm_goal_shift_m;    /* goal moved less than this, same task and target */
     double warm_people_shift_m;  /* same tracked ids, each moved less than this */
     double warm_robot_offset_m;  /* robot within this of the last path */
-    /* [people]: walking people (rrtstar.h, "Walking people") */
+    /* [people]: walking people (planner.h, "Walking people") */
     double nominal_speed_m_s;    /* robot speed that times the path against walkers, (0, 10] */
     double prediction_horizon_s; /* constant-velocity prediction horizon, (0, 60] */
     /* [drive]: the published path (drivable.h) */

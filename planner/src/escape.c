@@ -1,6 +1,6 @@
 /*
  * escape.c - the way out when the robot's start is inside a person's disc or an inflated
- * obstacle (rrtstar.h, GMMRRT_ESCAPE): a person stepped close, or a follower cut a corner. The
+ * obstacle (planner.h, GMMRRT_ESCAPE): a person stepped close, or a follower cut a corner. The
  * planner is then not refused; the tree is rooted at the nearest free point that can be reached
  * by a straight motion along which the exact clearance never decreases, and the drivable path
  * (drivable.h) starts with that motion.

@@ -1,5 +1,5 @@
 /*
- * moving_people.c - walking people for the planner (rrtstar.h, gmmrrt_problem_t.person_vx/vy).
+ * moving_people.c - walking people for the planner (planner.h, gmmrrt_problem_t.person_vx/vy).
  *
  * A person whose speed is below GMMRRT_STANDING_SPEED_M_S is standing: they stay in the
  * collision world (collision.c) exactly as before, and the learned models apply to them as to

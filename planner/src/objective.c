@@ -70,7 +70,7 @@ static double standing_edge_cost(const struct gmmrrt_planner *p, double x0, doub
 double gmmrrt_edge_cost(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1)
 {
     const double c = standing_edge_cost(p, x0, y0, x1, y1);
-    if (p->walkers.count == 0 || p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR)
+    if (p->walkers.count == 0 || !p->strategy.task_cost)
         return c;
     return c + p->cfg.w_task * gmmrrt_walkers_cost(&p->walkers, x0, y0, x1, y1, p->cfg.edge_resolution_m);
 }
@@ -79,7 +79,7 @@ static double standing_edge_cost(const struct gmmrrt_planner *p, double x0, doub
 {
     const double dx = x1 - x0, dy = y1 - y0;
     const double len = sqrt(dx * dx + dy * dy); /* plain sqrt: hypot is far slower; inputs are map coordinates */
-    if (p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR)
+    if (!p->strategy.task_cost)
         return len;
     if (!p->task_active || p->num_active == 0)
         return (p->cfg.w_length + p->cfg.w_task) * len;
@@ -108,7 +108,7 @@ static double standing_edge_cost(const struct gmmrrt_planner *p, double x0, doub
 
 double gmmrrt_edge_cost_lower_bound(const struct gmmrrt_planner *p, double len_m)
 {
-    if (p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR)
+    if (!p->strategy.task_cost)
         return len_m;
     if (!p->task_active || p->num_active == 0)
         return (p->cfg.w_length + p->cfg.w_task) * len_m;

@@ -1,5 +1,5 @@
 /*
- * path.c - output of the planner (rrtstar.h, gmmrrt_planner_best_path): the best path so
+ * path.c - output of the planner (planner.h, gmmrrt_planner_best_path): the best path so
  * far, root ... best goal-region node ... goal, as waypoints at most cfg.waypoint_spacing_m
  * apart along it (the spacing grows to fit GMMRRT_MAX_WAYPOINTS), yaw = direction of travel
  * of the segment each waypoint starts (the goal: the arrival heading).

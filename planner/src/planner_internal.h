@@ -9,7 +9,7 @@
 #include <stdint.h>
 
 #include "gmmrrt/rng.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #include "nn.h"
 
 /* Near-set scratch: choose-parent and rewire look at no more than this many nodes; when the
@@ -20,6 +20,28 @@
 /* Nodes within goal tolerance that are remembered as solution candidates; when full, a
  * new candidate replaces the worst one if it is better. */
 #define GMMRRT_GOAL_CAP 1024
+
+/* What a planner kind does: chosen once, at init, by the one switch over gmmrrt_planner_kind_t
+ * (strategy.c); the loop, the sampler and the objective read these fields, never cfg.planner. */
+typedef struct {
+    int32_t model_kind; /* GMMRRT_MODEL_KIND_* the task model must be; 0: no model is used */
+    int32_t model_dim;  /* its dimension */
+    int32_t rewires;    /* 1: RRT* (choose-parent and rewire); 0: RRT's extend to the nearest node */
+    int32_t task_cost;  /* 1: the edge cost integrates the task cost and walkers' lane cost; 0: length */
+    int32_t stages;     /* 1: the GMM-RRT baseline's staged sampling of the xy model (gmm_rrt.c) */
+} gmmrrt_strategy_t;
+
+/* The GMM-RRT baseline's state (gmm_rrt.c): the model's components in order of mean progress s,
+ * the current stage, and the inverse of each component's (x', y') marginal covariance. */
+typedef struct {
+    int32_t stage;
+    int32_t order[GMMRRT_MAX_K];
+    double xy_mean[GMMRRT_MAX_K][2];
+    double xy_inv_cov[GMMRRT_MAX_K][3]; /* a, b, c of [[a, b], [b, c]] */
+} gmmrrt_gmm_rrt_t;
+
+/* strategy.c: the strategy of planner kind `planner` (a validated gmmrrt_planner_kind_t). */
+gmmrrt_strategy_t gmmrrt_strategy_of(int32_t planner);
 
 /* Walking people (moving_people.c): the planner's copy of each person faster than
  * GMMRRT_STANDING_SPEED_M_S; standing people stay in the collision world as before. */
@@ -49,6 +71,7 @@ void gmmrrt_world_set_edge_resolution(gmmrrt_world_t *world, double edge_resolut
 
 struct gmmrrt_planner {
     gmmrrt_planner_config_t cfg;
+    gmmrrt_strategy_t strategy;    /* of cfg.planner */
     gmmrrt_rng_t rng;
 
     /* Block layout (all inside the caller's memory). */
@@ -89,12 +112,7 @@ struct gmmrrt_planner {
     /* Informed sampling (sampler.c): the ellipse's centre, axis direction and focal distance. */
     double inf_cx, inf_cy, inf_cos, inf_sin, inf_cmin;
 
-    /* GMM-RRT baseline: components in order of mean progress s, the current stage, and the
-     * inverse of each component's (x', y') marginal covariance. */
-    int32_t stage;
-    int32_t order[GMMRRT_MAX_K];
-    double xy_mean[GMMRRT_MAX_K][2];
-    double xy_inv_cov[GMMRRT_MAX_K][3]; /* a, b, c of [[a, b], [b, c]] */
+    gmmrrt_gmm_rrt_t gmm_rrt;      /* the GMM-RRT baseline's own state (gmm_rrt.c) */
 
     /* Tree and search state */
     int32_t num_nodes;
@@ -162,11 +180,18 @@ gmmrrt_status_t gmmrrt_escape_find(struct gmmrrt_planner *p, const gmmrrt_proble
                                    double *exit_y);
 
 /* sampler.c: draws one sample; returns 0 when the draw fell outside the bounds (the
- * iteration is spent, as OMPL counts). Prepares the GMM-RRT stage tables. */
+ * iteration is spent, as OMPL counts). Prepares informed sampling and the GMM-RRT stages. */
 int gmmrrt_sample(struct gmmrrt_planner *p, double *x, double *y);
 void gmmrrt_sampler_prepare(struct gmmrrt_planner *p);
-/* GMM-RRT: advances the stage when (x, y) reached the current component. */
-void gmmrrt_sampler_node_added(struct gmmrrt_planner *p, double x, double y);
+
+/* gmm_rrt.c, the GMM-RRT baseline (Claassens 2010): the stage tables of the xy model (components
+ * by mean progress, their (x', y') marginals), a mixture sample of the current stage (the goal
+ * after the last), and the stage's advance when a node at (x, y) reached the current component. */
+void gmmrrt_gmm_rrt_prepare(struct gmmrrt_planner *p);
+/* gmmrrt_gmm_rrt_sample: 1 for a mixture draw (the caller checks it against the informed ellipse
+ * and the bounds), 0 when the stages are done and (x, y) is the goal, taken as it is. */
+int gmmrrt_gmm_rrt_sample(struct gmmrrt_planner *p, double *x, double *y);
+void gmmrrt_gmm_rrt_node_added(struct gmmrrt_planner *p, double x, double y);
 
 /* path.c: the number of waypoints of a published path total_m long at *spacing_m (the
  * configured waypoint_spacing_m): ceil(total / spacing) + 1, at least 2 (start and end) and

@@ -1,5 +1,5 @@
 /*
- * rrtstar.c - the anytime planner of rrtstar.h: RRT* (Karaman & Frazzoli 2011, Alg. 6:
+ * rrtstar.c - the anytime planner of planner.h: RRT* (Karaman & Frazzoli 2011, Alg. 6:
  * extend, choose-parent, rewire) over one caller-owned block, with the paper's mixture
  * sampling and task cost (Sect. 4) and the GMM-RRT baseline (an RRT: parent = nearest,
  * no rewiring, length cost).
@@ -14,14 +14,16 @@
  * halved while more than GMMRRT_NEAR_CAP nodes fall inside it. Rewiring a node shifts
  * the cost of its whole subtree by the same amount (walked through child/sibling links).
  */
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 
+#include <assert.h>
 #include <math.h>
 #include <string.h>
 #include <time.h>
 
 #include "block_layout.h"
 #include "planner_internal.h"
+#include "tree_check.h"
 
 #define GMMRRT_SAME_POINT_M 1e-9
 
@@ -70,6 +72,7 @@ gmmrrt_status_t gmmrrt_planner_init(gmmrrt_planner_t **out, void *mem, size_t si
     struct gmmrrt_planner *p = mem;
     memset(p, 0, sizeof *p);
     p->cfg = *cfg;
+    p->strategy = gmmrrt_strategy_of(cfg->planner);
     p->pool.xy = (gmmrrt_xy_t *)(void *)(base + l.xy);
     p->pool.cost = (double *)(void *)(base + l.cost);
     p->pool.link = (gmmrrt_links_t *)(void *)(base + l.link);
@@ -143,13 +146,12 @@ gmmrrt_status_t gmmrrt_planner_model_fits(const gmmrrt_planner_config_t *cfg, co
 {
     if (!cfg)
         return GMMRRT_ERR_INVALID_ARGUMENT;
-    if (cfg->planner == GMMRRT_PLANNER_RRT_STAR)
+    const gmmrrt_strategy_t s = gmmrrt_strategy_of(cfg->planner);
+    if (s.model_kind == 0)
         return GMMRRT_OK; /* no model is used */
     if (!m)
         return GMMRRT_ERR_MODEL_MISMATCH;
-    if (cfg->planner == GMMRRT_PLANNER_GMM_RRT_STAR && (m->kind != GMMRRT_MODEL_KIND_FEATURES || m->dim != 2))
-        return GMMRRT_ERR_MODEL_MISMATCH;
-    if (cfg->planner == GMMRRT_PLANNER_GMM_RRT && (m->kind != GMMRRT_MODEL_KIND_XY || m->dim != 3))
+    if (m->kind != s.model_kind || m->dim != s.model_dim)
         return GMMRRT_ERR_MODEL_MISMATCH;
     if (m->k < 1 || m->k > GMMRRT_MAX_K)
         return GMMRRT_ERR_MODEL_MISMATCH;
@@ -158,7 +160,7 @@ gmmrrt_status_t gmmrrt_planner_model_fits(const gmmrrt_planner_config_t *cfg, co
     return GMMRRT_OK;
 }
 
-/* The preferred side as a ray no edge may cross (rrtstar.h, gmmrrt_side_t). Seen from the
+/* The preferred side as a ray no edge may cross (planner.h, gmmrrt_side_t). Seen from the
  * person, the start and goal bearings split the circle into a counterclockwise arc from start
  * to goal (LEFT) and a clockwise one (RIGHT). A path of one side sweeps its arc and does not
  * cross a ray through the middle of the other arc; a path of the other side must cross it.
@@ -243,13 +245,13 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
 
     /* Model kind against planner kind. */
     const gmmrrt_model_t *m = pr->model;
-    const int wants_model = pr->task != GMMRRT_TASK_NONE && p->cfg.planner != GMMRRT_PLANNER_RRT_STAR;
+    const int wants_model = pr->task != GMMRRT_TASK_NONE && p->strategy.model_kind != 0;
     if (wants_model) {
         const gmmrrt_status_t fit = gmmrrt_planner_model_fits(&p->cfg, pr->model);
         if (fit != GMMRRT_OK)
             return fit;
         const gmmrrt_model_t *bg = pr->background_model;
-        if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT_STAR && p->cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND &&
+        if (p->strategy.task_cost && p->cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND &&
             (!bg || bg->kind != GMMRRT_MODEL_KIND_FEATURES || bg->dim != 2 || bg->k < 1 || bg->k > GMMRRT_MAX_K))
             return GMMRRT_ERR_MODEL_MISMATCH;
     }
@@ -313,7 +315,7 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
                     p->focus_person = i;
                 }
             }
-            if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT && best > p->cfg.person_influence_m)
+            if (p->strategy.stages && best > p->cfg.person_influence_m)
                 p->focus_person = -1;
         }
         if (p->num_active == 0 || p->focus_person < 0)
@@ -391,7 +393,7 @@ static int32_t add_node(struct gmmrrt_planner *p, double x, double y, int32_t pa
     p->pool.link[i].first_child = -1;
     attach(p, i, parent);
     gmmrrt_nn_insert(&p->nn, &p->pool, i);
-    gmmrrt_sampler_node_added(p, x, y);
+    gmmrrt_gmm_rrt_node_added(p, x, y);
     return i;
 }
 
@@ -517,7 +519,7 @@ static void iterate(struct gmmrrt_planner *p)
      * moves the new point, the near set too: the k nearest within step_m (as the radius of
      * the radius mode is at most step_m), so early sparse trees do not get long edges whose
      * task-cost quadrature and collision checks are costly. */
-    const int knn = p->cfg.rewire_k_factor > 0.0 && p->cfg.planner != GMMRRT_PLANNER_GMM_RRT;
+    const int knn = p->cfg.rewire_k_factor > 0.0 && p->strategy.rewires;
     int32_t count = 0;
     int32_t nearest;
     if (knn) {
@@ -541,7 +543,7 @@ static void iterate(struct gmmrrt_planner *p)
     if (steered && !gmmrrt_planner_point_free(p, x, y))
         return;
 
-    if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT) {
+    if (!p->strategy.rewires) { /* RRT's extend (the GMM-RRT baseline) */
         if (!edge_allowed(p, nn->x, nn->y, x, y))
             return;
         const double c = p->pool.cost[nearest] + gmmrrt_edge_cost(p, nn->x, nn->y, x, y);
@@ -569,7 +571,7 @@ static void iterate(struct gmmrrt_planner *p)
      * the quadrature runs only for candidates that can still win). */
     /* Without a task term (and without walkers' lane cost) the edge cost is a fixed multiple of
      * length: the lower bound is exact, so no candidate needs the quadrature. */
-    const int cost_is_length = p->cfg.planner != GMMRRT_PLANNER_GMM_RRT_STAR ||
+    const int cost_is_length = !p->strategy.task_cost ||
                                ((!p->task_active || p->num_active == 0) && p->walkers.count == 0);
     /* The lower bound is linear in length (objective.c): its slope once per iteration. */
     const double unit = gmmrrt_edge_cost_lower_bound(p, 1.0);
@@ -633,7 +635,7 @@ static void iterate(struct gmmrrt_planner *p)
 
 /* ---------------------------------------------------------------- pruning */
 
-/* Informed pruning of a full pool (rrtstar.h, gmmrrt_planner_run): keeps the root, the best
+/* Informed pruning of a full pool (planner.h, gmmrrt_planner_run): keeps the root, the best
  * path and every node whose parent is kept and whose f = cost-to-come + unit x distance to
  * the goal is below the best cost (f never falls along an edge: the edge costs at least unit x
  * its length, and the distance to the goal falls by at most that length, so whole subtrees go).
@@ -798,6 +800,9 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
         }
         iterate(p);
     }
+#ifdef GMMRRT_TREE_CHECKS /* Debug builds (planner/CMakeLists.txt), where assert is on */
+    assert(gmmrrt_tree_check(p, NULL, 0) && "a broken tree invariant (tree_check.h)");
+#endif
     p->time_ms = base_ms + (now_ms() - t0);
     p->run_t0_ms = -1.0; /* outside run() (seed_path): time counts as before the run */
     p->run_base_ms = p->time_ms;

@@ -7,11 +7,8 @@
  *   a person drawn uniformly among those near the start-goal segment, in APPROACH the
  *   target person; else uniform in the bounds. gmm_bias = 0 is plain RRT*.
  * rrt-star: uniform in the bounds.
- * gmm-rrt (Claassens 2010, as read in docs/planner.md): the XY mixture's components are
- *   walked in order of mean progress s; with probability gmm_bias the sample is drawn from
- *   the current component's (x', y') in the focus person's frame; the stage moves on when
- *   a node lands inside the component's 90 % ellipse (Mahalanobis^2 <= 4.605); after the
- *   last component those draws go to the goal.
+ * gmm-rrt (Claassens 2010): with probability gmm_bias a sample of the current stage of the XY
+ *   mixture (gmm_rrt.c, the baseline's own file).
  * A mixture sample outside the bounds is discarded: the iteration is spent.
  *
  * Informed sampling (cfg.informed_sampling; Gammell, Srinivasa & Barfoot 2014): once a path
@@ -28,7 +25,6 @@
 #include "gmmrrt/gmm.h"
 #include "planner_internal.h"
 
-#define GMMRRT_STAGE_REACHED_MAHAL2 4.605 /* chi-square, 2 dof, 90 % */
 
 static int in_bounds(const struct gmmrrt_planner *p, double x, double y)
 {
@@ -87,52 +83,9 @@ void gmmrrt_sampler_prepare(struct gmmrrt_planner *p)
     p->inf_cy = 0.5 * (p->problem.start_y + p->problem.goal_y);
     p->inf_cos = p->inf_cmin > 0.0 ? gx / p->inf_cmin : 1.0;
     p->inf_sin = p->inf_cmin > 0.0 ? gy / p->inf_cmin : 0.0;
-    p->stage = 0;
-    if (p->cfg.planner != GMMRRT_PLANNER_GMM_RRT || !p->problem.model)
-        return;
-    const gmmrrt_model_t *m = p->problem.model;
-    /* Insertion sort of component indices by mean s (the file promises this order; the
-     * planner does not rely on it). */
-    for (int32_t i = 0; i < m->k; ++i) {
-        int32_t j = i;
-        while (j > 0 && m->mean[p->order[j - 1]][0] > m->mean[i][0]) {
-            p->order[j] = p->order[j - 1];
-            --j;
-        }
-        p->order[j] = i;
-    }
-    for (int32_t i = 0; i < m->k; ++i) {
-        /* Sigma = L L^T; L packed row-major lower: row r starts at r (r + 1) / 2. */
-        const double *L = m->chol[i];
-        const double *r1 = L + 1, *r2 = L + 3; /* rows 1 and 2 */
-        const double s11 = r1[0] * r1[0] + r1[1] * r1[1];
-        const double s12 = r1[0] * r2[0] + r1[1] * r2[1];
-        const double s22 = r2[0] * r2[0] + r2[1] * r2[1] + r2[2] * r2[2];
-        const double det = s11 * s22 - s12 * s12;
-        p->xy_mean[i][0] = m->mean[i][1];
-        p->xy_mean[i][1] = m->mean[i][2];
-        p->xy_inv_cov[i][0] = s22 / det;
-        p->xy_inv_cov[i][1] = -s12 / det;
-        p->xy_inv_cov[i][2] = s11 / det;
-    }
-}
-
-void gmmrrt_sampler_node_added(struct gmmrrt_planner *p, double x, double y)
-{
-    if (p->cfg.planner != GMMRRT_PLANNER_GMM_RRT || !p->problem.model || p->focus_person < 0)
-        return;
-    const gmmrrt_model_t *m = p->problem.model;
-    double xp, yp;
-    gmmrrt_world_to_person(&p->problem.obstacles.people[p->focus_person], x, y, &xp, &yp);
-    while (p->stage < m->k) {
-        const int32_t c = p->order[p->stage];
-        const double dx = xp - p->xy_mean[c][0], dy = yp - p->xy_mean[c][1];
-        const double *ic = p->xy_inv_cov[c];
-        const double m2 = ic[0] * dx * dx + 2.0 * ic[1] * dx * dy + ic[2] * dy * dy;
-        if (m2 > GMMRRT_STAGE_REACHED_MAHAL2)
-            break;
-        ++p->stage;
-    }
+    p->gmm_rrt.stage = 0;
+    if (p->strategy.stages && p->problem.model)
+        gmmrrt_gmm_rrt_prepare(p);
 }
 
 int gmmrrt_sample(struct gmmrrt_planner *p, double *x, double *y)
@@ -156,16 +109,11 @@ int gmmrrt_sample(struct gmmrrt_planner *p, double *x, double *y)
         uniform(p, x, y);
         return 1;
     }
-    double f[GMMRRT_MAX_DIM];
-    if (p->cfg.planner == GMMRRT_PLANNER_GMM_RRT) {
-        if (p->stage >= pr->model->k) {
-            *x = pr->goal_x;
-            *y = pr->goal_y;
-            return 1;
-        }
-        gmmrrt_gmm_sample_component(pr->model, p->order[p->stage], &p->rng, f);
-        gmmrrt_person_to_world(&pr->obstacles.people[p->focus_person], f[1], f[2], x, y);
+    if (p->strategy.stages) {
+        if (!gmmrrt_gmm_rrt_sample(p, x, y))
+            return 1; /* the stages are done: the goal */
     } else {
+        double f[GMMRRT_MAX_DIM];
         int32_t who = 0;
         if (p->num_active > 1) {
             who = (int32_t)(gmmrrt_rng_uniform(&p->rng) * (double)p->num_active);

@@ -61,11 +61,11 @@ def test_whole_numbers_take_digits_only(gmmrrtd, tmp_path):
 
 
 def test_planner_settings_are_checked_by_the_core(gmmrrtd, tmp_path):
-    """The [planner] keys' ranges are config.c's (gmmrrt_planner_config_validate), named by key."""
+    """The [planner] keys' ranges are the core's settings table (config_keys.c), named by key."""
     for args, rule in ((("--robot-radius", "-1"), "config.robot_radius_m"),
                        (("--grid-max-cells", "100000000"), "config.grid_max_cells"),
                        (("--goal-bias", "1"), "config.goal_bias"),
-                       (("--max-nodes", "99999999999"), "32-bit whole number")):
+                       (("--max-nodes", "99999999999"), "config.max_nodes must be in 2..4194304")):
         res = run(gmmrrtd, *args)
         assert res.returncode == 2 and args[0] in res.stderr and rule in res.stderr, (args, res.stderr)
     ini = tmp_path / "weights.ini"

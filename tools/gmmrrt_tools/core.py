@@ -1,7 +1,8 @@
 """ctypes binding to the gmmrrt C libraries: one definition of each rule, in C.
 
 - build/lib/libgmmrrt.so (planner/src + planner/io): the features (d, theta), angle wrapping,
-  the mixture, the model file format (gmmrrt_model_encode/decode, atomic gmmrrt_model_save_file);
+  the mixture, the model file format (gmmrrt_model_encode/decode, atomic gmmrrt_model_save_file),
+  the table of planner settings (config_keys.h: names, flags, ranges, defaults, help);
 - build/lib/libgmmrrt_msg.so (lcmtypes/msg_decode.c): the validating message decoders that gmmrrtd
   uses, so a Python check judges a message exactly as the daemon does.
 
@@ -13,8 +14,9 @@ from __future__ import annotations
 import ctypes
 import math
 import os
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Optional, Tuple
+from typing import Dict, List, Optional, Tuple
 
 _REPO = Path(__file__).resolve().parents[2]
 
@@ -101,6 +103,16 @@ def lib() -> ctypes.CDLL:
         _lib.gmmrrt_model_save_file_provenance.restype = ctypes.c_int
         _lib.gmmrrt_approach_direction_name.argtypes = [ctypes.c_int32]
         _lib.gmmrrt_approach_direction_name.restype = ctypes.c_char_p
+        pk = ctypes.POINTER(_ConfigKey)
+        _lib.gmmrrt_config_key_count.argtypes = []
+        _lib.gmmrrt_config_key_count.restype = ctypes.c_int32
+        _lib.gmmrrt_config_key_at.argtypes = [ctypes.c_int32]
+        _lib.gmmrrt_config_key_at.restype = pk
+        _lib.gmmrrt_problem_bounds.argtypes = [d, d, d, d, d, ctypes.POINTER(ctypes.c_double * 4)]
+        _lib.gmmrrt_problem_bounds.restype = ctypes.c_int
+        for fn in (_lib.gmmrrt_config_key_default, _lib.gmmrrt_config_key_range):
+            fn.argtypes = [pk, ctypes.c_char_p, sz]
+            fn.restype = ctypes.c_char_p
     return _lib
 
 
@@ -121,6 +133,86 @@ def msg_lib() -> ctypes.CDLL:
                                                     ctypes.c_char_p, ctypes.c_size_t]
         _msg_lib.gmmrrt_msg_check_frame.restype = ctypes.c_int
     return _msg_lib
+
+
+# ------------------------------------------------------------------ planner settings (config_keys.h)
+
+class _ConfigKey(ctypes.Structure):
+    """gmmrrt_config_key_t (config_keys.h); read only through the table's accessors."""
+
+    _fields_ = [("name", ctypes.c_char_p), ("flag", ctypes.c_char_p), ("type", ctypes.c_int32),
+                ("offset", ctypes.c_size_t), ("min", ctypes.c_double), ("max", ctypes.c_double),
+                ("min_open", ctypes.c_int32), ("max_open", ctypes.c_int32), ("choices", ctypes.c_char_p * 4),
+                ("help", ctypes.c_char_p)]
+
+
+@dataclass(frozen=True)
+class ConfigKey:
+    """One planner setting as the core's table has it: `name` ([planner] key of gmmrrtd, and the
+    name used here), `flag` (the long option of gmmrrt-plan and gmmrrtd, with its dashes), the
+    default and the range as text, the choices of a named setting, the help line."""
+    name: str
+    flag: str
+    default: str
+    range: str
+    choices: Tuple[str, ...]
+    help: str
+
+
+_config_keys: Optional[Dict[str, ConfigKey]] = None
+
+
+def config_keys() -> Dict[str, ConfigKey]:
+    """The planner settings by name, in the core's --help order (gmmrrt_config_key_at)."""
+    global _config_keys
+    if _config_keys is None:
+        L = lib()
+        out: Dict[str, ConfigKey] = {}
+        buf = ctypes.create_string_buffer(256)
+        for i in range(L.gmmrrt_config_key_count()):
+            k = L.gmmrrt_config_key_at(i)
+            c = k.contents
+            default = L.gmmrrt_config_key_default(k, buf, len(buf)).decode()
+            rng = L.gmmrrt_config_key_range(k, buf, len(buf)).decode()
+            choices = tuple(x.decode() for x in c.choices if x)
+            out[c.name.decode()] = ConfigKey(c.name.decode(), "--" + c.flag.decode(), default, rng, choices,
+                                             c.help.decode())
+        _config_keys = out
+    return _config_keys
+
+
+def planner_flags(settings: Dict[str, object]) -> List[str]:
+    """The command-line flags of gmmrrt-plan and gmmrrtd for planner settings given by name, e.g.
+    {"gmm_bias": 0.5, "delta": 0.001} -> ["--gmm-bias", "0.5", "--delta", "0.001"]. KeyError naming
+    the known settings for a name the core does not have; the value's range is checked by the
+    program that reads the flag (the core's gmmrrt_config_key_set)."""
+    keys = config_keys()
+    argv: List[str] = []
+    for name, value in settings.items():
+        if name not in keys:
+            raise KeyError(f"no planner setting {name!r}; the core's are: {', '.join(keys)}")
+        argv += [keys[name].flag, repr(float(value)) if isinstance(value, float) else str(value)]
+    return argv
+
+
+# ------------------------------------------------------------------ planning bounds (problem_bounds.h)
+
+def problem_bounds(start: Tuple[float, float], goal: Tuple[float, float],
+                   margin_m: Optional[float] = None) -> Tuple[float, float, float, float]:
+    """(xmin, ymin, xmax, ymax) of the problem from start to goal by the core's one rule, the one
+    gmmrrtd and gmmrrt-plan plan with (gmmrrt_problem_bounds): the box around start and goal grown
+    by margin_m (default GMMRRT_DEFAULT_BOUNDS_MARGIN_M). ValueError for a point or margin that is
+    not finite or a margin <= 0."""
+    if margin_m is None:
+        import gmmrrt_constants
+        margin_m = gmmrrt_constants.GMMRRT_DEFAULT_BOUNDS_MARGIN_M
+    out = (ctypes.c_double * 4)()
+    st = lib().gmmrrt_problem_bounds(float(start[0]), float(start[1]), float(goal[0]), float(goal[1]),
+                                     float(margin_m), ctypes.byref(out))
+    if st != 0:
+        raise ValueError(f"no planning bounds for start {start}, goal {goal}, margin {margin_m}: "
+                         f"{lib().gmmrrt_status_str(st).decode()}")
+    return (out[0], out[1], out[2], out[3])
 
 
 def _pair(fn, person: Tuple[float, float, float], a: float, b: float) -> Tuple[float, float]:

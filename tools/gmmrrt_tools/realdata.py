@@ -46,7 +46,7 @@ def frontal_encounters(index_path: str) -> set:
 def side_of_sweep(xy, person) -> str:
     """'left' when the bearing from the person to the mover turns counterclockwise from the first
     to the last point (the person stays on the mover's left), else 'right': the planner's
-    preferred side (rrtstar.h, gmmrrt_side_t), counted as metrics.swept_angle counts it."""
+    preferred side (planner.h, gmmrrt_side_t), counted as metrics.swept_angle counts it."""
     from . import metrics
 
     return "left" if metrics.swept_angle(xy, person) > 0.0 else "right"

@@ -29,6 +29,7 @@ import math
 import statistics
 import sys
 
+import gmmrrt_constants  # generated beside the message package (tools/constants/)
 import lcm
 from gmmrrt import nav_goal_t, obstacles_t, people_t, planner_status_t, pose2d_t, waypoints_t
 
@@ -42,12 +43,11 @@ ESCAPE_STATUS = 43
 # How much an escape's sampled clearance may dip (the core keeps the exact clearance from falling
 # along its straight exit; samples of the smoothed path near the exit's end may differ by rounding).
 ESCAPE_SLACK_M = 1e-3
-# Walking people as gmmrrtd predicts them with its defaults: GMMRRT_STANDING_SPEED_M_S and
-# GMMRRT_DEFAULT_NOMINAL_SPEED_M_S / GMMRRT_DEFAULT_PREDICTION_HORIZON_S of rrtstar.h, which the
-# replays do not override.
-STANDING_SPEED_M_S = 0.2
-NOMINAL_SPEED_M_S = 0.5
-PREDICTION_HORIZON_S = 5.0
+# Walking people as gmmrrtd predicts them with its defaults (planner.h, read by the compiler into
+# gmmrrt_constants), which the replays do not override.
+STANDING_SPEED_M_S = gmmrrt_constants.GMMRRT_STANDING_SPEED_M_S
+NOMINAL_SPEED_M_S = gmmrrt_constants.GMMRRT_DEFAULT_NOMINAL_SPEED_M_S
+PREDICTION_HORIZON_S = gmmrrt_constants.GMMRRT_DEFAULT_PREDICTION_HORIZON_S
 LIVE_INPUTS = ("ROBOT_POSE", "PEOPLE", "NAV_GOAL", "OBSTACLES")
 
 
@@ -59,7 +59,7 @@ def read_events(path):
 
 
 FRAME = "map"  # gmmrrtd's default [world] frame (docs/daemon.md): a message in another is refused
-MAX_UTIME = 1 << 53  # gmmrrtd takes utimes in 0..2^53 us only (GMMRRTD_MAX_UTIME, planner/daemon/daemon.h)
+MAX_UTIME = gmmrrt_constants.GMMRRTD_MAX_UTIME  # gmmrrtd takes utimes in 0..this only (planner/daemon/clock.h)
 
 # Input channel -> (validating decoder of lcmtypes/msg_decode.c, generated Python decoder).
 INPUTS = {"ROBOT_POSE": ("pose2d", pose2d_t), "PEOPLE": ("people", people_t),
@@ -140,7 +140,7 @@ def _dist_point_box(px, py, b):
 def _person_gap(px, py, q, t):
     """Centre distance from (px, py) to person q = (x, y, vx, vy) when the robot is there at t s: a
     standing person where they are; a walker where constant velocity takes them (gmmrrtd plans
-    against that, rrtstar.h "Walking people"), not judged beyond the prediction horizon."""
+    against that, planner.h "Walking people"), not judged beyond the prediction horizon."""
     qx, qy, vx, vy = q
     if math.hypot(vx, vy) < STANDING_SPEED_M_S:
         return math.hypot(px - qx, py - qy)

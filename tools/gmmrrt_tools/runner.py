@@ -45,7 +45,9 @@ class Scene:
     start: Tuple[float, float]
     goal: Tuple[float, float]
     people: List[Tuple[float, float, float]]          # (x, y, yaw) each
-    bounds: Tuple[float, float, float, float]          # xmin, ymin, xmax, ymax
+    # xmin, ymin, xmax, ymax: the scene's workspace; None: the core's rule (core.problem_bounds),
+    # the box gmmrrtd would plan in.
+    bounds: Optional[Tuple[float, float, float, float]]
     circles: List[Tuple[float, float, float]] = field(default_factory=list)          # x, y, r
     boxes: List[Tuple[float, float, float, float, float]] = field(default_factory=list)  # cx, cy, w, h, yaw
 
@@ -66,14 +68,19 @@ def _fmt(v: float) -> str:
 def plan_argv(scene: Scene, planner: str, seed: int, model: Optional[str] = None,
               iterations: Optional[int] = None, budget_ms: Optional[int] = None,
               bias: Optional[float] = None, robot_radius_m: Optional[float] = None,
-              extra: Sequence[str] = (), bin_dir: Optional[str] = None) -> List[str]:
-    """The gmmrrt-plan command line for one run (docs/planner.md)."""
+              extra: Sequence[str] = (), bin_dir: Optional[str] = None,
+              settings: Optional[Dict[str, object]] = None) -> List[str]:
+    """The gmmrrt-plan command line for one run (docs/planner.md). `bias` and `robot_radius_m` are
+    the planner settings gmm_bias and robot_radius_m; `settings` gives any other by its name in the
+    core's table (docs/settings.md), turned into its flag by gmmrrt_tools.core.planner_flags."""
+    from gmmrrt_tools import core
     argv = [find_tool("gmmrrt-plan", bin_dir)]
     if model:
         argv += ["--model", str(model)]
+    bounds = scene.bounds if scene.bounds is not None else core.problem_bounds(scene.start, scene.goal)
     argv += ["--planner", planner, "--seed", str(int(seed)),
              "--start", ",".join(map(_fmt, scene.start)), "--goal", ",".join(map(_fmt, scene.goal)),
-             "--bounds", ",".join(map(_fmt, scene.bounds))]
+             "--bounds", ",".join(map(_fmt, bounds))]
     for p in scene.people:
         argv += ["--person", ",".join(map(_fmt, p))]
     for c in scene.circles:
@@ -84,10 +91,12 @@ def plan_argv(scene: Scene, planner: str, seed: int, model: Optional[str] = None
         argv += ["--iterations", str(int(iterations))]
     if budget_ms is not None:
         argv += ["--budget-ms", str(int(budget_ms))]
+    named = dict(settings or {})
     if bias is not None:
-        argv += ["--bias", _fmt(bias)]
+        named["gmm_bias"] = float(bias)
     if robot_radius_m is not None:
-        argv += ["--robot-radius", _fmt(robot_radius_m)]
+        named["robot_radius_m"] = float(robot_radius_m)
+    argv += core.planner_flags(named)
     argv += list(extra)
     argv.append("--json")
     return argv

@@ -3,7 +3,7 @@
  * and people (discs). FCL does the geometry when the world changes; the planning loop
  * queries what was built from it (see docs/planner.md for what is kept and why).
  *
- * Memory: a gmmrrt_world_t lives inside the planner's block (rrtstar.h); the functions
+ * Memory: a gmmrrt_world_t lives inside the planner's block (planner.h); the functions
  * here are also usable standalone with gmmrrt_world_mem_size() bytes of caller memory.
  * Static obstacles go into a clearance grid whose tiles (8 x 8 cells) are computed on the
  * first query that reads them, so building or updating a world costs no distance computation

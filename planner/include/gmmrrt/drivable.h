@@ -1,6 +1,6 @@
 /*
  * drivable.h - the path a wheeled robot can drive, made from the planner's best path
- * (rrtstar.h) after planning: shortcut without raising the planner's cost, corners rounded by
+ * (planner.h) after planning: shortcut without raising the planner's cost, corners rounded by
  * circular arcs of at least the minimum turning radius (yaw = the tangent everywhere), an
  * arrival on the requested heading, and the escape from a start in collision in front. Every
  * new chord is checked with the planner's own free tests (the same clearance rule as the tree's
@@ -12,7 +12,7 @@
 
 #include <stdint.h>
 
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #include "gmmrrt/status.h"
 
 #ifdef __cplusplus

@@ -1,5 +1,5 @@
 /*
- * sliced_run.hpp - timing one run of our planner (rrtstar.h) with its best-cost-versus-time
+ * sliced_run.hpp - timing one run of our planner (planner.h) with its best-cost-versus-time
  * curve. The run is cut into geometrically spaced slices (0.02 ms x 1.1^k, ~100 per second of
  * budget; anytime calls to gmmrrt_planner_run) and the stats are read after each; the
  * planner's cost history then gives each improvement's iteration, whose time is interpolated
@@ -9,7 +9,7 @@
 #ifndef GMMRRT_BENCH_SLICED_RUN_HPP
 #define GMMRRT_BENCH_SLICED_RUN_HPP
 
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #include "trial.hpp"
 
 namespace gmmrrt_bench {

@@ -1,5 +1,5 @@
 /*
- * bench_memory.c - gmmrrt-bench-memory: the planner's memory (rrtstar.h: one caller-owned
+ * bench_memory.c - gmmrrt-bench-memory: the planner's memory (planner.h: one caller-owned
  * block, nothing allocated after init; STYLE.md rule 1). Prints one JSON object:
  *   - the block size of the default configuration (gmmrrt_planner_mem_size);
  *   - bytes per node: the growth of that size per extra node of max_nodes (everything a
@@ -17,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 
 #include "alloc_counter.h" /* defines malloc & co. and the counters `counting`, `alloc_calls` */
 

@@ -77,7 +77,7 @@
 #include "arena_log.hpp"
 #include "gmmrrt/map_file.h"
 #include "gmmrrt/raster.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #include "gmmrrt_runner.hpp"
 #include "ompl_runner.hpp"
 #include "problem.hpp"

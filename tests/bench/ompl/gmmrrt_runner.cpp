@@ -1,5 +1,5 @@
 /*
- * gmmrrt_runner.cpp - our RRT* (rrtstar.h; paper Sect. 4) on the benchmark problem. Timed from
+ * gmmrrt_runner.cpp - our RRT* (planner.h; paper Sect. 4) on the benchmark problem. Timed from
  * the first gmmrrt_planner_run() call; set_problem (collision world build) is timed apart as
  * setup, like OMPL's setup().
  */
@@ -10,7 +10,7 @@
 #include <cmath>
 #include <memory>
 
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #include "sliced_run.hpp"
 
 namespace gmmrrt_bench {

@@ -1,6 +1,6 @@
 /*
  * gmmrrt_runner.hpp - the benchmark problem (problem.hpp) solved by our planner through
- * rrtstar.h, configured like OMPL's RRTstar defaults (problem.hpp) so that both planners
+ * planner.h, configured like OMPL's RRTstar defaults (problem.hpp) so that both planners
  * search alike: uniform sampling, same range, goal bias, motion-check resolution and
  * rewiring constant.
  */
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "gmmrrt/config.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #include "problem.hpp"
 #include "trial.hpp"
 

@@ -21,7 +21,7 @@
 #include <ompl/geometric/planners/rrt/RRTstar.h>
 #include <ompl/tools/benchmark/Benchmark.h>
 
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #include "gmmrrt_runner.hpp"
 #include "ompl_runner.hpp"
 

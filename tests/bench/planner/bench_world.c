@@ -18,7 +18,7 @@
 #include <time.h>
 
 #include "gmmrrt/map_file.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 
 static double now_ms(void)
 {

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "gmmrrt/model_file.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #include "sliced_run.hpp"
 #include "trial.hpp"
 

@@ -11,7 +11,8 @@
  *  - no published plan turns tighter than the configured radius unless the core said it had to
  *    (a corner with no free arc), and such plans are counted;
  *  - an approach from behind the person arrives facing them within 15 degrees;
- *  - a person faster than the core's bound refuses the list (counted), the last list stays.
+ *  - a person faster than the core's bound refuses the list (counted), the last list stays;
+ *  - the planning bounds are the core's rule (problem_bounds.h).
  */
 #include <math.h>
 #include <setjmp.h>
@@ -25,6 +26,7 @@
 
 #include "daemon.h"
 #include "daemon_fixture.h"
+#include "gmmrrt/problem_bounds.h"
 
 static char k_frame[] = "map"; /* the daemon's default [world] frame */
 #define MS ((int64_t)1000)
@@ -145,6 +147,25 @@ static double min_predicted_distance(const gmmrrt_waypoints_t *m, person_in_t p,
         best = fmin(best, hypot(m->x[i] - (p.x + p.vx * t), m->y[i] - (p.y + p.vy * t)));
     }
     return best;
+}
+
+/* The planning bounds are the core's rule (problem_bounds.h), the one gmmrrt-plan and the Python
+ * tools use: the scene of planner.problem_bounds (tests/unit/planner/test_problem_bounds.py) gives
+ * the same box here. The person and the far circle do not widen it. */
+static void test_planning_bounds_are_the_core_rule(void **state)
+{
+    gmmrrtd_t *d = *state;
+    const person_in_t person = {2.0, 3.0, 0.0, 0.0, 0.0};
+    send_goal(d, 0, 5.0, 1.0, GMMRRT_NAV_GOAL_T_TASK_NONE, -1);
+    send_people(d, 0, &person, 1);
+    send_circle(d, 0, 10.0, 10.0, 0.5);
+    one_cycle(d, 0.5, -1.0);
+    const gmmrrt_bounds_t *b = &d->problem.obstacles.bounds;
+    gmmrrt_bounds_t rule;
+    assert_int_equal(gmmrrt_problem_bounds(0.5, -1.0, 5.0, 1.0, d->set.bounds_margin_m, &rule), GMMRRT_OK);
+    assert_memory_equal(b, &rule, sizeof rule);
+    assert_true(d->set.bounds_margin_m == GMMRRT_DEFAULT_BOUNDS_MARGIN_M);
+    assert_true(b->xmin == -2.5 && b->ymin == -4.0 && b->xmax == 8.0 && b->ymax == 4.0);
 }
 
 static void test_walker_head_on_is_passed_at_a_safe_distance(void **state)
@@ -299,6 +320,7 @@ static void test_person_faster_than_the_bound_is_refused_and_counted(void **stat
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(test_planning_bounds_are_the_core_rule, setup, teardown),
         cmocka_unit_test_setup_teardown(test_walker_head_on_is_passed_at_a_safe_distance, setup, teardown),
         cmocka_unit_test_setup_teardown(test_start_inside_a_disc_escapes_in_the_same_cycle, setup, teardown),
         cmocka_unit_test_setup_teardown(test_frozen_start_stops_with_the_reason_counted, setup, teardown),

@@ -27,7 +27,7 @@ foreach(what pc lib shared io cmake_config lcm_archive unit ini doc lcm_files py
     message(FATAL_ERROR "install is missing ${what} under ${PREFIX}")
   endif()
 endforeach()
-foreach(h rrtstar.h model.h msg_decode.h model_file.h)
+foreach(h planner.h model.h msg_decode.h model_file.h)
   if(NOT EXISTS ${PREFIX}/include/gmmrrt/${h})
     message(FATAL_ERROR "install is missing include/gmmrrt/${h}")
   endif()

@@ -84,7 +84,7 @@ def test_unpacked_into_a_throwaway_root_it_runs_and_is_complete(deb, tmp_path):
     for f in ("usr/bin/gmmrrtd", "usr/bin/gmmrrt-plan", "usr/bin/gmmrrt-learn", "usr/lib/libgmmrrt.a",
               "usr/lib/libgmmrrt_io.a", "usr/lib/libgmmrrt_lcmtypes_c.a", "usr/lib/gmmrrt/liblcm.a",
               "usr/lib/pkgconfig/gmmrrt.pc", "usr/lib/cmake/gmmrrt/gmmrrtConfig.cmake",
-              "usr/lib/cmake/gmmrrt/gmmrrtConfigVersion.cmake", "usr/include/gmmrrt/rrtstar.h",
+              "usr/lib/cmake/gmmrrt/gmmrrtConfigVersion.cmake", "usr/include/gmmrrt/planner.h",
               "usr/include/gmmrrt/model_file.h", "usr/include/gmmrrt/third_party/lcm/lcm.h",
               "etc/gmmrrt/gmmrrtd.ini", "lib/systemd/system/gmmrrtd.service",
               "usr/share/doc/gmmrrt/copyright", "usr/share/doc/gmmrrt/changelog.gz",

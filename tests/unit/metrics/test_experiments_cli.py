@@ -104,7 +104,7 @@ def test_real_data_harness_scores_what_the_planner_returns(tmp_path):
     assert sorted({r["seed"] for r in runs}) == [7, 8]
     assert all("--seed" in r["argv"] and "--json" in r["argv"] for r in runs)
     gmm_runs = [r for r in runs if r["planner"].startswith("GMM-RRT*")]
-    assert all("--model" in r["argv"] and "--bias 0.95" in r["argv"] and "--cost " in r["argv"] for r in gmm_runs)
+    assert all("--model" in r["argv"] and "--gmm-bias 0.95" in r["argv"] and "--task-cost " in r["argv"] for r in gmm_runs)
     assert all("--model" not in r["argv"] for r in runs if r["planner"] == "RRT*")
     # every standing person of the recording, except in the one-person row; the sides as asked
     for r in runs:

@@ -13,7 +13,7 @@
 
 #include "gmmrrt/gmm.h"
 #include "gmmrrt/model.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 
 /* Closed form of the disc detour, so the tests do not carry a magic number. */
 static inline double disc_detour_length(double half_span_m, double radius_m)
@@ -44,6 +44,17 @@ static inline gmmrrt_problem_t disc_problem(void)
     gmmrrt_problem_t pr = empty_problem(-5.0, 0.0, 5.0, 0.0);
     pr.obstacles.num_circles = 1;
     pr.obstacles.circles[0] = (gmmrrt_circle_t){0.0, 0.0, 2.0};
+    return pr;
+}
+
+/* Avoid one person standing at the origin facing -x, from (-4, 0) to (4, 0), with `model`. */
+static inline gmmrrt_problem_t avoid_problem(const gmmrrt_model_t *model)
+{
+    gmmrrt_problem_t pr = empty_problem(-4.0, 0.0, 4.0, 0.0);
+    pr.task = GMMRRT_TASK_AVOID;
+    pr.model = model;
+    pr.obstacles.num_people = 1;
+    pr.obstacles.people[0] = (gmmrrt_pose_t){0.0, 0.0, M_PI};
     return pr;
 }
 

@@ -38,11 +38,11 @@ def write_features_model(path, thetas, d=1.2, sd=0.2, st=0.25, task=1):
 def test_help_lists_every_option():
     r = run("--help")
     assert r.returncode == 0
-    for opt in ["--model", "--start", "--goal", "--person", "--obstacle", "--planner", "--bias",
+    for opt in ["--model", "--start", "--goal", "--person", "--obstacle", "--planner", "--gmm-bias",
                 "--budget-ms", "--iterations", "--seed", "--robot-radius", "--bounds", "--json", "--delta",
                 "--w-task", "--rewire-k", "--informed", "--map", "cost_history", "setup_ms",
                 "--goal-yaw-tolerance", "--min-turn-radius", "--nominal-speed", "--raw-path", "--approach-models",
-                "--side", "--side-person", "--cost", "--background-model"]:
+                "--side", "--side-person", "--task-cost", "--background-model", "--face-target"]:
         assert opt in r.stdout
 
 
@@ -116,7 +116,7 @@ def test_model_run_passes_on_the_models_side(tmp_path):
 @pytest.mark.parametrize("args, message", [
     (["--start", "nan,0", "--goal", "1,1"], "--start"),
     (["--start", "0,0", "--goal", "1,inf"], "--goal"),
-    (["--start", "0,0", "--goal", "1,1", "--planner", "rrt"], "unknown planner"),
+    (["--start", "0,0", "--goal", "1,1", "--planner", "rrt"], "expected gmm-rrt-star, rrt-star or gmm-rrt"),
     (["--start", "0,0", "--goal", "9,0", "--obstacle", "circle:0,0,6"], "frozen"),
     (["--start", "0,0", "--goal", "4,0", "--person", "2,2,0,0,nan"], "--person"),
     (["--start", "0,0", "--goal", "4,0", "--person", "2,2,0,3.5,0"], "at most 3 m/s"),
@@ -128,7 +128,10 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0", "--goal", "4,0,nan"], "--goal"),
     (["--start", "-3,0", "--goal", "0,0", "--obstacle", "circle:0,0,1"], "goal in collision"),
     (["--start", "0,0", "--goal", "1,1", "--obstacle", "triangle:0,0,1"], "--obstacle"),
-    (["--start", "0,0", "--goal", "1,1", "--bias", "1.5"], "--bias"),
+    (["--start", "0,0", "--goal", "1,1", "--gmm-bias", "1.5"], "--gmm-bias"),
+    (["--start", "0,0", "--goal", "1,1", "--bias", "0.5"], "--bias was renamed --gmm-bias"),
+    (["--start", "0,0", "--goal", "1,1", "--cost", "paper"], "--cost was renamed --task-cost"),
+    (["--start", "0,0", "--goal", "1,1", "--face-target=2"], "--face-target"),
     (["--start", "0,0", "--goal", "1,1", "--iterations", "ten"], "--iterations"),
     (["--start", "0,0", "--goal", "1,1", "--bounds", "1,0,0,1"], "--bounds"),
     (["--start", "0,0", "--goal", "1,1", "--planner", "gmm-rrt-star"], "needs --model"),
@@ -142,16 +145,16 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0", "--goal", "1,1", "--rewire-k", "-1"], "--rewire-k"),
     (["--start", "0,0", "--goal", "1,1", "--rewire-k", "x"], "--rewire-k"),
     (["--start", "0,0", "--goal", "1,1", "--informed", "2"], "--informed"),
-    (["--start", "0,0", "--goal", "1,1", "--max-nodes", "1"], "--max-nodes '1': expected an integer in 2.."),
+    (["--start", "0,0", "--goal", "1,1", "--max-nodes", "1"], "--max-nodes '1': config.max_nodes must be in 2..4194304"),
     (["--start", "0,0", "--goal", "1,1", "--max-nodes", "99999999"], "--max-nodes"),
     (["--start", "0,0", "--goal", "1,1", "--max-nodes", "1e4"], "--max-nodes"),
     (["--start", "0,0", "--goal", "1,1", "--side", "up"], "--side"),
     (["--start", "0,0", "--goal", "1,1", "--side-person", "-1"], "--side-person"),
     (["--start", "0,0", "--goal", "3,3", "--person", "1,1,0", "--side-person", "1"], "--side-person"),
-    (["--start", "0,0", "--goal", "1,1", "--cost", "max"], "--cost"),
-    (["--start", "0,0", "--goal", "1,1", "--cost", "background"], "needs --background-model"),
+    (["--start", "0,0", "--goal", "1,1", "--task-cost", "max"], "--task-cost 'max'"),
+    (["--start", "0,0", "--goal", "1,1", "--task-cost", "background"], "needs --background-model"),
     (["--start", "0,0", "--goal", "1,1", "--background-model", "/nonexistent/bg.gmm"], "/nonexistent/bg.gmm"),
-    (["--start", "0,0", "--goal", "1,1", "--bias", "1.5"], "--bias '1.5': config.gmm_bias must be in [0, 1]"),
+    (["--start", "0,0", "--goal", "1,1", "--gmm-bias", "1.5"], "--gmm-bias '1.5': config.gmm_bias must be in [0, 1]"),
     (["--start", "0,0", "--goal", "1,1", "--robot-radius", "-0.1"], "--robot-radius '-0.1': config.robot_radius_m"),
 ])
 def test_bad_input_is_refused_with_a_clear_error(args, message):
@@ -322,6 +325,14 @@ def test_approach_model_set_picks_the_start_direction_and_refuses_a_missing_one(
         assert out["drive"]["arrival_met"]  # approach arrives facing the person by default
         assert abs(math.atan2(math.sin(out["yaw"][-1] - math.pi), math.cos(out["yaw"][-1] - math.pi))) <= \
             math.radians(15)
+    # --face-target=0: no turn to face the person at the end; the path arrives on its own tangent
+    # (from the right side, about 73 degrees, far from the 180 that faces the person).
+    for flag, facing in (("--face-target=0", False), ("--face-target=1", True), ("--face-target", True)):
+        r = run(*base, "--start", "0.3,-3", flag)
+        assert r.returncode == 0, r.stderr
+        yaw = json.loads(r.stdout)["yaw"][-1]
+        off = abs(math.atan2(math.sin(yaw - math.pi), math.cos(yaw - math.pi)))
+        assert (off <= math.radians(15)) == facing, (flag, math.degrees(yaw))
     (tmp_path / "6-135_left.gmm").unlink()
     r = run(*base, "--start", "-3,0.2")
     assert r.returncode == 1 and r.stdout == ""
@@ -381,10 +392,10 @@ def test_cost_choice_changes_the_plan(tmp_path):
     bends the path in, the inward cost does not; the default is the paper's."""
     model = write_features_model(tmp_path / "both.gmm", [math.pi * i / 6 for i in range(-5, 6) if i])
     base = ["--model", str(model), "--start", "-4,2.5", "--goal", "4,2.5", "--person", "0,0,3.141592653589793",
-            "--iterations", "6000", "--bias", "0.5", "--bounds", "-6,-4,6,5", "--json"]
+            "--iterations", "6000", "--gmm-bias", "0.5", "--bounds", "-6,-4,6,5", "--json"]
     closest = {}
     for cost in ("paper", "inward", None):
-        r = run(*base, *(["--cost", cost] if cost else []))
+        r = run(*base, *(["--task-cost", cost] if cost else []))
         assert r.returncode == 0, r.stderr
         closest[cost] = min(math.hypot(x, y) for x, y in json.loads(r.stdout)["path"])
     assert closest["paper"] < 2.0 < 2.3 < closest["inward"]

@@ -21,7 +21,7 @@
 #include <cmocka.h>
 
 #include "gmmrrt/map_file.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 
 static char maps_dir[1024];
 static char tmp_dir[256];

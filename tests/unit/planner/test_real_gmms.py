@@ -67,7 +67,7 @@ def plan(model_file, planner, start, goal):
             "--person", "0,0,0", "--start", f"{start[0]},{start[1]}", "--goal", f"{goal[0]},{goal[1]}",
             "--bounds", "-6,-6,6,6", "--iterations", "12000", "--seed", "3", "--json"]
     if planner == "gmm-rrt-star":
-        args += ["--cost", "paper"]  # mean_task_cost below is the paper's cost: plan with that one
+        args += ["--task-cost", "paper"]  # mean_task_cost below is the paper's cost: plan with that one
     r = subprocess.run(args, capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     return json.loads(r.stdout)["path"]

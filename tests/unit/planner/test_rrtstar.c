@@ -1,5 +1,5 @@
 /*
- * test_rrtstar.c - planner.rrtstar: the RRT* of rrtstar.h on problems with known answers
+ * test_rrtstar.c - planner.rrtstar: the RRT* of planner.h on problems with known answers
  * and its invariants (Karaman & Frazzoli 2011; OMPL-style checks):
  * free straight line, the disc detour converging to its closed-form length, best cost
  * never increasing, every tree edge collision-free (FCL oracle), cost-to-come consistent

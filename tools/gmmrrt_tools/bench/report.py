@@ -240,7 +240,7 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
         L += ["Problem: [-10,10]², a disc of radius 2 at the origin, start (-5,0), goal (5,0), point robot "
               "(optimal length 10.811 m). OMPL 1.5.2 `RRTstar` with its default settings (k-nearest rewiring, "
               "range 5.66 m, goal bias 0.05, delayed collision checks, motion checks every 0.283 m). Ours "
-              "(`rrtstar.h`) with its defaults where they are search choices (k-nearest near sets with OMPL's "
+              "(`planner.h`) with its defaults where they are search choices (k-nearest near sets with OMPL's "
               "k_rrg = 4.485, informed sampling once a path exists, samples in collision dropped) and OMPL's "
               "numbers where they are problem settings: step 5.66 m, goal bias 0.05, edge resolution 0.283 m. "
               "Two more planners run interleaved with these for context: ours without informed sampling "

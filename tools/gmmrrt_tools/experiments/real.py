@@ -80,21 +80,21 @@ class RealSet:
     agreement: Tuple[float, float, int] = (math.nan, math.nan, 0)
 
 
-# GMM-RRT* runs name their task cost (--cost) so a table does not depend on the CLI's default;
+# GMM-RRT* runs name their task cost (--task-cost) so a table does not depend on the CLI's default;
 # DEFAULT_COST is that default (planner/src/config.c), the one the per-episode rankings follow.
 DEFAULT_COST = "paper"
 DEFAULT_LABEL = f"GMM-RRT* ({DEFAULT_COST} cost)"
 
 
 def _avoid_planners(mdl: Path, one_person: bool, bg: Optional[Path] = None) -> List[Tuple[str, str, Optional[Path], Tuple[str, ...]]]:
-    d = ("--cost", DEFAULT_COST)
-    out = [("GMM-RRT* (paper cost)", "gmm-rrt-star", mdl, ("--cost", "paper")),
-           ("GMM-RRT* (inward cost)", "gmm-rrt-star", mdl, ("--cost", "inward"))]
+    d = ("--task-cost", DEFAULT_COST)
+    out = [("GMM-RRT* (paper cost)", "gmm-rrt-star", mdl, ("--task-cost", "paper")),
+           ("GMM-RRT* (inward cost)", "gmm-rrt-star", mdl, ("--task-cost", "inward"))]
     if bg is not None:
-        out.append(("GMM-RRT* (background cost)", "gmm-rrt-star", mdl, ("--cost", "background", "--background-model",
+        out.append(("GMM-RRT* (background cost)", "gmm-rrt-star", mdl, ("--task-cost", "background", "--background-model",
                                                                        str(bg))))
     if one_person:
-        out.append(("GMM-RRT* (paper cost, own person only)", "gmm-rrt-star", mdl, ("--cost", "paper", "ONE_PERSON")))
+        out.append(("GMM-RRT* (paper cost, own person only)", "gmm-rrt-star", mdl, ("--task-cost", "paper", "ONE_PERSON")))
     out += [(f"GMM-RRT* ({DEFAULT_COST} cost, straight line's side)", "gmm-rrt-star", mdl, d + ("STRAIGHT_SIDE",)),
             (f"GMM-RRT* ({DEFAULT_COST} cost, human's side)", "gmm-rrt-star", mdl, d + ("HUMAN_SIDE",)),
             ("RRT*", "rrt-star", None, ())]
@@ -200,8 +200,8 @@ def real_ucy_approach(ctx: Ctx) -> RealSet:
                  "the approached one is the target. Final heading error = angle between the path's last segment and "
                  "the bearing to the person.", eps, [multi_person_scene(e, people[e.episode_id]) for e in eps],
                  planners, approach=True)
-    rs.planners = [("GMM-RRT* (paper cost)", "gmm-rrt-star", None, ("--cost", "paper")),
-                   ("GMM-RRT* (inward cost)", "gmm-rrt-star", None, ("--cost", "inward")), ("RRT*", "rrt-star", None, ())]
+    rs.planners = [("GMM-RRT* (paper cost)", "gmm-rrt-star", None, ("--task-cost", "paper")),
+                   ("GMM-RRT* (inward cost)", "gmm-rrt-star", None, ("--task-cost", "inward")), ("RRT*", "rrt-star", None, ())]
     rs.models = models  # type: ignore[attr-defined]
     del real
     return rs

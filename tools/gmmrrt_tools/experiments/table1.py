@@ -15,10 +15,10 @@ from .common import (
 # ==================================================================== Table 1
 
 PLANNERS_T1 = [  # label, planner, model homotopy ("row" = the row's homotopy, "all" = the task model), kind, extra
-    ("GMM-RRT*", "gmm-rrt-star", "row", "features", ("--cost", "paper")),
-    ("GMM-RRT* (inward cost)", "gmm-rrt-star", "row", "features", ("--cost", "inward")),
-    ("GMM-RRT* (background cost)", "gmm-rrt-star", "row", "features", ("--cost", "background", "BACKGROUND")),
-    ("GMM-RRT* (task model)", "gmm-rrt-star", "all", "features", ("--cost", "paper")),
+    ("GMM-RRT*", "gmm-rrt-star", "row", "features", ("--task-cost", "paper")),
+    ("GMM-RRT* (inward cost)", "gmm-rrt-star", "row", "features", ("--task-cost", "inward")),
+    ("GMM-RRT* (background cost)", "gmm-rrt-star", "row", "features", ("--task-cost", "background", "BACKGROUND")),
+    ("GMM-RRT* (task model)", "gmm-rrt-star", "all", "features", ("--task-cost", "paper")),
     ("GMM-RRT", "gmm-rrt", "row", "xy", ()),
     ("RRT*", "rrt-star", None, None, ()),
 ]

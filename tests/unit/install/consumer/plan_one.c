@@ -1,7 +1,7 @@
 /*
  * plan_one.c - a program outside the project, built against an installed gmmrrt (pkg-config or
  * find_package): loads the model file argv[1] with gmmrrt_model_load_file and plans one path
- * around a standing person with GMM-RRT* (rrtstar.h). Prints "path N points, length L m".
+ * around a standing person with GMM-RRT* (planner.h). Prints "path N points, length L m".
  * With GMMRRT_CONSUMER_LCMTYPES it also encodes and decodes a waypoints message
  * (gmmrrt::lcmtypes), so the installed message library and LCM link too.
  * Exit: 0 a path was found; 1 any error (printed).
@@ -10,7 +10,7 @@
 #include <stdlib.h>
 
 #include "gmmrrt/model_file.h"
-#include "gmmrrt/rrtstar.h"
+#include "gmmrrt/planner.h"
 #ifdef GMMRRT_CONSUMER_LCMTYPES
 #include "gmmrrt/gmmrrt_waypoints_t.h"
 #endif

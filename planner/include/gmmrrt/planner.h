@@ -1,6 +1,7 @@
 /*
- * rrtstar.h - the anytime planner: RRT* (Karaman & Frazzoli 2011) with the paper's mixture
- * sampling bias and task cost (Sect. 4), plain RRT*, and the GMM-RRT baseline.
+ * planner.h - the anytime planner's API: GMM-RRT*, RRT* (Karaman & Frazzoli 2011) with the
+ * paper's mixture sampling bias and task cost (Sect. 4), plain RRT*, and the GMM-RRT baseline
+ * (gmm_rrt.c); the kind is cfg.planner, turned into behaviour in one place (strategy.c).
  *
  * Memory, like lcm-lite's lcmlite_init: gmmrrt_planner_mem_size(&cfg) says how many bytes;
  * gmmrrt_planner_init() places everything (planner state, node pool, spatial index,
@@ -12,8 +13,8 @@
  * task is about; with several people in avoid, relative to the one nearest x among those
  * within person_influence_m of the segment start-goal. Quadrature: docs/planner.md.
  */
-#ifndef GMMRRT_RRTSTAR_H
-#define GMMRRT_RRTSTAR_H
+#ifndef GMMRRT_PLANNER_H
+#define GMMRRT_PLANNER_H
 
 #include <stddef.h>
 #include <stdint.h>
@@ -178,4 +179,4 @@ const gmmrrt_world_t *gmmrrt_planner_world(const gmmrrt_planner_t *p);
 #ifdef __cplusplus
 }
 #endif
-#endif /* GMMRRT_RRTSTAR_H */
+#endif /* GMMRRT_PLANNER_H */
