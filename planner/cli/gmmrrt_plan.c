@@ -706,8 +706,9 @@ int main(int argc, char **argv)
         printf(", \"tight_turns\": %d, \"turns_in_place\": %d, \"min_walker_clearance_m\": ", rep.tight_turns,
                rep.turns_in_place);
         json_number(rep.min_walker_clearance_m);
-        printf(", \"walker_conflict\": %s, \"escape\": \"%s\"}, \"approach_model\": ",
-               rep.walker_conflict ? "true" : "false", escape_reason);
+        printf(", \"walker_conflict\": %s, \"side_kept\": %s, \"escape\": \"%s\"}, \"approach_model\": ",
+               rep.walker_conflict ? "true" : "false", found && !raw ? (rep.side_kept ? "true" : "false") : "null",
+               escape_reason);
         if (set_direction >= 0)
             printf("\"%s\", \"stats\": {", gmmrrt_approach_direction_name(set_direction));
         else

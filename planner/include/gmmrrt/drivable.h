@@ -52,6 +52,9 @@ typedef struct {
     double cost;                /* the planner's cost of the shortcut polyline (arcs not re-costed) */
     double min_walker_clearance_m; /* clearance to the walkers at each waypoint's time; +inf none */
     int32_t walker_conflict;    /* 1: some waypoint meets a walker where they are predicted then */
+    int32_t side_kept;          /* 1: the path passes every person on the side the tree path does
+                                   (the same swept bearing angle around each, smooth.c); the
+                                   shortcut, the arrival leg and the corner cuts never change a side */
 } gmmrrt_drive_report_t;
 
 /* Fills *out with the drivable version of the planner's best path, resampled like

@@ -212,6 +212,66 @@ static void test_approach_from_behind_arrives_facing(void **state)
     }
 }
 
+/* Where the polyline crosses the vertical line x = x0 (the person's), the y of each crossing:
+ * an oracle of the side a path passes a person, independent of smooth.c's swept angles. */
+static int32_t crossings_at_x(const gmmrrt_path_t *path, double x0, double *ys, int32_t cap)
+{
+    int32_t n = 0;
+    for (int32_t i = 0; i + 1 < path->num_points && n < cap; ++i) {
+        const double a = path->x[i] - x0, b = path->x[i + 1] - x0;
+        if ((a < 0.0) != (b < 0.0))
+            ys[n++] = path->y[i] + (path->y[i + 1] - path->y[i]) * a / (a - b);
+    }
+    return n;
+}
+
+/* Approach from the person's right, arriving in front of them and a little to their left (a
+ * Table 1 scene, "approach / right", demonstration start and goal): the tree path goes round
+ * the right side. The arrival leg that faces the person starts further out in front; the vertex
+ * that sees the leg's start with room for both arcs used to be the robot's start, whose chord
+ * passes the person's left: the drivable path swapped sides. Every plan must stay on the right. */
+static void test_arrival_leg_keeps_the_tree_path_side_of_the_person(void **state)
+{
+    (void)state;
+    const double tree_x[] = {-3.305, -2.17, -1.13, 0.04, 0.57, 0.9, 0.78, 0.7728};
+    const double tree_y[] = {-0.201, -0.57, -1.11, -1.27, -1.01, -0.52, 0.04, 0.1835};
+    const int32_t n = (int32_t)(sizeof tree_x / sizeof tree_x[0]);
+    const double radii[] = {0.3, 0.5, 0.0};
+    for (int r = 0; r < 3; ++r) {
+        gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+        cfg.robot_radius_m = 0.3;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(tree_x[0], tree_y[0], tree_x[n - 1], tree_y[n - 1]);
+        pr.task = GMMRRT_TASK_APPROACH;
+        pr.target_person = 0;
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = (gmmrrt_pose_t){0.0, 0.0, 0.0};
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        assert_int_equal(gmmrrt_planner_seed_path(t.p, tree_x + 1, tree_y + 1, n - 1), GMMRRT_OK);
+        gmmrrt_path_t raw, path;
+        assert_int_equal(gmmrrt_planner_best_path(t.p, &raw), GMMRRT_OK);
+        double ys[8];
+        assert_int_equal(crossings_at_x(&raw, 0.0, ys, 8), 1);
+        assert_true(ys[0] < 0.0); /* the tree path: the person's right */
+        gmmrrt_drive_options_t opt;
+        gmmrrt_drive_options_default(&opt);
+        opt.arrival = GMMRRT_ARRIVAL_FACE_TARGET;
+        opt.min_turn_radius_m = radii[r];
+        gmmrrt_drive_report_t rep;
+        assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_OK);
+        const int32_t nc = crossings_at_x(&path, 0.0, ys, 8);
+        printf("radius %.1f: %d crossing(s) of x = 0, first at y = %.2f; arrival %.1f deg off, side kept %d\n",
+               radii[r], (int)nc, nc ? ys[0] : NAN, rep.arrival_error_rad * 180.0 / M_PI, (int)rep.side_kept);
+        assert_int_equal(nc, 1);
+        assert_true(ys[0] < -(cfg.robot_radius_m + cfg.person_radius_m));
+        assert_true(rep.side_kept);
+        assert_true(rep.arrival_met);
+        assert_chords_free(t.p, &path, 0);
+        test_planner_free(&t);
+    }
+}
+
 static void test_arrival_yaw_is_honoured_and_options_checked(void **state)
 {
     (void)state;
@@ -456,6 +516,7 @@ int main(void)
         cmocka_unit_test(test_zero_radius_turns_in_place),
         cmocka_unit_test(test_long_collinear_tree_path_is_taken),
         cmocka_unit_test(test_approach_from_behind_arrives_facing),
+        cmocka_unit_test(test_arrival_leg_keeps_the_tree_path_side_of_the_person),
         cmocka_unit_test(test_arrival_yaw_is_honoured_and_options_checked),
         cmocka_unit_test(test_person_stepping_into_the_disc_is_escaped),
         cmocka_unit_test(test_walker_crossing_is_passed_at_a_safe_distance),
