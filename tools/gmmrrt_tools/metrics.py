@@ -224,6 +224,23 @@ def smoothness_max(path) -> float:
     return float(np.max(dh)) if len(dh) else 0.0
 
 
+def turns_tighter_than(path, yaw, min_turn_radius_m: float) -> int:
+    """Waypoint steps of a published plan that turn tighter than `min_turn_radius_m` [m]: the change of
+    the published yaw (the tangent) between consecutive waypoints beyond what an arc of that radius
+    through both allows, 2 asin(chord / 2R) (+1e-6 rad for rounding). 0 for a radius of 0 (turning in
+    place allowed) or fewer than two waypoints."""
+    p = as_path(path)
+    y = np.asarray(yaw, dtype=float).reshape(-1)
+    if y.shape[0] != p.shape[0]:
+        raise ValueError(f"yaw has {y.shape[0]} values for {p.shape[0]} waypoints")
+    if not (min_turn_radius_m > 0.0) or len(p) < 2:
+        return 0
+    chord = np.linalg.norm(np.diff(p, axis=0), axis=1)
+    allowed = 2.0 * np.arcsin(np.minimum(1.0, chord / (2.0 * min_turn_radius_m))) + 1e-6
+    turned = np.abs([wrap(a) for a in np.diff(y)])
+    return int(np.sum(turned > allowed))
+
+
 def summed_heading_change(path) -> float:
     """Total turning along the path [rad] (the cumulative heading change of `smoothness`)."""
     return smoothness(path)
@@ -439,7 +456,7 @@ def mean_std(values) -> Tuple[float, float]:
 __all__ = [
     "INTIMATE_ZONE_M", "PERSONAL_ZONE_M", "as_path", "path_length", "point_to_path_distances",
     "tdm_pair", "length_error_pair", "tdm", "length_error", "per_plan_tdm_le",
-    "min_distance_to_people", "fraction_within", "smoothness", "approach_end", "ApproachEnd",
+    "min_distance_to_people", "fraction_within", "smoothness", "turns_tighter_than", "approach_end", "ApproachEnd",
     "distance_to_box", "path_collides", "outcome", "rates", "social_metrics", "passing_side",
     "swept_angle", "same_homotopy",
     "mean_std", "SUCCESS", "COLLISION", "TIMEOUT", "FAILURE",
