@@ -593,7 +593,11 @@ gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gm
         }
         rep.walker_conflict = rep.min_walker_clearance_m <= 0.0;
     }
-    rep.status = p->escape.active ? GMMRRT_ESCAPE : GMMRRT_OK;
+    /* An escape says so first (its end turns on the spot by design); otherwise a path with a corner
+     * tighter than the radius is flagged, never passed off as drivable. R = 0 allows turning in place. */
+    rep.status = p->escape.active                                         ? GMMRRT_ESCAPE
+                 : R > 0.0 && (rep.tight_turns > 0 || rep.turns_in_place > 0) ? GMMRRT_TIGHT_TURNS
+                                                                             : GMMRRT_OK;
     if (report)
         *report = rep;
     return rep.status;

@@ -272,6 +272,44 @@ static void test_arrival_leg_keeps_the_tree_path_side_of_the_person(void **state
     }
 }
 
+/* A right-angle corner hugging the corner of a box: no arc of 0.3 m is free there and the chord
+ * over it crosses the box, so the corner is turned tighter. The path is returned all the same,
+ * flagged GMMRRT_TIGHT_TURNS (and counted); with R = 0 turning in place is allowed: GMMRRT_OK. */
+static void test_a_corner_without_a_free_arc_is_flagged(void **state)
+{
+    (void)state;
+    const double tree_x[] = {-1.5, 0.05, 0.05}, tree_y[] = {0.05, 0.05, -1.5};
+    const double radii[] = {0.3, 0.0};
+    for (int r = 0; r < 2; ++r) {
+        gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(tree_x[0], tree_y[0], tree_x[2], tree_y[2]);
+        pr.obstacles.num_boxes = 1;
+        pr.obstacles.boxes[0] = (gmmrrt_box_t){-1.0, -1.0, 2.0, 2.0, 0.0}; /* x, y in [-2, 0] */
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        assert_int_equal(gmmrrt_planner_seed_path(t.p, tree_x + 1, tree_y + 1, 2), GMMRRT_OK);
+        gmmrrt_drive_options_t opt;
+        gmmrrt_drive_options_default(&opt);
+        opt.min_turn_radius_m = radii[r];
+        gmmrrt_path_t path;
+        gmmrrt_drive_report_t rep;
+        const gmmrrt_status_t st = gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep);
+        printf("radius %.1f: status %d, tight %d, in place %d\n", radii[r], st, rep.tight_turns, rep.turns_in_place);
+        assert_int_equal(st, rep.status);
+        assert_true(path.num_points > 10);
+        assert_chords_free(t.p, &path, 0);
+        if (radii[r] > 0.0) {
+            assert_int_equal(st, GMMRRT_TIGHT_TURNS);
+            assert_true(rep.tight_turns + rep.turns_in_place >= 1);
+            assert_true(max_turn_per_m(&path) > 1.02 / radii[r]); /* the flag is true: it does turn tighter */
+        } else {
+            assert_int_equal(st, GMMRRT_OK);
+        }
+        test_planner_free(&t);
+    }
+}
+
 static void test_arrival_yaw_is_honoured_and_options_checked(void **state)
 {
     (void)state;
@@ -345,6 +383,41 @@ static void test_person_stepping_into_the_disc_is_escaped(void **state)
     const double away = atan2(0.0 - 0.1, 0.0 - 0.35);
     assert_true(fabs(gmmrrt_wrap_angle(atan2(path.y[1], path.x[1]) - away)) <= 2.5 * M_PI / 180.0 + 1e-9);
     test_planner_free(&t);
+}
+
+/* A start outside every disc but closer than the edge margin (1 mm, collision.h) to one: the
+ * point is free, yet every edge from it passes within the margin and is refused. It used to give
+ * no path, cycle after cycle (a closed-loop robot stalled at the edge of a person's disc, 0.55 m
+ * from them); it is a start to leave like one in contact: an escape, then the goal. */
+static void test_start_within_the_edge_margin_of_a_disc_escapes(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    cfg.robot_radius_m = 0.3;
+    const double contact = cfg.robot_radius_m + cfg.person_radius_m;
+    const double gaps[] = {0.0005, 0.0};
+    for (int g = 0; g < 2; ++g) {
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(contact + gaps[g], 0.0, 4.0, 1.0);
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = (gmmrrt_pose_t){0.0, 0.0, 0.0};
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ESCAPE);
+        if (gaps[g] > 0.0)
+            assert_true(gmmrrt_world_point_free(gmmrrt_planner_world(t.p), pr.start_x, pr.start_y));
+        gmmrrt_budget_t b = iters(2000);
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+        gmmrrt_drive_options_t opt;
+        gmmrrt_drive_options_default(&opt);
+        gmmrrt_path_t path;
+        gmmrrt_drive_report_t rep;
+        assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_ESCAPE);
+        assert_true(path.x[0] == pr.start_x && path.y[0] == pr.start_y);
+        assert_true(hypot(path.x[path.num_points - 1] - 4.0, path.y[path.num_points - 1] - 1.0) < 1e-9);
+        for (int32_t i = 1; i < path.num_points; ++i) /* never closer to the person than the start */
+            assert_true(hypot(path.x[i], path.y[i]) >= contact + gaps[g] - 1e-9);
+        test_planner_free(&t);
+    }
 }
 
 /* A walker crossing the robot's line where the robot will be: the plan keeps clear of where
@@ -517,8 +590,10 @@ int main(void)
         cmocka_unit_test(test_long_collinear_tree_path_is_taken),
         cmocka_unit_test(test_approach_from_behind_arrives_facing),
         cmocka_unit_test(test_arrival_leg_keeps_the_tree_path_side_of_the_person),
+        cmocka_unit_test(test_a_corner_without_a_free_arc_is_flagged),
         cmocka_unit_test(test_arrival_yaw_is_honoured_and_options_checked),
         cmocka_unit_test(test_person_stepping_into_the_disc_is_escaped),
+        cmocka_unit_test(test_start_within_the_edge_margin_of_a_disc_escapes),
         cmocka_unit_test(test_walker_crossing_is_passed_at_a_safe_distance),
         cmocka_unit_test(test_slow_person_is_standing_bit_for_bit),
         cmocka_unit_test(test_walker_cost_is_higher_in_front_than_behind),
