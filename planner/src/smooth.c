@@ -400,6 +400,67 @@ static void point_on(const piece_t *pc, double s, double *x, double *y, double *
     }
 }
 
+/* The escape's end (vertex e, the exit E, reached along the ray u): rather than turning on the
+ * spot at E, the robot drives on into the arc of radius R that leaves the pose (E, u) and ends
+ * heading straight for the next vertex Q (a Dubins turn-then-straight). It is written as a corner
+ * at the virtual vertex E' = E + R tan(alpha / 2) u (alpha the arc's sweep, < pi), whose rounded
+ * arc starts exactly at E; E' itself is never driven. Taken when the arc (chords of at most
+ * GMMRRT_ARC_CHORD_M) and the straight on to Q are free, every person stays on the same side as
+ * E -> Q, and the corner at Q still has room on that straight; otherwise the robot turns on the
+ * spot at E (counted in turns_in_place), which a differential drive can and which is the only way
+ * out when the goal is behind the person it leaves. Returns 1 when E' was inserted. */
+static int escape_exit_arc(const struct gmmrrt_planner *p, polyline_t *v, int32_t e, double R)
+{
+    if (!(R > 0.0) || e <= 0 || e + 1 >= v->n || v->n >= MAXV)
+        return 0;
+    const double ex = v->x[e], ey = v->y[e], qx = v->x[e + 1], qy = v->y[e + 1];
+    if (turn_angle(v->x[e - 1], v->y[e - 1], ex, ey, qx, qy) <= GMMRRT_STRAIGHT_RAD)
+        return 0;
+    const double psi = atan2(ey - v->y[e - 1], ex - v->x[e - 1]);
+    const double ux = cos(psi), uy = sin(psi);
+    const double s = ux * (qy - ey) - uy * (qx - ex) >= 0.0 ? 1.0 : -1.0; /* +1: Q is on the left */
+    const double cx = ex - s * R * uy, cy = ey + s * R * ux;                /* the arc's centre */
+    const double d = hypot(qx - cx, qy - cy);
+    if (!(d > R * (1.0 + 1e-9)))
+        return 0; /* Q inside the turning circle: no arc of R heads for it */
+    const double theta = atan2(qy - cy, qx - cx) - s * acos(R / d); /* the tangent point T's angle */
+    const double a0 = atan2(ey - cy, ex - cx);
+    double alpha = fmod(s * (theta - a0), 2.0 * M_PI);
+    if (alpha < 0.0)
+        alpha += 2.0 * M_PI;
+    if (!(alpha > GMMRRT_STRAIGHT_RAD && alpha < M_PI - 1e-3))
+        return 0;
+    const double tx = cx + R * cos(theta), ty = cy + R * sin(theta);
+    const piece_t arc = {ex, ey, psi, R * alpha, R, cx, cy, a0, s};
+    if (!arc_free(p, &arc) || !seg_free(p, tx, ty, qx, qy))
+        return 0;
+    double direct[GMMRRT_MAX_PEOPLE], turned[GMMRRT_MAX_PEOPLE];
+    sweep_clear(p, direct);
+    sweep_add(p, direct, ex, ey, qx, qy);
+    sweep_clear(p, turned);
+    sweep_add(p, turned, ex, ey, tx, ty); /* the chord of an arc that keeps clear of every person */
+    sweep_add(p, turned, tx, ty, qx, qy);
+    if (!sweep_same_side(p, direct, turned))
+        return 0;
+    if (e + 2 < v->n) { /* Q is a corner: its arc must fit on the straight T -> Q */
+        const double need_q = corner_need(R, tx, ty, qx, qy, v->x[e + 2], v->y[e + 2]);
+        if (!(need_q <= hypot(qx - tx, qy - ty)))
+            return 0;
+    }
+    /* A hair beyond the tangent length, so that rounding never makes the corner at E' look tight. */
+    const double t = R * tan(0.5 * alpha) + 1e-9;
+    for (int32_t j = v->n; j > e + 1; --j) {
+        v->x[j] = v->x[j - 1];
+        v->y[j] = v->y[j - 1];
+        v->c[j] = v->c[j - 1];
+    }
+    v->x[e + 1] = ex + t * ux;
+    v->y[e + 1] = ey + t * uy;
+    v->c[e + 1] = NAN;
+    ++v->n;
+    return 1;
+}
+
 static int valid_options(const gmmrrt_drive_options_t *o)
 {
     return isfinite(o->min_turn_radius_m) && o->min_turn_radius_m >= 0.0 && o->min_turn_radius_m <= 100.0 &&
@@ -458,6 +519,8 @@ gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gm
     rep.cost = 0.0;
     for (int32_t i = first_free; i + 1 < v.n; ++i)
         rep.cost += gmmrrt_edge_cost(p, v.x[i], v.y[i], v.x[i + 1], v.y[i + 1]);
+    if (p->escape.active)
+        escape_exit_arc(p, &v, first_free, opt->min_turn_radius_m);
 
     /* Corners: what each needs (R tan(phi / 2)), what it may use of its two segments (all it
      * needs when both corners of a segment fit, else a share in proportion to the needs), then
@@ -468,7 +531,8 @@ gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gm
     phi_at[0] = phi_at[v.n - 1] = 0.0;
     for (int32_t i = 1; i < v.n - 1; ++i) {
         phi_at[i] = turn_angle(v.x[i - 1], v.y[i - 1], v.x[i], v.y[i], v.x[i + 1], v.y[i + 1]);
-        /* the escape's end: chords back into the contact cannot be free, so it turns in place */
+        /* the escape's end, when escape_exit_arc found no arc after it: chords back into the
+         * contact cannot be free, so it turns in place */
         const int no_arc = R <= 0.0 || phi_at[i] <= GMMRRT_STRAIGHT_RAD || (i == first_free && first_free > 0);
         need[i] = no_arc ? 0.0 : R * tan(0.5 * phi_at[i]);
     }

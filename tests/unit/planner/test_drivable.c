@@ -385,6 +385,59 @@ static void test_person_stepping_into_the_disc_is_escaped(void **state)
     test_planner_free(&t);
 }
 
+/* A person steps in beside the robot, the goal ahead: the escape leaves straight away from them
+ * and then drives an arc of the turning radius onto the way to the goal instead of turning on the
+ * spot at the exit. With the goal behind the person (the way out points away from it) no arc of
+ * that radius is free: the robot turns on the spot there, counted. */
+static void test_escape_ends_with_a_drivable_arc_when_one_is_free(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    cfg.robot_radius_m = 0.3;
+    const double contact = cfg.robot_radius_m + cfg.person_radius_m;
+    const struct {
+        double px, py;
+        int in_place;
+    } cases[] = {{0.0, 0.35, 0}, {0.35, 0.1, 1}};
+    for (int c = 0; c < 2; ++c) {
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(0.0, 0.0, 4.0, 0.0);
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = (gmmrrt_pose_t){cases[c].px, cases[c].py, 0.0};
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ESCAPE);
+        gmmrrt_budget_t b = iters(3000);
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+        gmmrrt_drive_options_t opt;
+        gmmrrt_drive_options_default(&opt);
+        gmmrrt_path_t path;
+        gmmrrt_drive_report_t rep;
+        assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_ESCAPE);
+        printf("person (%.2f, %.2f): turns in place %d, tight %d, max turn %.2f 1/m (bound %.2f)\n", cases[c].px,
+               cases[c].py, rep.turns_in_place, rep.tight_turns, max_turn_per_m(&path), 1.02 / opt.min_turn_radius_m);
+        assert_int_equal(rep.turns_in_place, cases[c].in_place);
+        if (!cases[c].in_place) {
+            assert_int_equal(rep.tight_turns, 0);
+            assert_true(max_turn_per_m(&path) <= 1.02 / opt.min_turn_radius_m);
+        }
+        /* The distance to the person never falls until clear, and then stays clear. */
+        double prev = 0.0;
+        int clear = 0;
+        for (int32_t i = 0; i < path.num_points; ++i) {
+            const double dist = hypot(path.x[i] - cases[c].px, path.y[i] - cases[c].py);
+            if (!clear)
+                assert_true(dist >= prev - 1e-12);
+            else
+                assert_true(dist > contact);
+            clear = clear || dist > contact;
+            prev = dist;
+        }
+        assert_true(clear);
+        assert_chords_free(t.p, &path, (int32_t)ceil(0.6 / cfg.waypoint_spacing_m)); /* past the way out */
+        test_planner_free(&t);
+    }
+}
+
 /* A start outside every disc but closer than the edge margin (1 mm, collision.h) to one: the
  * point is free, yet every edge from it passes within the margin and is refused. It used to give
  * no path, cycle after cycle (a closed-loop robot stalled at the edge of a person's disc, 0.55 m
@@ -593,6 +646,7 @@ int main(void)
         cmocka_unit_test(test_a_corner_without_a_free_arc_is_flagged),
         cmocka_unit_test(test_arrival_yaw_is_honoured_and_options_checked),
         cmocka_unit_test(test_person_stepping_into_the_disc_is_escaped),
+        cmocka_unit_test(test_escape_ends_with_a_drivable_arc_when_one_is_free),
         cmocka_unit_test(test_start_within_the_edge_margin_of_a_disc_escapes),
         cmocka_unit_test(test_walker_crossing_is_passed_at_a_safe_distance),
         cmocka_unit_test(test_slow_person_is_standing_bit_for_bit),
