@@ -37,6 +37,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 from gmmrrt_tools import metrics as M  # noqa: E402
 from gmmrrt_tools import runner as R  # noqa: E402
+from gmmrrt_tools.replay_check import ESCAPE_STATUS  # noqa: E402
 
 
 class DemoError(RuntimeError):
@@ -225,8 +226,9 @@ def analyse(scenario: Path, rec: Path, min_turn_radius_m: float) -> Tuple[dict, 
         sm["collides"] = float(M.path_collides(path, circles=circles, boxes=boxes))
         sm["max_turn_deg"] = math.degrees(M.max_turn_per_step(path, 0.1))
         sm["tight"] = float(M.turns_tighter_than(path, pl.yaw[:n], min_turn_radius_m) > 0)
-        # A plan with waypoints and a non-zero status is an escape (docs/daemon.md, "Escapes and freezes").
-        sm["escape"] = float(pl.status != 0)
+        # An escape's plan carries GMMRRT_ESCAPE (docs/daemon.md, "Escapes and freezes"); a flagged
+        # tight plan carries another status and counts in the column before.
+        sm["escape"] = float(pl.status == ESCAPE_STATUS)
         # Sides: the person's side each plan passes (at its closest point), for the people it passes
         # within the personal zone; a plan that passes one on the other side than the previous plan
         # of the row did is a side switch (a robot that hesitates between sides).
