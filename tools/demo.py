@@ -37,7 +37,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 from gmmrrt_tools import metrics as M  # noqa: E402
 from gmmrrt_tools import runner as R  # noqa: E402
-from gmmrrt_tools.replay_check import ESCAPE_STATUS  # noqa: E402
+from gmmrrt_tools.core import STATUS_ESCAPE  # noqa: E402
 
 
 class DemoError(RuntimeError):
@@ -228,7 +228,7 @@ def analyse(scenario: Path, rec: Path, min_turn_radius_m: float) -> Tuple[dict, 
         sm["tight"] = float(M.turns_tighter_than(path, pl.yaw[:n], min_turn_radius_m) > 0)
         # An escape's plan carries GMMRRT_ESCAPE (docs/daemon.md, "Escapes and freezes"); a flagged
         # tight plan carries another status and counts in the column before.
-        sm["escape"] = float(pl.status == ESCAPE_STATUS)
+        sm["escape"] = float(pl.status == STATUS_ESCAPE)
         # Sides: the person's side each plan passes (at its closest point), for the people it passes
         # within the personal zone; a plan that passes one on the other side than the previous plan
         # of the row did is a side switch (a robot that hesitates between sides).

@@ -383,7 +383,11 @@ def outcome(status: str, path, goal: Sequence[float], goal_tolerance_m: float = 
     """Classifies one planning run: `timeout` when the planner returned no path (status names the
     deadline or iteration cap, or no path found in the budget), `collision` when the returned path
     hits an obstacle or person (see path_collides; keyword arguments passed on), `failure` when it
-    ends farther than goal_tolerance_m from the goal or the status is an error, else `success`."""
+    ends farther than goal_tolerance_m from the goal or the status is an error, else `success`. A
+    drivable path flagged for a corner tighter than the turning radius (the core's
+    GMMRRT_TIGHT_TURNS) is a path like an "ok" one: the flag is about the follower, not the plan."""
+    from gmmrrt_tools import core
+
     st = (status or "").lower()
     if path is None or len(path) == 0:
         return TIMEOUT if ("timeout" in st or "no_path" in st or "no path" in st or st in ("", "ok")) \
@@ -393,7 +397,7 @@ def outcome(status: str, path, goal: Sequence[float], goal_tolerance_m: float = 
         return COLLISION
     if np.linalg.norm(p[-1] - np.asarray(goal[:2], dtype=float)) > goal_tolerance_m:
         return FAILURE
-    if st not in ("ok", "success", "gmmrrt_ok"):
+    if st not in ("ok", "success", "gmmrrt_ok", core.status_str(core.STATUS_TIGHT_TURNS).lower()):
         return FAILURE
     return SUCCESS
 

@@ -122,6 +122,8 @@ def test_box_distance_and_collisions():
 def test_outcomes_and_rates():
     line = [[0.0, 0.0], [5.0, 0.0]]
     assert m.outcome("ok", line, (5.0, 0.0)) == m.SUCCESS
+    # A drivable path flagged for a tight corner is a path (the core's text for GMMRRT_TIGHT_TURNS).
+    assert m.outcome("path turns tighter than the minimum turning radius somewhere", line, (5.0, 0.0)) == m.SUCCESS
     assert m.outcome("ok", line, (5.0, 0.0), circles=[(2.5, 0.0, 0.5)]) == m.COLLISION
     assert m.outcome("timeout", [], (5.0, 0.0)) == m.TIMEOUT
     assert m.outcome("ok", line, (9.0, 0.0)) == m.FAILURE
