@@ -7,7 +7,10 @@
    PLANNER_STATUS messages with lcm-logger, over UDP multicast on a private port with ttl=0 (the
    messages never leave the host); when multicast does not work here, the deterministic file://
    replay instead (gmmrrtd reads the scenario log and writes its plans to a log directly);
-4. print a metrics table of the plans (gmmrrt_tools.metrics) and the daemon's status counters;
+4. print a metrics table of the plans (gmmrrt_tools.metrics: length, distances to people, turning,
+   the largest turn within 0.1 m, plans turning tighter than the radius, escapes, side switches
+   between consecutive plans, the approach's arrival) and the daemon's status counters (stops by
+   reason, escapes, tight-turn plans);
 5. write a PNG with the demonstrations, the mixtures (density in the person's frame) and the
    planned paths in the scenario.
 
@@ -34,6 +37,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 from gmmrrt_tools import metrics as M  # noqa: E402
 from gmmrrt_tools import runner as R  # noqa: E402
+from gmmrrt_tools.core import STATUS_ESCAPE  # noqa: E402
 
 
 class DemoError(RuntimeError):
@@ -134,12 +138,13 @@ def learn_models(out: Path, bin_dir: Optional[str], seed: int) -> Dict[str, Path
 
 
 def run_daemon(scenario: Path, models: Dict[str, Path], out: Path, bin_dir: Optional[str], transport: str,
-               budget_ms: int, iterations: int) -> Path:
+               budget_ms: int, iterations: int, min_turn_radius_m: float) -> Path:
     gmmrrtd = R.find_tool("gmmrrtd", bin_dir)
     rec = out / f"plans_{scenario.stem}.lcmlog"
     if rec.exists():
         rec.unlink()
-    common = ["--model-avoid", str(models["avoid"]), "--model-approach", str(models["approach"])]
+    common = ["--model-avoid", str(models["avoid"]), "--model-approach", str(models["approach"]),
+              "--min-turn-radius", str(min_turn_radius_m)]
     daemon_log = open(out / f"gmmrrtd_{scenario.stem}.log", "w")
     if transport == "file":
         say(f"deterministic replay: gmmrrtd reads {scenario.name} via file:// and writes {rec.name}")
@@ -183,9 +188,9 @@ def run_daemon(scenario: Path, models: Dict[str, Path], out: Path, bin_dir: Opti
     return rec
 
 
-def analyse(scenario: Path, rec: Path) -> Tuple[dict, List[str], str]:
+def analyse(scenario: Path, rec: Path, min_turn_radius_m: float) -> Tuple[dict, List[str], str]:
     """Plans and inputs (for the plot), metrics table rows and a status line, from the scenario and
-    the recording."""
+    the recording; min_turn_radius_m: the daemon's [drive] radius, the bound of the turn columns."""
     inputs = read_log(scenario, ("ROBOT_POSE", "PEOPLE", "NAV_GOAL", "OBSTACLES"))
     outputs = read_log(rec, ("PLAN", "PLANNER_STATUS"))
     plans = [m for _, c, m in outputs if c == "PLAN"]
@@ -209,13 +214,32 @@ def analyse(scenario: Path, rec: Path) -> Tuple[dict, List[str], str]:
     planner_name = {1: "GMM-RRT*", 2: "RRT*", 3: "GMM-RRT"}
     rows: Dict[str, List[dict]] = {}
     ppl = list(people.values())
+    last_side: Dict[str, Dict[int, str]] = {}
     for pl in plans:
         n = pl.num_waypoints
         if n < 2:
             continue
         path = np.column_stack((pl.x[:n], pl.y[:n]))
+        key = (f"{scenario.stem}: {task_name.get(pl.task, pl.task)} / "
+               f"{planner_name.get(pl.planner, pl.planner)}")
         sm = M.social_metrics(path, ppl)
         sm["collides"] = float(M.path_collides(path, circles=circles, boxes=boxes))
+        sm["max_turn_deg"] = math.degrees(M.max_turn_per_step(path, 0.1))
+        sm["tight"] = float(M.turns_tighter_than(path, pl.yaw[:n], min_turn_radius_m) > 0)
+        # An escape's plan carries GMMRRT_ESCAPE (docs/daemon.md, "Escapes and freezes"); a flagged
+        # tight plan carries another status and counts in the column before.
+        sm["escape"] = float(pl.status == STATUS_ESCAPE)
+        # Sides: the person's side each plan passes (at its closest point), for the people it passes
+        # within the personal zone; a plan that passes one on the other side than the previous plan
+        # of the row did is a side switch (a robot that hesitates between sides).
+        sides = {pid: M.passing_side(path, pose) for pid, pose in people.items()
+                 if M.min_distance_to_people(path, [pose]) <= M.PERSONAL_ZONE_M}
+        prev = last_side.setdefault(key, {})
+        if any(pid in prev and prev[pid] != side for pid, side in sides.items()):
+            sm["side_switch"] = 1.0
+        elif any(pid in prev for pid in sides):
+            sm["side_switch"] = 0.0
+        prev.update(sides)
         if pl.task == 2 and goals:
             g = [g for g in goals if g.task == 2]
             tgt = people.get(g[-1].target_person_id) if g else None
@@ -223,8 +247,7 @@ def analyse(scenario: Path, rec: Path) -> Tuple[dict, List[str], str]:
                 end = M.approach_end(path, tgt)
                 sm["final_dist_m"] = end.final_distance_m
                 sm["final_heading_err_deg"] = math.degrees(end.heading_error_rad)
-        rows.setdefault(f"{scenario.stem}: {task_name.get(pl.task, pl.task)} / "
-                        f"{planner_name.get(pl.planner, pl.planner)}", []).append(sm)
+        rows.setdefault(key, []).append(sm)
     lines = []
     for key, sms in sorted(rows.items()):
         cells = [key, str(len(sms))]
@@ -233,7 +256,7 @@ def analyse(scenario: Path, rec: Path) -> Tuple[dict, List[str], str]:
             mean, std = M.mean_std(v)
             if not np.isfinite(mean):
                 cells.append("–")
-            elif k.startswith("frac") or k == "collides":
+            elif k.startswith("frac") or k in PERCENT_COLS:
                 cells.append(f"{100 * mean:.1f}")
             else:
                 cells.append(f"{mean:.2f} ± {std:.2f}")
@@ -243,8 +266,12 @@ def analyse(scenario: Path, rec: Path) -> Tuple[dict, List[str], str]:
         # Reason names come from the message's own REJECT_* constants, so a new reason shows up here.
         reasons = {getattr(type(st), n): n[len("REJECT_"):].lower() for n in dir(type(st)) if n.startswith("REJECT_")}
         rej = ", ".join(f"{reasons.get(i, f'reason_{i}')}={v}" for i, v in enumerate(st.rejected) if v) or "none"
+        stops = {getattr(type(st), n): n[len("STOP_"):].lower() for n in dir(type(st)) if n.startswith("STOP_")}
+        stp = ", ".join(f"{stops.get(i, f'reason_{i}')}={v}" for i, v in enumerate(st.stops) if v) or "none"
         status = (f"{scenario.stem}: gmmrrtd published {st.plans_published} plans, {st.missed_deadlines} missed "
-                  f"deadlines, rejected inputs: {rej}; last cycle {st.iterations} iterations, {st.plan_time_ms:.1f} ms")
+                  f"deadlines, rejected inputs: {rej}; stops: {stp}; escapes {st.escapes}, plans turning tighter "
+                  f"than the radius {st.tight_turn_plans}; last cycle {st.iterations} iterations, "
+                  f"{st.plan_time_ms:.1f} ms")
     else:
         status = f"{scenario.stem}: no PLANNER_STATUS recorded"
     data = {"name": scenario.stem, "plans": plans, "people": people, "poses": poses, "goals": goals,
@@ -255,7 +282,11 @@ def analyse(scenario: Path, rec: Path) -> Tuple[dict, List[str], str]:
 TABLE_COLS = [("plans", "plans"), ("length_m", "length (m)"), ("min_dist_person_m", "min dist. person (m)"),
               ("frac_within_0.45m", "% < 0.45 m"), ("frac_within_1.2m", "% < 1.2 m"),
               ("smoothness_rad", "heading change (rad)"), ("collides", "% colliding"),
-              ("final_dist_m", "approach: final dist. (m)"), ("final_heading_err_deg", "approach: heading err. (deg)")]
+              ("final_dist_m", "approach: final dist. (m)"), ("final_heading_err_deg", "approach: heading err. (deg)"),
+              ("max_turn_deg", "max turn in 0.1 m (deg)"), ("tight", "% tighter than the radius"),
+              ("escape", "% escapes"), ("side_switch", "% side switched")]
+# Columns shown as a percentage of the plans (mean of a 0/1 value).
+PERCENT_COLS = ("collides", "tight", "escape", "side_switch")
 
 
 def table_header() -> List[str]:
@@ -341,8 +372,12 @@ def main(argv=None) -> int:
     ap.add_argument("--budget-ms", type=int, default=80, help="daemon planning time per cycle (udpm), ms (default 80)")
     ap.add_argument("--iterations", type=int, default=1500, help="daemon samples per cycle (file replay), default 1500")
     ap.add_argument("--seed", type=int, default=1, help="learner seed (default 1)")
+    ap.add_argument("--min-turn-radius", type=float, default=0.3,
+                    help="gmmrrtd's minimum turning radius, m, and the bound of the turn columns (default 0.3)")
     ap.add_argument("--bin-dir", default=os.environ.get("GMMRRT_BIN_DIR"), help="folder of the gmmrrt executables")
     args = ap.parse_args(argv)
+    if not (math.isfinite(args.min_turn_radius) and args.min_turn_radius >= 0.0):
+        ap.error(f"--min-turn-radius must be a finite number >= 0, got {args.min_turn_radius}")
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     try:
@@ -362,8 +397,9 @@ def main(argv=None) -> int:
                 say("UDP multicast does not work on this host: using the deterministic file:// replay")
         datas, lines, statuses = [], table_header(), []
         for sc in scenarios:
-            rec = run_daemon(sc, models, out, args.bin_dir, transport, args.budget_ms, args.iterations)
-            data, rows, status = analyse(sc, rec)
+            rec = run_daemon(sc, models, out, args.bin_dir, transport, args.budget_ms, args.iterations,
+                             args.min_turn_radius)
+            data, rows, status = analyse(sc, rec, args.min_turn_radius)
             datas.append(data)
             lines += rows
             statuses.append(status)

@@ -130,7 +130,8 @@ static void usage(FILE *out)
             "\n"
             "The path printed is drivable (docs/planner.md): shortcut, corners rounded to the turning\n"
             "radius, yaw = tangent (--json adds \"yaw\" and \"drive\"). A start inside a person's disc\n"
-            "or an obstacle escapes first (status \"escaping...\", status_code 43, exit 0).\n"
+            "or an obstacle escapes first (status_code 43, exit 0); a corner tighter than the radius\n"
+            "(no free arc there) gives status_code 45, exit 0.\n"
             "Exit: 0 path found, 1 bad input or refused problem (or frozen: no way out), 3 no path\n"
             "within the budget.\n");
 }
@@ -605,8 +606,8 @@ int main(int argc, char **argv)
     rep.status = GMMRRT_OK;
     gmmrrt_status_t ps =
         raw ? gmmrrt_planner_best_path(p, &path) : gmmrrt_planner_drivable_path(p, &drive, &path, &rep);
-    if (ps == GMMRRT_ESCAPE)
-        ps = GMMRRT_OK; /* a path; the escape shows in the status */
+    if (ps == GMMRRT_ESCAPE || ps == GMMRRT_TIGHT_TURNS)
+        ps = GMMRRT_OK; /* a path; the escape or the tight corner shows in the status */
     else if (raw && ps == GMMRRT_OK && gmmrrt_planner_escape_reason(p)[0]) /* the tree path starts at the exit */
         rep.status = GMMRRT_ESCAPE;
     /* The history lives in the planner block: copy it out before the block is freed. */
@@ -639,8 +640,9 @@ int main(int argc, char **argv)
         printf(", \"tight_turns\": %d, \"turns_in_place\": %d, \"min_walker_clearance_m\": ", rep.tight_turns,
                rep.turns_in_place);
         json_number(rep.min_walker_clearance_m);
-        printf(", \"walker_conflict\": %s, \"escape\": \"%s\"}, \"approach_model\": ",
-               rep.walker_conflict ? "true" : "false", escape_reason);
+        printf(", \"walker_conflict\": %s, \"side_kept\": %s, \"escape\": \"%s\"}, \"approach_model\": ",
+               rep.walker_conflict ? "true" : "false", found && !raw ? (rep.side_kept ? "true" : "false") : "null",
+               escape_reason);
         if (set_direction >= 0)
             printf("\"%s\", \"stats\": {", gmmrrt_approach_direction_name(set_direction));
         else

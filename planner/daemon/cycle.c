@@ -384,7 +384,8 @@ static int publish_drivable(gmmrrtd_t *d, int64_t now_us, int escaping, gmmrrt_s
 {
     const gmmrrt_drive_options_t opt = drive_options(d);
     const gmmrrt_status_t drive_st = gmmrrt_planner_drivable_path(d->planner, &opt, &d->path, &d->drive_report);
-    if (drive_st != GMMRRT_OK && drive_st != GMMRRT_ESCAPE && drive_st != GMMRRT_NO_PATH_YET) {
+    if (drive_st != GMMRRT_OK && drive_st != GMMRRT_ESCAPE && drive_st != GMMRRT_TIGHT_TURNS &&
+        drive_st != GMMRRT_NO_PATH_YET) {
         reject_once_per_goal(d, ST(REJECT_SETUP), drive_st); /* options out of range, a tree path too long */
         publish_stop(d, now_us, drive_st, ST(STATE_ERROR));
         return -1;
@@ -399,7 +400,9 @@ static int publish_drivable(gmmrrtd_t *d, int64_t now_us, int escaping, gmmrrt_s
     remember_situation(d);
     const gmmrrt_drive_report_t *rep = &d->drive_report;
     if (d->set.min_turn_radius_m > 0.0 && (rep->tight_turns > 0 || rep->turns_in_place > 0)) {
-        /* Published all the same (a stop would be worse), but never silently. */
+        /* Published all the same, never silently: the plan carries GMMRRT_TIGHT_TURNS (an escape
+         * keeps GMMRRT_ESCAPE, whose end turns on the spot by design), the status counts it. A stop
+         * would freeze the robot where no drivable arc exists, and the next cycle re-plans anyway. */
         d->status.tight_turn_plans++;
         gmmrrtd_log_limited(&d->rl_tight, gmmrrtd_mono_us() / 1000, (int64_t)d->set.log_interval_ms,
                             GMMRRTD_LOG_WARN,
@@ -408,7 +411,7 @@ static int publish_drivable(gmmrrtd_t *d, int64_t now_us, int escaping, gmmrrt_s
                             d->set.min_turn_radius_m, (int)rep->tight_turns, (int)rep->turns_in_place,
                             (long long)d->status.tight_turn_plans);
     }
-    publish_plan(d, &d->path, escaping ? GMMRRT_ESCAPE : GMMRRT_OK);
+    publish_plan(d, &d->path, escaping ? GMMRRT_ESCAPE : drive_st);
     gmmrrtd_goal_planned(d, d->path.length_m);
     return 1;
 }

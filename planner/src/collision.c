@@ -53,9 +53,8 @@
 #define TILE (1 << TILE_SHIFT)
 #define TILE_CELLS (TILE * TILE)
 
-/* Margin an edge must keep from every obstacle and person (m): edges closer than this are
- * refused, which is what keeps sphere tracing exact and finite (see gmmrrt_world_segment_free). */
-#define GMMRRT_EDGE_MIN_CLEARANCE_M 1e-3
+/* GMMRRT_EDGE_MIN_CLEARANCE_M (collision.h): edges closer than this are refused, which is what
+ * keeps sphere tracing exact and finite (see gmmrrt_world_segment_free). */
 
 struct gmmrrt_world {
     gmmrrt_obstacle_set_t obstacles; /* copy of the last problem's: the grid is built from its statics */
@@ -629,6 +628,23 @@ int gmmrrt_world_point_free(const gmmrrt_world_t *world, double x, double y)
     near_statics_t near; /* not zero-initialised: 0.5 KB per query; filled on first need */
     set_near_box(&near, x, y, x, y);
     return static_clearance(world, &near, x, y, 0.0) > 0.0 && people_point_free(world, x, y);
+}
+
+int gmmrrt_world_point_leavable(const gmmrrt_world_t *world, double x, double y)
+{
+    if (!gmmrrt_world_point_free(world, x, y))
+        return 0;
+    /* The start conditions of gmmrrt_world_segment_free for an edge from (x, y). */
+    near_statics_t near;
+    set_near_box(&near, x, y, x, y);
+    if (!(static_clearance(world, &near, x, y, GMMRRT_EDGE_MIN_CLEARANCE_M) > GMMRRT_EDGE_MIN_CLEARANCE_M))
+        return 0;
+    for (int32_t k = 0; k < world->num_near_people; ++k) {
+        const double dx = x - world->near_px[k], dy = y - world->near_py[k];
+        if (dx * dx + dy * dy <= world->person_edge_reach2)
+            return 0;
+    }
+    return 1;
 }
 
 int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0, double x1, double y1)

@@ -114,7 +114,8 @@ gmmrrt_status_t gmmrrt_escape_find(struct gmmrrt_planner *p, const gmmrrt_proble
             prev = c;
             const double xm = sx + (s + GMMRRT_ESCAPE_MARGIN_M) * ux, ym = sy + (s + GMMRRT_ESCAPE_MARGIN_M) * uy;
             const double cm = gmmrrt_escape_signed_clearance(p, o, xm, ym, NULL);
-            if (gmmrrt_planner_point_free(p, x, y) && gmmrrt_planner_point_free(p, xm, ym) && cm >= c) {
+            if (gmmrrt_planner_point_free(p, x, y) && gmmrrt_planner_point_free(p, xm, ym) &&
+                gmmrrt_world_point_leavable(p->world, xm, ym) && cm >= c) {
                 const double len = s + GMMRRT_ESCAPE_MARGIN_M;
                 if (len < best_len - 1e-9 || cm > best_gain) {
                     best_len = len;
@@ -125,20 +126,24 @@ gmmrrt_status_t gmmrrt_escape_find(struct gmmrrt_planner *p, const gmmrrt_proble
             }
         }
     }
+    /* A start outside every shape but within the edge margin of one (rrtstar.c) is said as such. */
+    char where[96];
+    if (c0 < 0.0)
+        snprintf(where, sizeof where, "start %.3f m inside %s", -c0, shape);
+    else
+        snprintf(where, sizeof where, "start %.4f m from %s, within the edge margin", c0, shape);
     if (!isfinite(best_len)) {
         e->active = 0;
         snprintf(e->freeze_reason, sizeof e->freeze_reason,
-                 "start %.3f m inside %s and no straight motion within %.1f m both keeps increasing the "
-                 "clearance and reaches a free point",
-                 -c0, shape, GMMRRT_ESCAPE_MAX_M);
+                 "%s; no straight motion within %.1f m keeps raising the clearance to a free point",
+                 where, GMMRRT_ESCAPE_MAX_M);
         return GMMRRT_ERR_FROZEN;
     }
     e->active = 1;
     e->exit_x = sx + best_len * cos(best_dir);
     e->exit_y = sy + best_len * sin(best_dir);
     e->length_m = best_len;
-    snprintf(e->freeze_reason, sizeof e->freeze_reason, "start %.3f m inside %s: escaping %.2f m", -c0, shape,
-             best_len);
+    snprintf(e->freeze_reason, sizeof e->freeze_reason, "%s: escaping %.2f m", where, best_len);
     *exit_x = e->exit_x;
     *exit_y = e->exit_y;
     return GMMRRT_ESCAPE;

@@ -280,10 +280,13 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
         return GMMRRT_ERR_GOAL_OUT_OF_BOUNDS;
     if (!gmmrrt_world_point_free(w, pr->goal_x, pr->goal_y))
         return GMMRRT_ERR_GOAL_IN_COLLISION;
-    /* A start in collision is a state to leave, not a refusal (escape.c). */
+    /* A start in collision is a state to leave, not a refusal (escape.c). So is a free start within
+     * the edge margin of an obstacle or person (collision.h): every edge from it would be refused and
+     * the tree could never grow (the robot would stand there, cycle after cycle). */
     double root_x = pr->start_x, root_y = pr->start_y;
     gmmrrt_status_t start_status = GMMRRT_OK;
-    if (!gmmrrt_planner_point_free(p, pr->start_x, pr->start_y)) {
+    if (!gmmrrt_planner_point_free(p, pr->start_x, pr->start_y) ||
+        !gmmrrt_world_point_leavable(w, pr->start_x, pr->start_y)) {
         start_status = gmmrrt_escape_find(p, pr, &root_x, &root_y);
         if (start_status != GMMRRT_ESCAPE)
             return start_status;

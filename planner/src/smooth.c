@@ -8,12 +8,18 @@
  *     run of consecutive vertices such that the chord i-j is free by the planner's own tests and
  *     costs no more than the tree path it replaces (cost(i, j) <= C(j) - C(i), C the tree's
  *     cost-to-come; the objective includes the task cost, so a shortcut never trades the learned
- *     social shape for length). The escape is kept as it is.
+ *     social shape for length) and passes every person on the tree path's side. The escape is
+ *     kept as it is.
  *  3. Arrival: when the path must end on a heading and does not, a straight leg W -> goal on
- *     that heading replaces the path's tail from the latest vertex that sees W (legs tried from
- *     arrival_leg_m up, preferring one whose corner arc fits).
- *  3b. A corner whose arc cannot fit its segments is dropped when the chord over it is free and costs
- *     at most 5 % more than the two segments (relax_tight_corners).
+ *     that heading (or, failing that, one within the tolerance) replaces the path's tail from the
+ *     latest vertex that sees W (legs tried from arrival_leg_m up, preferring one whose corner arc
+ *     fits), never one that passes a person on the other side than the tail it replaces.
+ *  3b. A corner whose arc cannot fit its segments is dropped when the chord over it is free, costs
+ *     at most 5 % more than the two segments and keeps the sides (relax_tight_corners).
+ *  Sides: each person's side is the angle the bearing from them sweeps along the path; every
+ *  replacement in 2, 3 and 3b sweeps the same angle as what it replaces (seg_sweep), so the
+ *  drivable path stays in the tree path's homotopy class around every person, which is what the
+ *  learned model chose (paper Sect. 4: the demonstrations' side of the person).
  *  4. Corners: each corner turning by phi gets the circular arc of radius R = min_turn_radius_m
  *     tangent to both segments (tangent length R tan(phi / 2)); when the segments are too short
  *     for it, or a chord of the arc is not free, the arc is made smaller and the corner counted
@@ -65,6 +71,48 @@ typedef struct {
 static int seg_free(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1)
 {
     return gmmrrt_planner_segment_free(p, x0, y0, x1, y1);
+}
+
+/* Sides of the people. The signed angle the bearing from person q to the robot sweeps along a
+ * straight segment (counter-clockwise positive) is the wrapped change of that bearing, exactly,
+ * for a segment that does not pass through the person. Two paths between the same two points pass
+ * q on the same side (are homotopic in the plane punctured at q) iff their swept angles are equal;
+ * otherwise they differ by a multiple of 2 pi. So a piece of the path may be replaced by another
+ * with the same ends only when, for every person, the two sweep the same angle: |difference| < pi
+ * decides with all rounding to spare. The people are the problem's, where they are now. */
+static double seg_sweep(const gmmrrt_pose_t *q, double ax, double ay, double bx, double by)
+{
+    return gmmrrt_wrap_angle(atan2(by - q->y, bx - q->x) - atan2(ay - q->y, ax - q->x));
+}
+
+static void sweep_clear(const struct gmmrrt_planner *p, double *acc)
+{
+    for (int32_t q = 0; q < p->problem.obstacles.num_people; ++q)
+        acc[q] = 0.0;
+}
+
+/* acc[q] += the angle segment a-b sweeps around person q. */
+static void sweep_add(const struct gmmrrt_planner *p, double *acc, double ax, double ay, double bx, double by)
+{
+    for (int32_t q = 0; q < p->problem.obstacles.num_people; ++q)
+        acc[q] += seg_sweep(&p->problem.obstacles.people[q], ax, ay, bx, by);
+}
+
+/* 1 when the swept angles old[] and new_[] put every person on the same side. */
+static int sweep_same_side(const struct gmmrrt_planner *p, const double *old, const double *new_)
+{
+    for (int32_t q = 0; q < p->problem.obstacles.num_people; ++q)
+        if (!(fabs(old[q] - new_[q]) < M_PI))
+            return 0;
+    return 1;
+}
+
+/* Swept angles of the polyline x[0..n) around every person. */
+static void sweep_polyline(const struct gmmrrt_planner *p, const double *x, const double *y, int32_t n, double *acc)
+{
+    sweep_clear(p, acc);
+    for (int32_t i = 0; i + 1 < n; ++i)
+        sweep_add(p, acc, x[i], y[i], x[i + 1], y[i + 1]);
 }
 
 /* Appends (x, y, c) to the leaf-first list r[0..*m); `merge`: when the last vertex lies on the
@@ -130,8 +178,11 @@ static gmmrrt_status_t extract(const struct gmmrrt_planner *p, polyline_t *v, in
 static void shortcut(const struct gmmrrt_planner *p, polyline_t *v, int32_t first_free)
 {
     int32_t out = first_free + 1, i = first_free;
+    double tree[GMMRRT_MAX_PEOPLE], chord[GMMRRT_MAX_PEOPLE];
     while (i < v->n - 1) {
         int32_t j = i + 1;
+        sweep_clear(p, tree);
+        sweep_add(p, tree, v->x[i], v->y[i], v->x[j], v->y[j]);
         while (j + 1 <= v->n - 1) {
             const int32_t k = j + 1;
             const double saved = v->c[k] - v->c[i];
@@ -139,6 +190,11 @@ static void shortcut(const struct gmmrrt_planner *p, polyline_t *v, int32_t firs
                 break;
             if (!(gmmrrt_edge_cost(p, v->x[i], v->y[i], v->x[k], v->y[k]) <= saved + 1e-9 * (1.0 + fabs(v->c[k]))))
                 break;
+            sweep_add(p, tree, v->x[j], v->y[j], v->x[k], v->y[k]);
+            sweep_clear(p, chord);
+            sweep_add(p, chord, v->x[i], v->y[i], v->x[k], v->y[k]);
+            if (!sweep_same_side(p, tree, chord))
+                break; /* the chord would pass a person on the other side than the tree */
             j = k;
         }
         v->x[out] = v->x[j];
@@ -161,73 +217,96 @@ static double corner_need(double R, double ax, double ay, double bx, double by, 
     return R * tan(0.5 * turn_angle(ax, ay, bx, by, cx, cy));
 }
 
-/* Replaces the tail so the path ends with a straight leg on heading h: vertex k, then the
- * tail points, then the goal. Tails: the leg's start W alone, or W preceded by a point beside it
- * (a U-turn in two corners of about 90 degrees, for a path that arrives from the wrong side, as
- * when approaching a person from behind). Strict pass: every new corner's arc of radius R fits
- * (half of each segment it shares with another corner); lax pass: any free tail. Returns the
- * number of tail points put before the goal (0: the tail was not replaced). */
+/* The arrival heading may be anything within the tolerance; this fraction of it is what the
+ * fallback headings use, so that the resampled final tangent stays inside it. */
+#define GMMRRT_ARRIVAL_RELAX_FRACTION 0.9
+
+/* Replaces the tail so the path ends with a straight leg on a heading within the tolerance of h:
+ * vertex k, then the tail points, then the goal. Tails: the leg's start W alone, or W preceded by
+ * a point beside it (a U-turn in two corners of about 90 degrees, for a path that arrives from
+ * the wrong side, as when approaching a person from behind). Strict pass: every new corner's arc
+ * of radius R fits (half of each segment it shares with another corner); lax pass: any free tail.
+ * In each pass the heading h itself is tried first, then h -+ GMMRRT_ARRIVAL_RELAX_FRACTION of
+ * the tolerance (the one nearer the path's own arrival first). A tail is taken only when it
+ * passes every person on the same side as the tail it replaces (sweep_same_side): the leg must
+ * not swing the path around the person it approaches. Returns the number of tail points put
+ * before the goal (0: the tail was not replaced). */
 static int32_t arrival_leg(const struct gmmrrt_planner *p, const gmmrrt_drive_options_t *opt, polyline_t *v,
-                       int32_t first_free, double h)
+                           int32_t first_free, double h)
 {
     const double gx = v->x[v->n - 1], gy = v->y[v->n - 1];
-    const double ux = cos(h), uy = sin(h), R = opt->min_turn_radius_m;
+    const double R = opt->min_turn_radius_m;
+    const double last = atan2(gy - v->y[v->n - 2], gx - v->x[v->n - 2]);
+    const double d = GMMRRT_ARRIVAL_RELAX_FRACTION * opt->goal_yaw_tolerance_rad;
+    const double toward = gmmrrt_wrap_angle(last - h) >= 0.0 ? 1.0 : -1.0;
+    const double headings[3] = {h, h + toward * d, h - toward * d};
     static const double scale[] = {1.0, 1.5, 2.0, 3.0, 4.0, 0.75, 0.5};
+    double old[GMMRRT_MAX_PEOPLE], tail[GMMRRT_MAX_PEOPLE];
     for (int strict = 1; strict >= 0; --strict) {
-        for (size_t s = 0; s < sizeof scale / sizeof scale[0]; ++s) {
-            const double L = fmax(opt->arrival_leg_m * scale[s], strict ? 1.05 * R : 0.0);
-            const double wx = gx - L * ux, wy = gy - L * uy;
-            if (!gmmrrt_planner_point_free(p, wx, wy) || !seg_free(p, wx, wy, gx, gy))
-                continue;
-            for (int variant = 0; variant < 3; ++variant) {
-                double tx[2], ty[2];
-                int32_t nt = 1;
-                if (variant == 0) {
-                    tx[0] = wx;
-                    ty[0] = wy;
-                } else { /* beside W: W - L2 u(h +- 90 deg), L2 leaves room for two arcs of 90 degrees */
-                    const double side = variant == 1 ? 1.0 : -1.0, l2 = fmax(L, 2.2 * R);
-                    tx[0] = wx + side * l2 * uy;
-                    ty[0] = wy - side * l2 * ux;
-                    tx[1] = wx;
-                    ty[1] = wy;
-                    nt = 2;
-                    if (!gmmrrt_planner_point_free(p, tx[0], ty[0]) || !seg_free(p, tx[0], ty[0], wx, wy))
-                        continue;
-                }
-                for (int32_t k = v->n - 2; k >= first_free; --k) {
-                    const double in = hypot(tx[0] - v->x[k], ty[0] - v->y[k]);
-                    if (in < 1e-6 || !seg_free(p, v->x[k], v->y[k], tx[0], ty[0]))
-                        continue;
-                    if (strict) {
-                        /* corners at the tail points, and at vertex k when it is one */
-                        const double nx0 = nt == 2 ? tx[1] : gx, ny0 = nt == 2 ? ty[1] : gy;
-                        const double t0 = corner_need(R, v->x[k], v->y[k], tx[0], ty[0], nx0, ny0);
-                        const double tk = k > first_free ? corner_need(R, v->x[k - 1], v->y[k - 1], v->x[k], v->y[k],
-                                                                       tx[0], ty[0])
-                                                         : 0.0;
-                        if (!(tk + t0 <= in && tk <= 0.5 * hypot(v->x[k] - v->x[k - 1 < 0 ? 0 : k - 1],
-                                                                 v->y[k] - v->y[k - 1 < 0 ? 0 : k - 1]) +
-                                                         (k > first_free ? 0.0 : INFINITY)))
+        for (int hi = 0; hi < 3; ++hi) {
+            const double ux = cos(headings[hi]), uy = sin(headings[hi]);
+            for (size_t s = 0; s < sizeof scale / sizeof scale[0]; ++s) {
+                const double L = fmax(opt->arrival_leg_m * scale[s], strict ? 1.05 * R : 0.0);
+                const double wx = gx - L * ux, wy = gy - L * uy;
+                if (!gmmrrt_planner_point_free(p, wx, wy) || !seg_free(p, wx, wy, gx, gy))
+                    continue;
+                for (int variant = 0; variant < 3; ++variant) {
+                    double tx[3], ty[3];
+                    int32_t nt = 1;
+                    if (variant == 0) {
+                        tx[0] = wx;
+                        ty[0] = wy;
+                    } else { /* beside W: W - L2 u(h +- 90 deg), L2 leaves room for two arcs of 90 degrees */
+                        const double side = variant == 1 ? 1.0 : -1.0, l2 = fmax(L, 2.2 * R);
+                        tx[0] = wx + side * l2 * uy;
+                        ty[0] = wy - side * l2 * ux;
+                        tx[1] = wx;
+                        ty[1] = wy;
+                        nt = 2;
+                        if (!gmmrrt_planner_point_free(p, tx[0], ty[0]) || !seg_free(p, tx[0], ty[0], wx, wy))
                             continue;
-                        if (nt == 1 && !(t0 <= L))
+                    }
+                    tx[nt] = gx;
+                    ty[nt] = gy;
+                    sweep_clear(p, old);
+                    for (int32_t k = v->n - 2; k >= first_free; --k) {
+                        sweep_add(p, old, v->x[k], v->y[k], v->x[k + 1], v->y[k + 1]); /* the tail from k */
+                        const double in = hypot(tx[0] - v->x[k], ty[0] - v->y[k]);
+                        if (in < 1e-6 || !seg_free(p, v->x[k], v->y[k], tx[0], ty[0]))
                             continue;
-                        if (nt == 2) {
-                            const double t1 = corner_need(R, tx[0], ty[0], wx, wy, gx, gy);
-                            if (!(t0 + t1 <= hypot(wx - tx[0], wy - ty[0]) && t1 <= L))
+                        if (strict) {
+                            /* corners at the tail points, and at vertex k when it is one */
+                            const double nx0 = tx[1], ny0 = ty[1];
+                            const double t0 = corner_need(R, v->x[k], v->y[k], tx[0], ty[0], nx0, ny0);
+                            const double tk = k > first_free ? corner_need(R, v->x[k - 1], v->y[k - 1], v->x[k],
+                                                                           v->y[k], tx[0], ty[0])
+                                                             : 0.0;
+                            if (!(tk + t0 <= in && tk <= 0.5 * hypot(v->x[k] - v->x[k - 1 < 0 ? 0 : k - 1],
+                                                                     v->y[k] - v->y[k - 1 < 0 ? 0 : k - 1]) +
+                                                             (k > first_free ? 0.0 : INFINITY)))
                                 continue;
+                            if (nt == 1 && !(t0 <= L))
+                                continue;
+                            if (nt == 2) {
+                                const double t1 = corner_need(R, tx[0], ty[0], wx, wy, gx, gy);
+                                if (!(t0 + t1 <= hypot(wx - tx[0], wy - ty[0]) && t1 <= L))
+                                    continue;
+                            }
                         }
+                        sweep_clear(p, tail);
+                        sweep_add(p, tail, v->x[k], v->y[k], tx[0], ty[0]);
+                        for (int32_t q = 0; q < nt; ++q)
+                            sweep_add(p, tail, tx[q], ty[q], tx[q + 1], ty[q + 1]);
+                        if (!sweep_same_side(p, old, tail))
+                            continue;
+                        for (int32_t q = 0; q <= nt; ++q) {
+                            v->x[k + 1 + q] = tx[q];
+                            v->y[k + 1 + q] = ty[q];
+                            v->c[k + 1 + q] = NAN;
+                        }
+                        v->n = k + 2 + nt;
+                        return nt;
                     }
-                    for (int32_t q = 0; q < nt; ++q) {
-                        v->x[k + 1 + q] = tx[q];
-                        v->y[k + 1 + q] = ty[q];
-                        v->c[k + 1 + q] = NAN;
-                    }
-                    v->x[k + 1 + nt] = gx;
-                    v->y[k + 1 + nt] = gy;
-                    v->c[k + 1 + nt] = NAN;
-                    v->n = k + 2 + nt;
-                    return nt;
                 }
             }
         }
@@ -252,7 +331,7 @@ static int corner_fits(const polyline_t *v, int32_t i, double R, int32_t first_f
 
 /* Corners whose arc cannot fit are removed when the chord over them is free and costs at most
  * GMMRRT_RELAX_COST_RATIO times the two segments it replaces (a small price in the objective for a
- * drivable turn); vertices from `keep_from` on (the arrival leg) and up to first_free stay. */
+ * drivable turn) and passes every person on the same side; vertices from `keep_from` on (the arrival leg) and up to first_free stay. */
 #define GMMRRT_RELAX_COST_RATIO 1.05
 static void relax_tight_corners(const struct gmmrrt_planner *p, polyline_t *v, double R, int32_t first_free,
                                 int32_t keep_from)
@@ -267,8 +346,14 @@ static void relax_tight_corners(const struct gmmrrt_planner *p, polyline_t *v, d
         const double old = gmmrrt_edge_cost(p, v->x[i - 1], v->y[i - 1], v->x[i], v->y[i]) +
                            gmmrrt_edge_cost(p, v->x[i], v->y[i], v->x[i + 1], v->y[i + 1]);
         const double chord = gmmrrt_edge_cost(p, v->x[i - 1], v->y[i - 1], v->x[i + 1], v->y[i + 1]);
+        double two[GMMRRT_MAX_PEOPLE], one[GMMRRT_MAX_PEOPLE];
+        sweep_clear(p, two);
+        sweep_add(p, two, v->x[i - 1], v->y[i - 1], v->x[i], v->y[i]);
+        sweep_add(p, two, v->x[i], v->y[i], v->x[i + 1], v->y[i + 1]);
+        sweep_clear(p, one);
+        sweep_add(p, one, v->x[i - 1], v->y[i - 1], v->x[i + 1], v->y[i + 1]);
         if (!(chord <= GMMRRT_RELAX_COST_RATIO * old) ||
-            !seg_free(p, v->x[i - 1], v->y[i - 1], v->x[i + 1], v->y[i + 1])) {
+            !seg_free(p, v->x[i - 1], v->y[i - 1], v->x[i + 1], v->y[i + 1]) || !sweep_same_side(p, two, one)) {
             ++i;
             continue;
         }
@@ -315,6 +400,67 @@ static void point_on(const piece_t *pc, double s, double *x, double *y, double *
     }
 }
 
+/* The escape's end (vertex e, the exit E, reached along the ray u): rather than turning on the
+ * spot at E, the robot drives on into the arc of radius R that leaves the pose (E, u) and ends
+ * heading straight for the next vertex Q (a Dubins turn-then-straight). It is written as a corner
+ * at the virtual vertex E' = E + R tan(alpha / 2) u (alpha the arc's sweep, < pi), whose rounded
+ * arc starts exactly at E; E' itself is never driven. Taken when the arc (chords of at most
+ * GMMRRT_ARC_CHORD_M) and the straight on to Q are free, every person stays on the same side as
+ * E -> Q, and the corner at Q still has room on that straight; otherwise the robot turns on the
+ * spot at E (counted in turns_in_place), which a differential drive can and which is the only way
+ * out when the goal is behind the person it leaves. Returns 1 when E' was inserted. */
+static int escape_exit_arc(const struct gmmrrt_planner *p, polyline_t *v, int32_t e, double R)
+{
+    if (!(R > 0.0) || e <= 0 || e + 1 >= v->n || v->n >= MAXV)
+        return 0;
+    const double ex = v->x[e], ey = v->y[e], qx = v->x[e + 1], qy = v->y[e + 1];
+    if (turn_angle(v->x[e - 1], v->y[e - 1], ex, ey, qx, qy) <= GMMRRT_STRAIGHT_RAD)
+        return 0;
+    const double psi = atan2(ey - v->y[e - 1], ex - v->x[e - 1]);
+    const double ux = cos(psi), uy = sin(psi);
+    const double s = ux * (qy - ey) - uy * (qx - ex) >= 0.0 ? 1.0 : -1.0; /* +1: Q is on the left */
+    const double cx = ex - s * R * uy, cy = ey + s * R * ux;                /* the arc's centre */
+    const double d = hypot(qx - cx, qy - cy);
+    if (!(d > R * (1.0 + 1e-9)))
+        return 0; /* Q inside the turning circle: no arc of R heads for it */
+    const double theta = atan2(qy - cy, qx - cx) - s * acos(R / d); /* the tangent point T's angle */
+    const double a0 = atan2(ey - cy, ex - cx);
+    double alpha = fmod(s * (theta - a0), 2.0 * M_PI);
+    if (alpha < 0.0)
+        alpha += 2.0 * M_PI;
+    if (!(alpha > GMMRRT_STRAIGHT_RAD && alpha < M_PI - 1e-3))
+        return 0;
+    const double tx = cx + R * cos(theta), ty = cy + R * sin(theta);
+    const piece_t arc = {ex, ey, psi, R * alpha, R, cx, cy, a0, s};
+    if (!arc_free(p, &arc) || !seg_free(p, tx, ty, qx, qy))
+        return 0;
+    double direct[GMMRRT_MAX_PEOPLE], turned[GMMRRT_MAX_PEOPLE];
+    sweep_clear(p, direct);
+    sweep_add(p, direct, ex, ey, qx, qy);
+    sweep_clear(p, turned);
+    sweep_add(p, turned, ex, ey, tx, ty); /* the chord of an arc that keeps clear of every person */
+    sweep_add(p, turned, tx, ty, qx, qy);
+    if (!sweep_same_side(p, direct, turned))
+        return 0;
+    if (e + 2 < v->n) { /* Q is a corner: its arc must fit on the straight T -> Q */
+        const double need_q = corner_need(R, tx, ty, qx, qy, v->x[e + 2], v->y[e + 2]);
+        if (!(need_q <= hypot(qx - tx, qy - ty)))
+            return 0;
+    }
+    /* A hair beyond the tangent length, so that rounding never makes the corner at E' look tight. */
+    const double t = R * tan(0.5 * alpha) + 1e-9;
+    for (int32_t j = v->n; j > e + 1; --j) {
+        v->x[j] = v->x[j - 1];
+        v->y[j] = v->y[j - 1];
+        v->c[j] = v->c[j - 1];
+    }
+    v->x[e + 1] = ex + t * ux;
+    v->y[e + 1] = ey + t * uy;
+    v->c[e + 1] = NAN;
+    ++v->n;
+    return 1;
+}
+
 static int valid_options(const gmmrrt_drive_options_t *o)
 {
     return isfinite(o->min_turn_radius_m) && o->min_turn_radius_m >= 0.0 && o->min_turn_radius_m <= 100.0 &&
@@ -350,6 +496,8 @@ gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gm
     if (st != GMMRRT_OK)
         return st;
     rep.vertices_in = v.n;
+    double tree_sweep[GMMRRT_MAX_PEOPLE];
+    sweep_polyline(p, v.x, v.y, v.n, tree_sweep);
     if (opt->shortcut)
         shortcut(p, &v, first_free);
 
@@ -371,6 +519,8 @@ gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gm
     rep.cost = 0.0;
     for (int32_t i = first_free; i + 1 < v.n; ++i)
         rep.cost += gmmrrt_edge_cost(p, v.x[i], v.y[i], v.x[i + 1], v.y[i + 1]);
+    if (p->escape.active)
+        escape_exit_arc(p, &v, first_free, opt->min_turn_radius_m);
 
     /* Corners: what each needs (R tan(phi / 2)), what it may use of its two segments (all it
      * needs when both corners of a segment fit, else a share in proportion to the needs), then
@@ -381,7 +531,8 @@ gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gm
     phi_at[0] = phi_at[v.n - 1] = 0.0;
     for (int32_t i = 1; i < v.n - 1; ++i) {
         phi_at[i] = turn_angle(v.x[i - 1], v.y[i - 1], v.x[i], v.y[i], v.x[i + 1], v.y[i + 1]);
-        /* the escape's end: chords back into the contact cannot be free, so it turns in place */
+        /* the escape's end, when escape_exit_arc found no arc after it: chords back into the
+         * contact cannot be free, so it turns in place */
         const int no_arc = R <= 0.0 || phi_at[i] <= GMMRRT_STRAIGHT_RAD || (i == first_free && first_free > 0);
         need[i] = no_arc ? 0.0 : R * tan(0.5 * phi_at[i]);
     }
@@ -483,6 +634,11 @@ gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gm
     out->length_m = total;
     out->cost = rep.cost;
 
+    /* The output against the tree path, person by person: every step above kept the sides, and the
+     * arcs stay inside their corners' free chords; this states it for what is published. */
+    double out_sweep[GMMRRT_MAX_PEOPLE];
+    sweep_polyline(p, out->x, out->y, m, out_sweep);
+    rep.side_kept = sweep_same_side(p, tree_sweep, out_sweep);
     rep.arrival_yaw = yaw;
     if (want) {
         rep.arrival_error_rad = fabs(gmmrrt_wrap_angle(yaw - h));
@@ -501,7 +657,11 @@ gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gm
         }
         rep.walker_conflict = rep.min_walker_clearance_m <= 0.0;
     }
-    rep.status = p->escape.active ? GMMRRT_ESCAPE : GMMRRT_OK;
+    /* An escape says so first (its end turns on the spot by design); otherwise a path with a corner
+     * tighter than the radius is flagged, never passed off as drivable. R = 0 allows turning in place. */
+    rep.status = p->escape.active                                         ? GMMRRT_ESCAPE
+                 : R > 0.0 && (rep.tight_turns > 0 || rep.turns_in_place > 0) ? GMMRRT_TIGHT_TURNS
+                                                                             : GMMRRT_OK;
     if (report)
         *report = rep;
     return rep.status;

@@ -28,6 +28,7 @@ const char *gmmrrt_status_str(gmmrrt_status_t status)
     case GMMRRT_ESCAPE: return "escaping: start in collision, the path leaves it first";
     case GMMRRT_NO_PATH_YET: return "no path yet";
     case GMMRRT_NO_PATH_ON_SIDE: return "no path on the preferred side";
+    case GMMRRT_TIGHT_TURNS: return "path turns tighter than the minimum turning radius somewhere";
     case GMMRRT_POOL_FULL: return "node pool full";
     case GMMRRT_TIMEOUT: return "timeout";
     }

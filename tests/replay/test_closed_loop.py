@@ -28,6 +28,7 @@ from gmmrrt import nav_goal_t, people_t, person_t, planner_status_t, pose2d_t, w
 from gmmrrt_tools.scenario_models import write_approach_set
 
 ESCAPE = 43                 # GMMRRT_ESCAPE (planner/include/gmmrrt/status.h), the plan's status code
+TIGHT_TURNS = 45            # GMMRRT_TIGHT_TURNS: a plan with a corner tighter than the radius
 CONTACT = ROBOT_RADIUS + PERSON_RADIUS
 SPEED = 0.6                 # m/s, the robot's cruise speed (also the daemon's nominal speed)
 MAX_TURN_RATE = 2.0         # rad/s
@@ -162,12 +163,15 @@ def drive(gmmrrtd, tmp_path, robot, goal, people_at, extra, limit_s, reached, fi
 
 
 def check_turns(plans, statuses):
-    """Plans turning tighter than MIN_TURN_RADIUS between waypoints: at most those counted."""
+    """Plans turning tighter than MIN_TURN_RADIUS between waypoints: each is flagged (status 45, or
+    43 for an escape), and they are at most those counted."""
     over = 0
     for _, p in plans:
         for i in range(1, p.num_waypoints):
             chord = math.hypot(p.x[i] - p.x[i - 1], p.y[i] - p.y[i - 1])
             if abs(wrap(p.yaw[i] - p.yaw[i - 1])) > 2 * math.asin(min(1.0, chord / (2 * MIN_TURN_RADIUS))) + 1e-6:
+                assert p.status in (TIGHT_TURNS, ESCAPE), "plan %d turns tighter than %.2f m with status %d" % (
+                    p.seq, MIN_TURN_RADIUS, p.status)
                 over += 1
                 break
     counted = statuses[-1].tight_turn_plans if statuses else 0

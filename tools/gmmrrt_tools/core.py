@@ -231,6 +231,18 @@ def approach_direction_name(direction: int) -> str:
     return name.decode()
 
 
+# gmmrrt_status_t codes a path comes with (planner/include/gmmrrt/status.h; wire-stable, they are
+# PLAN.status values): a plan that first escapes a contact, and one flagged for a corner tighter
+# than the turning radius.
+STATUS_ESCAPE = 43
+STATUS_TIGHT_TURNS = 45
+
+
+def status_str(code: int) -> str:
+    """The core's text for a gmmrrt_status_t code (gmmrrt_status_str), as gmmrrt-plan prints it."""
+    return lib().gmmrrt_status_str(int(code)).decode()
+
+
 def wrap_angle(a: float) -> float:
     """Angle wrapped to (-pi, pi] (gmmrrt_wrap_angle)."""
     return lib().gmmrrt_wrap_angle(float(a))

@@ -224,6 +224,23 @@ def smoothness_max(path) -> float:
     return float(np.max(dh)) if len(dh) else 0.0
 
 
+def turns_tighter_than(path, yaw, min_turn_radius_m: float) -> int:
+    """Waypoint steps of a published plan that turn tighter than `min_turn_radius_m` [m]: the change of
+    the published yaw (the tangent) between consecutive waypoints beyond what an arc of that radius
+    through both allows, 2 asin(chord / 2R) (+1e-6 rad for rounding). 0 for a radius of 0 (turning in
+    place allowed) or fewer than two waypoints."""
+    p = as_path(path)
+    y = np.asarray(yaw, dtype=float).reshape(-1)
+    if y.shape[0] != p.shape[0]:
+        raise ValueError(f"yaw has {y.shape[0]} values for {p.shape[0]} waypoints")
+    if not (min_turn_radius_m > 0.0) or len(p) < 2:
+        return 0
+    chord = np.linalg.norm(np.diff(p, axis=0), axis=1)
+    allowed = 2.0 * np.arcsin(np.minimum(1.0, chord / (2.0 * min_turn_radius_m))) + 1e-6
+    turned = np.abs([wrap(a) for a in np.diff(y)])
+    return int(np.sum(turned > allowed))
+
+
 def summed_heading_change(path) -> float:
     """Total turning along the path [rad] (the cumulative heading change of `smoothness`)."""
     return smoothness(path)
@@ -366,7 +383,11 @@ def outcome(status: str, path, goal: Sequence[float], goal_tolerance_m: float = 
     """Classifies one planning run: `timeout` when the planner returned no path (status names the
     deadline or iteration cap, or no path found in the budget), `collision` when the returned path
     hits an obstacle or person (see path_collides; keyword arguments passed on), `failure` when it
-    ends farther than goal_tolerance_m from the goal or the status is an error, else `success`."""
+    ends farther than goal_tolerance_m from the goal or the status is an error, else `success`. A
+    drivable path flagged for a corner tighter than the turning radius (the core's
+    GMMRRT_TIGHT_TURNS) is a path like an "ok" one: the flag is about the follower, not the plan."""
+    from gmmrrt_tools import core
+
     st = (status or "").lower()
     if path is None or len(path) == 0:
         return TIMEOUT if ("timeout" in st or "no_path" in st or "no path" in st or st in ("", "ok")) \
@@ -376,7 +397,7 @@ def outcome(status: str, path, goal: Sequence[float], goal_tolerance_m: float = 
         return COLLISION
     if np.linalg.norm(p[-1] - np.asarray(goal[:2], dtype=float)) > goal_tolerance_m:
         return FAILURE
-    if st not in ("ok", "success", "gmmrrt_ok"):
+    if st not in ("ok", "success", "gmmrrt_ok", core.status_str(core.STATUS_TIGHT_TURNS).lower()):
         return FAILURE
     return SUCCESS
 
@@ -439,7 +460,7 @@ def mean_std(values) -> Tuple[float, float]:
 __all__ = [
     "INTIMATE_ZONE_M", "PERSONAL_ZONE_M", "as_path", "path_length", "point_to_path_distances",
     "tdm_pair", "length_error_pair", "tdm", "length_error", "per_plan_tdm_le",
-    "min_distance_to_people", "fraction_within", "smoothness", "approach_end", "ApproachEnd",
+    "min_distance_to_people", "fraction_within", "smoothness", "turns_tighter_than", "approach_end", "ApproachEnd",
     "distance_to_box", "path_collides", "outcome", "rates", "social_metrics", "passing_side",
     "swept_angle", "same_homotopy",
     "mean_std", "SUCCESS", "COLLISION", "TIMEOUT", "FAILURE",

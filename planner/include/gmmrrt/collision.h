@@ -133,9 +133,17 @@ int64_t gmmrrt_world_lazy_cells(const gmmrrt_world_t *world);
  * for people. */
 int gmmrrt_world_point_free(const gmmrrt_world_t *world, double x, double y);
 
+/* Margin (m) every edge keeps from every obstacle and person. A point closer than this to one is
+ * free, but no edge can leave it: the planner treats such a start as one in contact (escape). */
+#define GMMRRT_EDGE_MIN_CLEARANCE_M 1e-3
+
+/* 1 when (x, y) is free (gmmrrt_world_point_free) and keeps more than GMMRRT_EDGE_MIN_CLEARANCE_M
+ * from every obstacle and person by the segment test's own bounds, so that edges can leave it. */
+int gmmrrt_world_point_leavable(const gmmrrt_world_t *world, double x, double y);
+
 /* 1 when the straight segment is free (docs/planner.md, "Collision checking"): the grid part by
- * sphere tracing, people exactly; a segment of positive length that comes within 1 mm of an
- * obstacle or person is refused. */
+ * sphere tracing, people exactly; a segment of positive length that comes within
+ * GMMRRT_EDGE_MIN_CLEARANCE_M of an obstacle or person is refused. */
 int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0, double x1, double y1);
 
 /* Exact clearance (m) from the robot disc at (x, y) to the nearest obstacle or person,

@@ -41,7 +41,9 @@ typedef struct {
 void gmmrrt_drive_options_default(gmmrrt_drive_options_t *opt);
 
 typedef struct {
-    gmmrrt_status_t status;     /* GMMRRT_OK, or GMMRRT_ESCAPE when the path starts with the escape */
+    gmmrrt_status_t status;     /* GMMRRT_OK; GMMRRT_ESCAPE when the path starts with the escape;
+                                   else GMMRRT_TIGHT_TURNS when min_turn_radius_m > 0 and some corner
+                                   is tight or turned in place */
     double arrival_yaw;         /* rad, heading at the goal */
     double arrival_error_rad;   /* |arrival_yaw - requested| (0 for ARRIVAL_ANY) */
     int32_t arrival_met;        /* 1: within goal_yaw_tolerance_rad (always 1 for ARRIVAL_ANY) */
@@ -52,11 +54,16 @@ typedef struct {
     double cost;                /* the planner's cost of the shortcut polyline (arcs not re-costed) */
     double min_walker_clearance_m; /* clearance to the walkers at each waypoint's time; +inf none */
     int32_t walker_conflict;    /* 1: some waypoint meets a walker where they are predicted then */
+    int32_t side_kept;          /* 1: the path passes every person on the side the tree path does
+                                   (the same swept bearing angle around each, smooth.c); the
+                                   shortcut, the arrival leg and the corner cuts never change a side */
 } gmmrrt_drive_report_t;
 
 /* Fills *out with the drivable version of the planner's best path, resampled like
  * gmmrrt_planner_best_path (waypoint spacing, at most GMMRRT_MAX_WAYPOINTS), yaw = tangent.
- * report may be NULL. Statuses: GMMRRT_OK / GMMRRT_ESCAPE (path made; see report);
+ * report may be NULL. Statuses: GMMRRT_OK / GMMRRT_ESCAPE / GMMRRT_TIGHT_TURNS (path made; see
+ * report: a path that turns tighter than min_turn_radius_m is flagged, not withheld, because a
+ * stop would freeze the robot while a differential drive can slow down and turn on the spot);
  * GMMRRT_NO_PATH_YET (no path); GMMRRT_ERR_INVALID_ARGUMENT (NULL, an option out of range,
  * FACE_TARGET without an approach target); GMMRRT_ERR_BUFFER_TOO_SMALL (the tree path has more
  * than GMMRRT_DRIVE_MAX_VERTICES vertices). */

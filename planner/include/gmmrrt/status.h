@@ -50,6 +50,10 @@ typedef enum {
                                             way out that increases clearance, then goes to the goal */
     GMMRRT_NO_PATH_ON_SIDE = 44,         /* budget spent, no path on the preferred side (yet); re-plan
                                             with GMMRRT_SIDE_EITHER to take the other side */
+    GMMRRT_TIGHT_TURNS = 45,             /* a drivable path (drivable.h) that turns tighter than the minimum
+                                            turning radius at some corner, or in place, where no free arc
+                                            exists: a path all the same, flagged for the follower to slow
+                                            down or turn on the spot there */
 
     /* 50 and above are not the library's: gmmrrtd's stop codes (planner/daemon/stop.h). */
 } gmmrrt_status_t;

@@ -84,7 +84,7 @@ int main(int argc, char **argv)
         gmmrrt_drive_report_t rep;
         const gmmrrt_status_t ds = gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep);
         const double t2 = now_ms();
-        if (st != GMMRRT_OK || ds != GMMRRT_OK) {
+        if (st != GMMRRT_OK || (ds != GMMRRT_OK && ds != GMMRRT_TIGHT_TURNS)) {
             fprintf(stderr, "bench_drivable: seed %d: %s / %s\n", s + 1, gmmrrt_status_str(st), gmmrrt_status_str(ds));
             return 1;
         }

@@ -273,6 +273,7 @@ static void test_no_published_plan_turns_tighter_than_the_bound(void **state)
              * counted, and every plan not counted must keep the bound. */
             const int tight = d->drive_report.tight_turns > 0 || d->drive_report.turns_in_place > 0;
             assert_int_equal(d->status.tight_turn_plans, tight_plans + tight);
+            assert_int_equal(d->plan_msg.status, tight ? GMMRRT_TIGHT_TURNS : GMMRRT_OK); /* flagged per plan */
             tight_plans += tight;
             if (!tight)
                 check_turns(&d->plan_msg, d->set.min_turn_radius_m);

@@ -1,6 +1,7 @@
 """tools/demo.py end to end on the deterministic file:// replay (the multicast path is the default of
 `tools/run demo`; it needs a host where UDP multicast works, which CI machines may not have)."""
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -24,11 +25,24 @@ def test_demo_file_replay_writes_metrics_and_plot(tmp_path):
     md = (out / "metrics.md").read_text()
     assert "| avoid_obstacles: avoid / GMM-RRT* |" in md
     assert "| approach_obstacles: approach / GMM-RRT* |" in md
+    header = next(line for line in md.splitlines() if line.startswith("| scenario"))
+    cols = [c.strip() for c in header.strip("|").split("|")]
+    for name in ("max turn in 0.1 m (deg)", "% tighter than the radius", "% escapes", "% side switched"):
+        assert name in cols, cols
+    tight_counted = {sc: int(re.search(r"plans turning tighter than the radius (\d+)", line).group(1))
+                     for line in md.splitlines() for sc in ("avoid_obstacles", "approach_obstacles")
+                     if line.startswith(f"{sc}: gmmrrtd published")}
+    assert set(tight_counted) == {"avoid_obstacles", "approach_obstacles"}, md
     for line in md.splitlines():
         if line.startswith("| avoid_obstacles") or line.startswith("| approach_obstacles"):
             cells = [c.strip() for c in line.strip("|").split("|")]
             assert int(cells[1]) > 0          # plans recorded
             assert cells[7] == "0.0"          # no plan through an obstacle
+            # The plans the table finds turning tighter than the radius (from their published yaw)
+            # are at most those the daemon counted (it also counts turns in place).
+            tight = round(float(cells[cols.index("% tighter than the radius")]) * int(cells[1]) / 100.0)
+            assert tight <= tight_counted[cells[0].split(":")[0]], line
+            assert cells[cols.index("% escapes")] == "0.0"  # nobody steps into the robot in these scenarios
     assert (out / "demo.png").stat().st_size > 10000
     assert f"outputs in {out}" in proc.stdout
 

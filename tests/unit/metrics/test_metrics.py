@@ -122,6 +122,8 @@ def test_box_distance_and_collisions():
 def test_outcomes_and_rates():
     line = [[0.0, 0.0], [5.0, 0.0]]
     assert m.outcome("ok", line, (5.0, 0.0)) == m.SUCCESS
+    # A drivable path flagged for a tight corner is a path (the core's text for GMMRRT_TIGHT_TURNS).
+    assert m.outcome("path turns tighter than the minimum turning radius somewhere", line, (5.0, 0.0)) == m.SUCCESS
     assert m.outcome("ok", line, (5.0, 0.0), circles=[(2.5, 0.0, 0.5)]) == m.COLLISION
     assert m.outcome("timeout", [], (5.0, 0.0)) == m.TIMEOUT
     assert m.outcome("ok", line, (9.0, 0.0)) == m.FAILURE
@@ -180,6 +182,22 @@ def test_collision_tolerance_for_grazing_paths():
     assert m.path_collides(line, boxes=[box], robot_radius_m=0.3) is True
     assert m.path_collides(line, boxes=[box], robot_radius_m=0.3, tolerance_m=0.01) is False
     assert m.path_collides([[-5.0, 0.7], [5.0, 0.7]], boxes=[box], robot_radius_m=0.3, tolerance_m=0.01) is True
+
+
+def test_turns_tighter_than_counts_steps_beyond_the_radius():
+    # Waypoints every 0.1 m along an arc of radius 0.5 m, the yaw its tangent: what a radius of 0.5 m
+    # or less allows, a step too tight for 0.6 m; a kink of 90 degrees is too tight for any radius.
+    step = 0.1 / 0.5
+    ang = np.arange(0, 12) * step
+    arc = np.stack([0.5 * np.sin(ang), 0.5 - 0.5 * np.cos(ang)], axis=1)
+    assert m.turns_tighter_than(arc, ang, 0.5) == 0
+    assert m.turns_tighter_than(arc, ang, 0.3) == 0
+    assert m.turns_tighter_than(arc, ang, 0.6) == len(ang) - 1
+    kink = np.array([[0.0, 0.0], [0.1, 0.0], [0.1, 0.1]])
+    assert m.turns_tighter_than(kink, [0.0, math.pi / 2, math.pi / 2], 0.1) == 1  # an arc of 0.1 m: 60 deg
+    assert m.turns_tighter_than(kink, [0.0, math.pi / 2, math.pi / 2], 0.0) == 0  # turning in place allowed
+    with pytest.raises(ValueError, match="yaw has 2 values for 3 waypoints"):
+        m.turns_tighter_than(kink, [0.0, 0.0], 0.3)
 
 
 def test_max_turn_per_step_sees_kinks_and_arcs():

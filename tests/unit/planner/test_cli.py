@@ -73,7 +73,11 @@ def test_map_plans_in_the_floor_plan():
     r = run("--map", str(MAPS / "floor.yaml"), "--start", "-9,-2", "--goal", "8,4", "--iterations", "20000", "--json")
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
-    assert out["status"] == "ok"
+    # A path; through a doorway a corner may have no free arc of the default 0.3 m radius: then the
+    # status flags it (45, GMMRRT_TIGHT_TURNS) and the drive report counts it.
+    tight = out["drive"]["tight_turns"] + out["drive"]["turns_in_place"]
+    assert (out["status_code"], out["status"]) == ((45, "path turns tighter than the minimum turning radius somewhere")
+                                                    if tight else (0, "ok"))
     # The first room (x < -3, y < -1) to the far room above the corridor (x > 0, y > 1): through the
     # doorways, so longer than the straight line.
     assert out["stats"]["length_m"] > math.dist((-9, -2), (8, 4)) + 0.5

@@ -212,6 +212,104 @@ static void test_approach_from_behind_arrives_facing(void **state)
     }
 }
 
+/* Where the polyline crosses the vertical line x = x0 (the person's), the y of each crossing:
+ * an oracle of the side a path passes a person, independent of smooth.c's swept angles. */
+static int32_t crossings_at_x(const gmmrrt_path_t *path, double x0, double *ys, int32_t cap)
+{
+    int32_t n = 0;
+    for (int32_t i = 0; i + 1 < path->num_points && n < cap; ++i) {
+        const double a = path->x[i] - x0, b = path->x[i + 1] - x0;
+        if ((a < 0.0) != (b < 0.0))
+            ys[n++] = path->y[i] + (path->y[i + 1] - path->y[i]) * a / (a - b);
+    }
+    return n;
+}
+
+/* Approach from the person's right, arriving in front of them and a little to their left (a
+ * Table 1 scene, "approach / right", demonstration start and goal): the tree path goes round
+ * the right side. The arrival leg that faces the person starts further out in front; the vertex
+ * that sees the leg's start with room for both arcs used to be the robot's start, whose chord
+ * passes the person's left: the drivable path swapped sides. Every plan must stay on the right. */
+static void test_arrival_leg_keeps_the_tree_path_side_of_the_person(void **state)
+{
+    (void)state;
+    const double tree_x[] = {-3.305, -2.17, -1.13, 0.04, 0.57, 0.9, 0.78, 0.7728};
+    const double tree_y[] = {-0.201, -0.57, -1.11, -1.27, -1.01, -0.52, 0.04, 0.1835};
+    const int32_t n = (int32_t)(sizeof tree_x / sizeof tree_x[0]);
+    const double radii[] = {0.3, 0.5, 0.0};
+    for (int r = 0; r < 3; ++r) {
+        gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+        cfg.robot_radius_m = 0.3;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(tree_x[0], tree_y[0], tree_x[n - 1], tree_y[n - 1]);
+        pr.task = GMMRRT_TASK_APPROACH;
+        pr.target_person = 0;
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = (gmmrrt_pose_t){0.0, 0.0, 0.0};
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        assert_int_equal(gmmrrt_planner_seed_path(t.p, tree_x + 1, tree_y + 1, n - 1), GMMRRT_OK);
+        gmmrrt_path_t raw, path;
+        assert_int_equal(gmmrrt_planner_best_path(t.p, &raw), GMMRRT_OK);
+        double ys[8];
+        assert_int_equal(crossings_at_x(&raw, 0.0, ys, 8), 1);
+        assert_true(ys[0] < 0.0); /* the tree path: the person's right */
+        gmmrrt_drive_options_t opt;
+        gmmrrt_drive_options_default(&opt);
+        opt.arrival = GMMRRT_ARRIVAL_FACE_TARGET;
+        opt.min_turn_radius_m = radii[r];
+        gmmrrt_drive_report_t rep;
+        assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_OK);
+        const int32_t nc = crossings_at_x(&path, 0.0, ys, 8);
+        printf("radius %.1f: %d crossing(s) of x = 0, first at y = %.2f; arrival %.1f deg off, side kept %d\n",
+               radii[r], (int)nc, nc ? ys[0] : NAN, rep.arrival_error_rad * 180.0 / M_PI, (int)rep.side_kept);
+        assert_int_equal(nc, 1);
+        assert_true(ys[0] < -(cfg.robot_radius_m + cfg.person_radius_m));
+        assert_true(rep.side_kept);
+        assert_true(rep.arrival_met);
+        assert_chords_free(t.p, &path, 0);
+        test_planner_free(&t);
+    }
+}
+
+/* A right-angle corner hugging the corner of a box: no arc of 0.3 m is free there and the chord
+ * over it crosses the box, so the corner is turned tighter. The path is returned all the same,
+ * flagged GMMRRT_TIGHT_TURNS (and counted); with R = 0 turning in place is allowed: GMMRRT_OK. */
+static void test_a_corner_without_a_free_arc_is_flagged(void **state)
+{
+    (void)state;
+    const double tree_x[] = {-1.5, 0.05, 0.05}, tree_y[] = {0.05, 0.05, -1.5};
+    const double radii[] = {0.3, 0.0};
+    for (int r = 0; r < 2; ++r) {
+        gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(tree_x[0], tree_y[0], tree_x[2], tree_y[2]);
+        pr.obstacles.num_boxes = 1;
+        pr.obstacles.boxes[0] = (gmmrrt_box_t){-1.0, -1.0, 2.0, 2.0, 0.0}; /* x, y in [-2, 0] */
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        assert_int_equal(gmmrrt_planner_seed_path(t.p, tree_x + 1, tree_y + 1, 2), GMMRRT_OK);
+        gmmrrt_drive_options_t opt;
+        gmmrrt_drive_options_default(&opt);
+        opt.min_turn_radius_m = radii[r];
+        gmmrrt_path_t path;
+        gmmrrt_drive_report_t rep;
+        const gmmrrt_status_t st = gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep);
+        printf("radius %.1f: status %d, tight %d, in place %d\n", radii[r], st, rep.tight_turns, rep.turns_in_place);
+        assert_int_equal(st, rep.status);
+        assert_true(path.num_points > 10);
+        assert_chords_free(t.p, &path, 0);
+        if (radii[r] > 0.0) {
+            assert_int_equal(st, GMMRRT_TIGHT_TURNS);
+            assert_true(rep.tight_turns + rep.turns_in_place >= 1);
+            assert_true(max_turn_per_m(&path) > 1.02 / radii[r]); /* the flag is true: it does turn tighter */
+        } else {
+            assert_int_equal(st, GMMRRT_OK);
+        }
+        test_planner_free(&t);
+    }
+}
+
 static void test_arrival_yaw_is_honoured_and_options_checked(void **state)
 {
     (void)state;
@@ -285,6 +383,94 @@ static void test_person_stepping_into_the_disc_is_escaped(void **state)
     const double away = atan2(0.0 - 0.1, 0.0 - 0.35);
     assert_true(fabs(gmmrrt_wrap_angle(atan2(path.y[1], path.x[1]) - away)) <= 2.5 * M_PI / 180.0 + 1e-9);
     test_planner_free(&t);
+}
+
+/* A person steps in beside the robot, the goal ahead: the escape leaves straight away from them
+ * and then drives an arc of the turning radius onto the way to the goal instead of turning on the
+ * spot at the exit. With the goal behind the person (the way out points away from it) no arc of
+ * that radius is free: the robot turns on the spot there, counted. */
+static void test_escape_ends_with_a_drivable_arc_when_one_is_free(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    cfg.robot_radius_m = 0.3;
+    const double contact = cfg.robot_radius_m + cfg.person_radius_m;
+    const struct {
+        double px, py;
+        int in_place;
+    } cases[] = {{0.0, 0.35, 0}, {0.35, 0.1, 1}};
+    for (int c = 0; c < 2; ++c) {
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(0.0, 0.0, 4.0, 0.0);
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = (gmmrrt_pose_t){cases[c].px, cases[c].py, 0.0};
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ESCAPE);
+        gmmrrt_budget_t b = iters(3000);
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+        gmmrrt_drive_options_t opt;
+        gmmrrt_drive_options_default(&opt);
+        gmmrrt_path_t path;
+        gmmrrt_drive_report_t rep;
+        assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_ESCAPE);
+        printf("person (%.2f, %.2f): turns in place %d, tight %d, max turn %.2f 1/m (bound %.2f)\n", cases[c].px,
+               cases[c].py, rep.turns_in_place, rep.tight_turns, max_turn_per_m(&path), 1.02 / opt.min_turn_radius_m);
+        assert_int_equal(rep.turns_in_place, cases[c].in_place);
+        if (!cases[c].in_place) {
+            assert_int_equal(rep.tight_turns, 0);
+            assert_true(max_turn_per_m(&path) <= 1.02 / opt.min_turn_radius_m);
+        }
+        /* The distance to the person never falls until clear, and then stays clear. */
+        double prev = 0.0;
+        int clear = 0;
+        for (int32_t i = 0; i < path.num_points; ++i) {
+            const double dist = hypot(path.x[i] - cases[c].px, path.y[i] - cases[c].py);
+            if (!clear)
+                assert_true(dist >= prev - 1e-12);
+            else
+                assert_true(dist > contact);
+            clear = clear || dist > contact;
+            prev = dist;
+        }
+        assert_true(clear);
+        assert_chords_free(t.p, &path, (int32_t)ceil(0.6 / cfg.waypoint_spacing_m)); /* past the way out */
+        test_planner_free(&t);
+    }
+}
+
+/* A start outside every disc but closer than the edge margin (1 mm, collision.h) to one: the
+ * point is free, yet every edge from it passes within the margin and is refused. It used to give
+ * no path, cycle after cycle (a closed-loop robot stalled at the edge of a person's disc, 0.55 m
+ * from them); it is a start to leave like one in contact: an escape, then the goal. */
+static void test_start_within_the_edge_margin_of_a_disc_escapes(void **state)
+{
+    (void)state;
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    cfg.robot_radius_m = 0.3;
+    const double contact = cfg.robot_radius_m + cfg.person_radius_m;
+    const double gaps[] = {0.0005, 0.0};
+    for (int g = 0; g < 2; ++g) {
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(contact + gaps[g], 0.0, 4.0, 1.0);
+        pr.obstacles.num_people = 1;
+        pr.obstacles.people[0] = (gmmrrt_pose_t){0.0, 0.0, 0.0};
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ESCAPE);
+        if (gaps[g] > 0.0)
+            assert_true(gmmrrt_world_point_free(gmmrrt_planner_world(t.p), pr.start_x, pr.start_y));
+        gmmrrt_budget_t b = iters(2000);
+        assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+        gmmrrt_drive_options_t opt;
+        gmmrrt_drive_options_default(&opt);
+        gmmrrt_path_t path;
+        gmmrrt_drive_report_t rep;
+        assert_int_equal(gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep), GMMRRT_ESCAPE);
+        assert_true(path.x[0] == pr.start_x && path.y[0] == pr.start_y);
+        assert_true(hypot(path.x[path.num_points - 1] - 4.0, path.y[path.num_points - 1] - 1.0) < 1e-9);
+        for (int32_t i = 1; i < path.num_points; ++i) /* never closer to the person than the start */
+            assert_true(hypot(path.x[i], path.y[i]) >= contact + gaps[g] - 1e-9);
+        test_planner_free(&t);
+    }
 }
 
 /* A walker crossing the robot's line where the robot will be: the plan keeps clear of where
@@ -456,8 +642,12 @@ int main(void)
         cmocka_unit_test(test_zero_radius_turns_in_place),
         cmocka_unit_test(test_long_collinear_tree_path_is_taken),
         cmocka_unit_test(test_approach_from_behind_arrives_facing),
+        cmocka_unit_test(test_arrival_leg_keeps_the_tree_path_side_of_the_person),
+        cmocka_unit_test(test_a_corner_without_a_free_arc_is_flagged),
         cmocka_unit_test(test_arrival_yaw_is_honoured_and_options_checked),
         cmocka_unit_test(test_person_stepping_into_the_disc_is_escaped),
+        cmocka_unit_test(test_escape_ends_with_a_drivable_arc_when_one_is_free),
+        cmocka_unit_test(test_start_within_the_edge_margin_of_a_disc_escapes),
         cmocka_unit_test(test_walker_crossing_is_passed_at_a_safe_distance),
         cmocka_unit_test(test_slow_person_is_standing_bit_for_bit),
         cmocka_unit_test(test_walker_cost_is_higher_in_front_than_behind),

@@ -85,7 +85,8 @@ def plan(model_file, seed, boxes=(), planner=None):
     proc = subprocess.run(argv, capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, f"{' '.join(argv)}: exit {proc.returncode}\n{proc.stderr}"
     obj = json.loads(proc.stdout)
-    assert obj["status"] == "ok"
+    # A path: "ok", or flagged for a corner tighter than the turning radius (status 45).
+    assert obj["status_code"] in (0, 45), obj["status"]
     path = np.asarray(obj["path"], dtype=float)
     assert np.linalg.norm(path[0] - world(START_P)) < 1e-6
     assert np.linalg.norm(path[-1] - world(GOAL_P)) < 0.11   # goal tolerance 0.1 m
