@@ -1,6 +1,6 @@
 // print_constants.cpp - writes gmmrrt_constants.py, the numbers the Python tools judge the
 // programs by, as the compiler reads them from the one header that defines each: the
-// walking-people model of the core (planner.h), the planning bounds' margin (problem_bounds.h),
+// walking-people model of the core (planner.h), the planning bounds' margin (problem_bounds.h), the path status codes (status.h),
 // gmmrrtd's accepted utime range (planner/daemon/clock.h) and the demonstration reader's pairing
 // limit (learner demo_io.hpp). Python imports the module instead
 // of writing the numbers again. Usage: gmmrrt-print-constants OUT.py (written whole or not at all).
@@ -57,6 +57,10 @@ int main(int argc, char **argv)
     std::fprintf(f, "GMMRRTD_MAX_UTIME = %lld\n", static_cast<long long>(GMMRRTD_MAX_UTIME));
     std::fprintf(f, "# learner/include/gmmrrt_learner/demo_io.hpp: oldest PEOPLE a pose is paired with (s)\n");
     print_float(f, "LEARNER_MAX_PERSON_AGE_S", gmmrrt::learn::kMaxPersonAgeS);
+    std::fprintf(f, "# planner/include/gmmrrt/status.h: PLAN.status of a path that escapes a contact, and of one\n"
+                    "# flagged for a corner tighter than the turning radius\n");
+    std::fprintf(f, "GMMRRT_ESCAPE = %d\n", static_cast<int>(GMMRRT_ESCAPE));
+    std::fprintf(f, "GMMRRT_TIGHT_TURNS = %d\n", static_cast<int>(GMMRRT_TIGHT_TURNS));
     const bool ok = std::ferror(f) == 0;
     if (std::fclose(f) != 0 || !ok || std::rename(tmp.c_str(), out.c_str()) != 0) {
         std::perror(out.c_str());

@@ -233,9 +233,16 @@ def approach_direction_name(direction: int) -> str:
 
 # gmmrrt_status_t codes a path comes with (planner/include/gmmrrt/status.h; wire-stable, they are
 # PLAN.status values): a plan that first escapes a contact, and one flagged for a corner tighter
-# than the turning radius.
-STATUS_ESCAPE = 43
-STATUS_TIGHT_TURNS = 45
+# than the turning radius. Read from the header at build time (gmmrrt_constants, generated beside the
+# message package), not written again; looked up on first use, like the library itself.
+_STATUS_CONSTANTS = {"STATUS_ESCAPE": "GMMRRT_ESCAPE", "STATUS_TIGHT_TURNS": "GMMRRT_TIGHT_TURNS"}
+
+
+def __getattr__(name: str):
+    if name in _STATUS_CONSTANTS:
+        import gmmrrt_constants
+        return getattr(gmmrrt_constants, _STATUS_CONSTANTS[name])
+    raise AttributeError("module %r has no attribute %r" % (__name__, name))
 
 
 def status_str(code: int) -> str:

@@ -39,7 +39,7 @@ REASONS = {getattr(planner_status_t, n): n for n in dir(planner_status_t) if n.s
 # Rounding between this Python and the planner's C, m; not a safety margin (module comment).
 CLEARANCE_SLACK_M = 1e-6
 # waypoints_t.status of an escape: GMMRRT_ESCAPE of planner/include/gmmrrt/status.h, a wire-stable code.
-ESCAPE_STATUS = 43
+ESCAPE_STATUS = gmmrrt_constants.GMMRRT_ESCAPE
 # How much an escape's sampled clearance may dip (the core keeps the exact clearance from falling
 # along its straight exit; samples of the smoothed path near the exit's end may differ by rounding).
 ESCAPE_SLACK_M = 1e-3
