@@ -1,101 +1,86 @@
 #!/usr/bin/env python3
-"""segment_demos.py - raw teleoperation recordings in, labelled episodes out (rules:
-tools/gmmrrt_tools/segment.py and docs/learner.md, "Raw recordings in").
+"""evaluate_segment.py - `gmmrrt-learn segment`'s rules (learner/src/segment.cpp, docs/learner.md
+"Raw recordings in") against the labels of the shared real data.
 
-  segment_demos.py segment LOG... -o EPISODES.csv     continuous LCM logs of ROBOT_POSE and PEOPLE
-                                                      (no DEMO_INFO) -> an episode CSV for
-                                                      `gmmrrt-learn fit --input EPISODES.csv`
-  segment_demos.py evaluate REAL_DIR [--limit N]      the rules against the labels of the shared real
-                                                      data: each UPO avoid episode written as an
-                                                      unlabelled continuous log, segmented, and
-                                                      compared with the index (found, task, homotopy)
+  evaluate_segment.py REAL_DIR [--limit N]
 
-Notes (a person never still, an encounter that is not a pass, a cut log) go to stderr naming the
-file and the person. Exit status 0; 1 on bad input (no file is written); 2 on bad usage.
+Each UPO avoid episode (REAL_DIR/upo_avoid_episodes.csv with its index) is written as an
+unlabelled continuous log (ROBOT_POSE and PEOPLE, no DEMO_INFO), all logs are segmented by one
+`gmmrrt-learn segment` run, and the episodes found in each log are compared with the index: found
+or not, the task, the homotopy, the share of the episode's samples covered. The segmenting itself is
+the learner's (no second copy here). Exit status 0; 1 on bad input; 2 on bad usage.
 """
 from __future__ import annotations
 
 import argparse
 import math
+import subprocess
 import sys
 import tempfile
-from collections import Counter
+from collections import Counter, defaultdict
 from pathlib import Path
 
 from gmmrrt_tools.demonstration_log import write_demo_log
-from gmmrrt_tools.episodes import EpisodeError, write_episode_csv
-from gmmrrt_tools.scenes import read_episodes
-from gmmrrt_tools.segment import SegmentError, segment_log
+from gmmrrt_tools.episodes import EpisodeError, read_episodes
+from gmmrrt_tools.runner import find_tool
+from gmmrrt_tools.scenes import read_episodes as read_indexed_episodes
 
 
-def cmd_segment(args) -> int:
-    episodes = []
-    for log in args.logs:
-        res = segment_log(log)
-        for n in res.notes:
-            print(f"segment_demos: note: {n}", file=sys.stderr)
-        print(f"segment_demos: {log}: {len(res.episodes)} episodes ("
-              + ", ".join(f"{k[0]} {k[1]}: {v}" for k, v in sorted(Counter((e.task, e.homotopy)
-                                                                           for e in res.episodes).items())) + ")",
-              file=sys.stderr)
-        episodes += res.episodes
-    if not episodes:
-        raise SegmentError(f"no episode found in {', '.join(args.logs)}: nothing written")
-    write_episode_csv(args.output, episodes)
-    print(f"segment_demos: wrote {len(episodes)} episodes to {args.output}", file=sys.stderr)
-    return 0
-
-
-def cmd_evaluate(args) -> int:
-    real = Path(args.real_dir)
-    # The learner's reader (gmmrrt-learn dump), each episode with its index row in ep.meta.
-    episodes = read_episodes(str(real / "upo_avoid_episodes.csv"), index=str(real / "upo_avoid_index.csv"))
-    if args.limit:
-        episodes = episodes[:args.limit]
-    found = agree = one = 0
-    task_ok = 0
+def evaluate(real_dir: str, limit: int = 0) -> str:
+    real = Path(real_dir)
+    episodes = read_indexed_episodes(str(real / "upo_avoid_episodes.csv"), index=str(real / "upo_avoid_index.csv"))
+    if limit:
+        episodes = episodes[:limit]
+    with tempfile.TemporaryDirectory() as tmp:
+        logs = []
+        for n, ep in enumerate(episodes):
+            logs.append(str(Path(tmp) / f"ep{n:05d}.lcmlog"))  # the stem names the episode in the ids
+            write_demo_log(logs[-1], [ep], labelled=False)
+        out = Path(tmp) / "found.csv"
+        r = subprocess.run([find_tool("gmmrrt-learn"), "segment", "-q", "-o", str(out), "--"] + logs,
+                           capture_output=True, text=True)
+        if r.returncode != 0:
+            raise EpisodeError(f"gmmrrt-learn segment failed: {r.stderr.strip()}")
+        found_eps, _ = read_episodes(str(out))
+    by_log = defaultdict(list)
+    for f in found_eps:
+        by_log[int(f.id.split("_seg")[0][2:])].append(f)
+    found = agree = one = task_ok = 0
     cover = []
     confusion = Counter()
-    with tempfile.TemporaryDirectory() as tmp:
-        for ep in episodes:
-            p = Path(tmp) / f"{ep.id}.lcmlog"
-            write_demo_log(str(p), [ep], labelled=False)
-            res = segment_log(str(p))
-            if not res.episodes:
-                confusion[(ep.meta["homotopy"], "none")] += 1
-                continue
-            found += 1
-            one += len(res.episodes) == 1
-            best = max(res.episodes, key=len)
-            cover.append(len(best) / len(ep))
-            task_ok += best.task == "avoid"
-            confusion[(ep.meta["homotopy"], best.homotopy)] += 1
-            agree += best.homotopy == ep.meta["homotopy"]
-    n = len(episodes)
-    print(f"UPO avoid episodes: {n}; found {found} ({100.0 * found / n:.1f} %), exactly one episode in "
-          f"{one}; labelled avoid {task_ok}; homotopy agrees with the index in {agree} of {found} found "
-          f"({100.0 * agree / max(found, 1):.1f} %); samples covered (largest found / index): median "
-          f"{sorted(cover)[len(cover) // 2] if cover else math.nan:.2f}")
-    print("index homotopy -> segmented: " + ", ".join(f"{a}->{b}: {c}" for (a, b), c in sorted(confusion.items())))
-    return 0
+    for n, ep in enumerate(episodes):
+        res = by_log.get(n, [])
+        truth = ep.meta["homotopy"]
+        if not res:
+            confusion[(truth, "none")] += 1
+            continue
+        found += 1
+        one += len(res) == 1
+        best = max(res, key=len)
+        cover.append(len(best) / len(ep))
+        task_ok += best.task == "avoid"
+        confusion[(truth, best.homotopy)] += 1
+        agree += best.homotopy == truth
+    total = len(episodes)
+    return (f"UPO avoid episodes: {total}; found {found} ({100.0 * found / max(total, 1):.1f} %), exactly one "
+            f"episode in {one}; labelled avoid {task_ok}; homotopy agrees with the index in {agree} of {found} "
+            f"found ({100.0 * agree / max(found, 1):.1f} %); samples covered (largest found / index): median "
+            f"{sorted(cover)[len(cover) // 2] if cover else math.nan:.2f}\n"
+            "index homotopy -> segmented: " + ", ".join(f"{a}->{b}: {c}" for (a, b), c in sorted(confusion.items())))
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
-    sub = ap.add_subparsers(dest="cmd", required=True)
-    s = sub.add_parser("segment", help="continuous logs -> labelled episode CSV")
-    s.add_argument("logs", nargs="+")
-    s.add_argument("-o", "--output", required=True)
-    e = sub.add_parser("evaluate", help="the rules against the shared real data's labels")
-    e.add_argument("real_dir")
-    e.add_argument("--limit", type=int, default=0, help="only the first N episodes")
+    ap.add_argument("real_dir")
+    ap.add_argument("--limit", type=int, default=0, help="only the first N episodes")
     args = ap.parse_args(argv)
     try:
-        return cmd_segment(args) if args.cmd == "segment" else cmd_evaluate(args)
+        print(evaluate(args.real_dir, args.limit))
     except EpisodeError as err:
-        print(f"segment_demos: error: {err}", file=sys.stderr)
+        print(f"evaluate_segment: error: {err}", file=sys.stderr)
         return 1
+    return 0
 
 
 if __name__ == "__main__":
