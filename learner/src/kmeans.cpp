@@ -21,6 +21,14 @@ bool KMeansOptions::IsValid(std::string* error) const {
   return true;
 }
 
+// The candidates per k-means++ step (greedy k-means++).
+static int SeedTrials(int k) { return 2 + static_cast<int>(std::log(static_cast<double>(k))); }
+
+uint64_t KMeansRandomDraws(const KMeansOptions& options) {
+  return static_cast<uint64_t>(options.restarts) *
+         (1u + static_cast<uint64_t>(options.k - 1) * static_cast<uint64_t>(SeedTrials(options.k)));
+}
+
 double Uniform01(std::mt19937_64* rng) {
   return static_cast<double>((*rng)() >> 11) * (1.0 / 9007199254740992.0);
 }
@@ -72,7 +80,7 @@ void SeedPlusPlus(const Eigen::MatrixXd& x, uint32_t mask, int k, std::mt19937_6
   centers->col(0) = x.row(UniformIndex(n, rng)).transpose();
   Eigen::ArrayXd closest, d2, best_d2, cum(n);
   SquaredDistances(x, centers->col(0), mask, &closest);
-  const int trials = 2 + static_cast<int>(std::log(static_cast<double>(k)));
+  const int trials = SeedTrials(k);
   for (int c = 1; c < k; ++c) {
     std::partial_sum(closest.data(), closest.data() + n, cum.data());
     double best_potential = std::numeric_limits<double>::infinity();
