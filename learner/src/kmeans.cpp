@@ -101,6 +101,12 @@ void SeedPlusPlus(const Eigen::MatrixXd& x, uint32_t mask, int k, std::mt19937_6
 }
 
 // Assigns every point to its nearest center (ties: the lower index); returns the inertia.
+// Compiled twice on x86-64, for the baseline and for AVX2 (4 distances per instruction instead
+// of 2), chosen when the program loads: the same operations lane by lane (no FMA), so the same
+// labels and bits; it was a tenth of the benchmark fit's time, in the candidates' Lloyd steps.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__linux__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 double Assign(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::MatrixXd& centers,
               Eigen::ArrayXi* labels, Eigen::ArrayXd* best) {
   const Eigen::Index n = x.rows();
