@@ -220,7 +220,14 @@ int RunPlot(int argc, char** argv) {
   const int fd = mkstemp(&data_path[0]);
   if (fd < 0) return Fail(cmd, "cannot create a temporary file for the plot data: " + std::string(std::strerror(errno)));
   const std::string text = doc.dump();
-  const bool written = write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t w = write(fd, text.data() + done, text.size() - done);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) break;
+    done += static_cast<size_t>(w);
+  }
+  const bool written = done == text.size();
   close(fd);
   if (!written) {
     unlink(data_path.c_str());
