@@ -160,13 +160,25 @@ double Update(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::ArrayXi& lab
   const Eigen::Index k = centers->cols(), n = x.rows();
   Eigen::MatrixXd shift = Eigen::MatrixXd::Zero(x.cols(), k);
   Eigen::VectorXd count = Eigen::VectorXd::Zero(k);
-  for (Eigen::Index p = 0; p < n; ++p) count[labels[p]] += 1.0;
+  // Each cluster's sums in point order, as one += per point would give them; but a run of points
+  // with the same label (most of them: EM's callers order the points spatially) adds into a
+  // register, not through memory, whose store-to-load round trip per point was most of k-means'
+  // own time. The same additions in the same order: the same bits.
   for (Eigen::Index c = 0; c < x.cols(); ++c) {
     const bool angle = c < 32 && ((mask >> c) & 1u);
-    for (Eigen::Index p = 0; p < n; ++p) {
+    const double* xc = x.col(c).data();
+    for (Eigen::Index p = 0; p < n;) {
       const int l = labels[p];
-      const double diff = x(p, c) - (*centers)(c, l);
-      shift(c, l) += angle ? Wrap(diff) : diff;
+      const double center = (*centers)(c, l);
+      double acc = shift(c, l);
+      const Eigen::Index run_start = p;
+      do {
+        const double diff = xc[p] - center;
+        acc += angle ? Wrap(diff) : diff;
+        ++p;
+      } while (p < n && labels[p] == l);
+      shift(c, l) = acc;
+      if (c == 0) count[l] += static_cast<double>(p - run_start);  // integers: exact in any grouping
     }
   }
   std::vector<bool> taken(n, false);
