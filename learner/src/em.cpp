@@ -580,7 +580,9 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
         if ((angle_mask >> j) & 1u) delta[j] = gmmrrt_wrap_angle(delta[j]);
       run.stats.nk[l] += 1.0;
       run.stats.s1.col(l) += delta;
-      run.stats.s2[l] += delta * delta.transpose();
+      Eigen::MatrixXd& s2 = run.stats.s2[l];
+      for (int b = 0; b < d; ++b)  // delta delta^T without a temporary matrix per point (malloc)
+        for (int a = 0; a < d; ++a) s2(a, b) += delta[a] * delta[b];
       run.score[c] = -delta.squaredNorm();
     }
     MStep(cs, run.stats, km.centers, run.score, 0, &run.m);

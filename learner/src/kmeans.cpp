@@ -172,11 +172,17 @@ double Update(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::ArrayXi& lab
       const double center = (*centers)(c, l);
       double acc = shift(c, l);
       const Eigen::Index run_start = p;
-      do {
-        const double diff = xc[p] - center;
-        acc += angle ? Wrap(diff) : diff;
-        ++p;
-      } while (p < n && labels[p] == l);
+      if (angle) {
+        do {
+          acc += Wrap(xc[p] - center);
+          ++p;
+        } while (p < n && labels[p] == l);
+      } else {  // no call in this loop: acc stays in a register (with one, GCC kept it on the stack)
+        do {
+          acc += xc[p] - center;
+          ++p;
+        } while (p < n && labels[p] == l);
+      }
       shift(c, l) = acc;
       if (c == 0) count[l] += static_cast<double>(p - run_start);  // integers: exact in any grouping
     }
