@@ -27,8 +27,9 @@ set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 # python3: the generated message package in dist-packages.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3")
-# Building C or C++ programs against the installed library (pkg-config, find_package).
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "pkg-config, libfcl-dev, libglib2.0-dev")
+# Building C or C++ programs against the installed library (pkg-config, find_package);
+# python3-matplotlib: `gmmrrt-learn plot` draws its images with it (nothing else needs it).
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "pkg-config, libfcl-dev, libglib2.0-dev, python3-matplotlib")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "cmake")
 # Control files: /etc/gmmrrt/gmmrrtd.ini is the administrator's (kept across upgrades); the
 # shared library's shlibs entry, an ldconfig trigger, and maintainer scripts that only reload systemd.

@@ -12,6 +12,8 @@ int RunScore(int argc, char** argv);
 int RunInspect(int argc, char** argv);
 int RunImport(int argc, char** argv);
 int RunDump(int argc, char** argv);
+int RunSegment(int argc, char** argv);
+int RunPlot(int argc, char** argv);
 
 }  // namespace cli
 }  // namespace learn

@@ -1,5 +1,5 @@
 // main.cpp - gmmrrt-learn, the offline model export tool:
-// fit / score / inspect / import / dump. Each subcommand lives in its own cmd_*.cpp.
+// fit / score / inspect / import / dump / segment / plot. Each subcommand lives in its own cmd_*.cpp.
 #include <cstdio>
 #include <cstring>
 
@@ -14,6 +14,8 @@ const char kHelp[] =
     "  inspect  validate and print a MODEL\n"
     "  import   convert a JSON mixture (priors, means, covariances) -> MODEL\n"
     "  dump     print the episodes of demonstration logs / episode CSVs as JSON\n"
+    "  segment  cut continuous logs (ROBOT_POSE, PEOPLE) into labelled episodes -> episode CSV\n"
+    "  plot     draw a MODEL's density and components as an image (needs python3-matplotlib)\n"
     "\n"
     "Model format: docs/model-format.md. Guide: docs/learner.md.\n";
 }  // namespace
@@ -34,6 +36,8 @@ int main(int argc, char** argv) {
   if (!std::strcmp(cmd, "inspect")) return RunInspect(argc - 1, argv + 1);
   if (!std::strcmp(cmd, "import")) return RunImport(argc - 1, argv + 1);
   if (!std::strcmp(cmd, "dump")) return RunDump(argc - 1, argv + 1);
+  if (!std::strcmp(cmd, "segment")) return RunSegment(argc - 1, argv + 1);
+  if (!std::strcmp(cmd, "plot")) return RunPlot(argc - 1, argv + 1);
   std::fprintf(stderr, "gmmrrt-learn: unknown command '%s'\n\n%s", cmd, kHelp);
   return 2;
 }

@@ -12,6 +12,7 @@
 
 #include <lcm/eventlog.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -21,6 +22,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <locale>
 #include <set>
 #include <sstream>
 
@@ -216,12 +218,12 @@ class LogReader {
         return Header::kOk;
     }
 
-    bool Loop(lcm_eventlog_t* log, long file_size, std::vector<Episode>* episodes) {
+    // Walks the log's events in order: each header checked (CheckHeader), the event read by LCM
+    // and handed to on_event(event, channel, event number, offset), which returns false after
+    // setting result_->error. *events: the number of whole events. False on a structural error.
+    template <typename OnEvent>
+    bool Walk(lcm_eventlog_t* log, long file_size, int64_t* events, OnEvent on_event) {
         int64_t event_no = 0;
-        bool seen_info = false, seen_pose = false, seen_people = false;
-        size_t orphans = 0;
-        std::map<int32_t, int64_t> info_event_by_number;
-        OpenEpisode ep;
         long next_offset = 0;
         for (;;) {
             // Each event is read from the offset its predecessor's header announced
@@ -243,6 +245,24 @@ class LogReader {
             if (ev == nullptr)
                 return Error(Where(event_no, offset, nullptr) + ": LCM could not read the event");
             const std::string channel(ev->channel, static_cast<size_t>(ev->channellen));
+            const bool ok = on_event(ev, channel, event_no, offset);
+            lcm_eventlog_free_event(ev);
+            if (!ok)
+                return false;
+        }
+        *events = event_no;
+        return true;
+    }
+
+    bool Loop(lcm_eventlog_t* log, long file_size, std::vector<Episode>* episodes) {
+        int64_t event_no = 0;
+        bool seen_info = false, seen_pose = false, seen_people = false;
+        size_t orphans = 0;
+        std::map<int32_t, int64_t> info_event_by_number;
+        OpenEpisode ep;
+        const bool walked = Walk(log, file_size, &event_no,
+                                 [&](const lcm_eventlog_event_t* ev, const std::string& channel, int64_t no,
+                                     long offset) {
             const size_t len = static_cast<size_t>(ev->datalen);
             char err[160] = "";
             if (channel == kChannelDemoInfo) {
@@ -253,19 +273,16 @@ class LogReader {
                 gmmrrt_demo_info_t info;
                 if (gmmrrt_msg_decode_demo_info(ev->data, len, &info, err, sizeof err) != GMMRRT_MSG_OK) {
                     ep.labelled = false;
-                    warn_.Add(Where(event_no, offset, kChannelDemoInfo) + ": " + err +
-                              "; its episode is skipped");
+                    warn_.Add(Where(no, offset, kChannelDemoInfo) + ": " + err + "; its episode is skipped");
                 } else {
                     auto dup = info_event_by_number.find(info.episode);
-                    if (dup != info_event_by_number.end()) {
-                        lcm_eventlog_free_event(ev);
-                        return Error(Where(event_no, offset, kChannelDemoInfo) + ": episode " +
+                    if (dup != info_event_by_number.end())
+                        return Error(Where(no, offset, kChannelDemoInfo) + ": episode " +
                                      std::to_string(info.episode) + " was already started at event " +
                                      std::to_string(dup->second));
-                    }
-                    info_event_by_number[info.episode] = event_no;
+                    info_event_by_number[info.episode] = no;
                     ep.number = info.episode;
-                    ep.info_event = event_no;
+                    ep.info_event = no;
                     ep.start_utime = info.utime;
                     ep.person_id = info.person_id;
                     ep.episode.id = EpisodeId(stem_, info.episode);
@@ -274,13 +291,15 @@ class LogReader {
                 }
             } else if (channel == kChannelRobotPose) {
                 seen_pose = true;
-                OnPose(&ep, ev, len, event_no, offset, &orphans);
+                OnPose(&ep, ev, len, no, offset, &orphans);
             } else if (channel == kChannelPeople) {
                 seen_people = true;
-                OnPeople(&ep, ev, len, event_no, offset, &orphans);
+                OnPeople(&ep, ev, len, no, offset, &orphans);
             }
-            lcm_eventlog_free_event(ev);
-        }
+            return true;
+        });
+        if (!walked)
+            return false;
         Close(&ep, episodes);
         if (orphans > 0)
             warn_.Add(path_ + ": " + std::to_string(orphans) +
@@ -298,6 +317,78 @@ class LogReader {
         return true;
     }
 
+  public:
+    // A continuous recording: every valid ROBOT_POSE and every person of every valid PEOPLE, on
+    // one clock (seconds from the first valid message's utime); DEMO_INFO and other channels are
+    // ignored. An invalid message, and a message whose utime goes back, is a warning and skipped.
+    bool RunRecording(Recording* rec) {
+        struct stat st;
+        if (stat(path_.c_str(), &st) != 0)
+            return Error(path_ + ": cannot open: " + std::strerror(errno));
+        if (!S_ISREG(st.st_mode))
+            return Error(path_ + ": cannot open: not a regular file");
+        lcm_eventlog_t* log = lcm_eventlog_create(path_.c_str(), "r");
+        if (log == nullptr)
+            return Error(path_ + ": cannot open as an LCM log: " + std::strerror(errno));
+        bool have_t0 = false;
+        int64_t t0 = 0, last_pose = INT64_MIN, last_people = INT64_MIN, events = 0;
+        const auto since_t0 = [&](int64_t utime) {
+            if (!have_t0) {
+                t0 = utime;
+                have_t0 = true;
+            }
+            return SecondsBetween(t0, utime);
+        };
+        const bool walked = Walk(log, static_cast<long>(st.st_size), &events,
+                                 [&](const lcm_eventlog_event_t* ev, const std::string& channel, int64_t no,
+                                     long offset) {
+            const size_t len = static_cast<size_t>(ev->datalen);
+            char err[160] = "";
+            if (channel == kChannelRobotPose) {
+                gmmrrt_pose2d_t pose;
+                if (gmmrrt_msg_decode_pose2d(ev->data, len, &pose, err, sizeof err) != GMMRRT_MSG_OK) {
+                    warn_.Add(Where(no, offset, kChannelRobotPose) + ": " + err + "; skipped");
+                } else if (pose.utime <= last_pose) {
+                    warn_.Add(Where(no, offset, kChannelRobotPose) + ": time does not advance (utime " +
+                              std::to_string(pose.utime) + " not after " + std::to_string(last_pose) +
+                              "); skipped");
+                } else {
+                    last_pose = pose.utime;
+                    rec->robot.push_back({since_t0(pose.utime), pose.x, pose.y});
+                }
+            } else if (channel == kChannelPeople) {
+                gmmrrt_people_t people;
+                if (gmmrrt_msg_decode_people(ev->data, len, &people, err, sizeof err) != GMMRRT_MSG_OK) {
+                    warn_.Add(Where(no, offset, kChannelPeople) + ": " + err + "; skipped");
+                } else if (people.utime <= last_people) {
+                    warn_.Add(Where(no, offset, kChannelPeople) + ": time does not advance (utime " +
+                              std::to_string(people.utime) + " not after " + std::to_string(last_people) +
+                              "); skipped");
+                } else {
+                    last_people = people.utime;
+                    const double t = since_t0(people.utime);
+                    for (int32_t i = 0; i < people.num_people; ++i) {
+                        const gmmrrt_person_t& p = people.people[i];
+                        rec->people[p.id].push_back({t, p.x, p.y, p.yaw});
+                    }
+                }
+            }
+            return true;
+        });
+        lcm_eventlog_destroy(log);
+        warn_.Finish();
+        if (!walked)
+            return false;
+        if (events == 0)
+            return EndError(path_ + ": empty log (no events)");
+        if (rec->robot.empty())
+            return EndError(path_ + ": no ROBOT_POSE event: nothing to segment");
+        if (rec->people.empty())
+            return EndError(path_ + ": no PEOPLE event with a person: no one to pass or approach");
+        return true;
+    }
+
+  private:
     void OnPose(OpenEpisode* ep, const lcm_eventlog_event_t* ev, size_t len, int64_t event_no, long offset,
                 size_t* orphans) {
         if (!ep->active) {
@@ -424,27 +515,37 @@ bool ParseFiniteDouble(const std::string& s, double* out) {
     return true;
 }
 
-bool ParseTask(const std::string& s, int* out) {
-    if (s == "avoid")
-        *out = GMMRRT_TASK_AVOID;
-    else if (s == "approach")
-        *out = GMMRRT_TASK_APPROACH;
-    else
-        return false;
-    return true;
+// The label strings of the episode CSV (../shared/data/real/README.md), read and written here.
+struct Label {
+    const char* text;
+    int value;
+};
+const Label kTaskLabels[] = {{"avoid", GMMRRT_TASK_AVOID}, {"approach", GMMRRT_TASK_APPROACH}};
+const Label kHomotopyLabels[] = {
+    {"left", GMMRRT_HOMOTOPY_LEFT}, {"right", GMMRRT_HOMOTOPY_RIGHT}, {"frontal", GMMRRT_HOMOTOPY_FRONTAL}};
+
+template <size_t N>
+bool ParseLabel(const Label (&labels)[N], const std::string& s, int* out) {
+    for (const Label& l : labels) {
+        if (s == l.text) {
+            *out = l.value;
+            return true;
+        }
+    }
+    return false;
 }
 
-bool ParseHomotopy(const std::string& s, int* out) {
-    if (s == "left")
-        *out = GMMRRT_HOMOTOPY_LEFT;
-    else if (s == "right")
-        *out = GMMRRT_HOMOTOPY_RIGHT;
-    else if (s == "frontal")
-        *out = GMMRRT_HOMOTOPY_FRONTAL;
-    else
-        return false;
-    return true;
+template <size_t N>
+const char* LabelText(const Label (&labels)[N], int value) {
+    for (const Label& l : labels)
+        if (l.value == value)
+            return l.text;
+    return nullptr;
 }
+
+bool ParseTask(const std::string& s, int* out) { return ParseLabel(kTaskLabels, s, out); }
+
+bool ParseHomotopy(const std::string& s, int* out) { return ParseLabel(kHomotopyLabels, s, out); }
 
 void StripCr(std::string* line) {
     if (!line->empty() && line->back() == '\r')
@@ -582,6 +683,73 @@ ReadResult ReadDemoLog(const std::string& path, std::vector<Episode>* out) {
         return result;
     for (Episode& e : episodes)
         out->push_back(std::move(e));
+    return result;
+}
+
+ReadResult WriteEpisodeCsv(const std::string& path, const std::vector<Episode>& episodes) {
+    if (episodes.empty())
+        return Fail(path + ": no episodes to write");
+    std::ostringstream text;
+    text.imbue(std::locale::classic());
+    for (size_t c = 0; c < kCsvColumns; ++c)
+        text << (c ? "," : "") << kCsvHeader[c];
+    text << "\n";
+    char num[32];
+    const auto put = [&](double v) {
+        std::snprintf(num, sizeof num, "%.17g", v);  // 17 digits: reads back to the same double
+        text << ',' << num;
+    };
+    for (const Episode& e : episodes) {
+        const char* task = LabelText(kTaskLabels, e.task);
+        const char* homotopy = LabelText(kHomotopyLabels, e.homotopy);
+        if (e.id.empty() || e.id.find_first_of(",\r\n") != std::string::npos)
+            return Fail(path + ": episode id '" + e.id + "' is empty or holds a comma or line break");
+        if (task == nullptr || homotopy == nullptr)
+            return Fail(path + ": episode " + e.id + ": task " + std::to_string(e.task) + " / homotopy " +
+                        std::to_string(e.homotopy) + " has no label in the episode CSV");
+        for (const PoseSample& s : e.samples) {
+            text << e.id << ',' << task << ',' << homotopy;
+            for (double v : {s.t_s, s.robot_x, s.robot_y, s.person_x, s.person_y, s.person_yaw}) {
+                if (!std::isfinite(v))
+                    return Fail(path + ": episode " + e.id + ": a sample is not finite");
+                put(v);
+            }
+            text << '\n';
+        }
+    }
+    // Whole or not at all: a temporary file beside the target, synced, then renamed over it.
+    const std::string data = text.str();
+    std::string tmp = path + ".XXXXXX";
+    const int fd = mkstemp(&tmp[0]);
+    if (fd < 0)
+        return Fail(path + ": cannot create a temporary file beside it: " + std::strerror(errno));
+    size_t done = 0;
+    while (done < data.size()) {
+        const ssize_t n = write(fd, data.data() + done, data.size() - done);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0) {
+            const std::string why = std::strerror(errno);
+            close(fd);
+            unlink(tmp.c_str());
+            return Fail(path + ": write failed: " + why);
+        }
+        done += static_cast<size_t>(n);
+    }
+    if (fchmod(fd, 0644) != 0 || fsync(fd) != 0 || close(fd) != 0 || rename(tmp.c_str(), path.c_str()) != 0) {
+        const std::string why = std::strerror(errno);
+        unlink(tmp.c_str());
+        return Fail(path + ": cannot write: " + why);
+    }
+    return ReadResult();
+}
+
+ReadResult ReadRecording(const std::string& path, Recording* out) {
+    ReadResult result;
+    Recording rec;
+    LogReader reader(path, &result);
+    if (reader.RunRecording(&rec))
+        *out = std::move(rec);
     return result;
 }
 

@@ -538,13 +538,35 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   ko.restarts = 1;
   ko.max_iterations = options.kmeans_max_iterations;
   std::vector<EmRun> runs(options.restarts + options.extra_starts.size());
-  int best = -1;
-  for (int r = 0; r < options.restarts; ++r) {
+  // The candidates are independent, so with several threads they run side by side, one thread
+  // each (the screening's E-steps on 20 000 points are too short to split well, and k-means is
+  // serial): candidate r's k-means draws from its own copy of rng advanced past the draws of
+  // candidates 0..r-1 (KMeansRandomDraws), so each gets the centres it would get in order and
+  // the fit is the same bits for any thread count. What a candidate reports (warnings, re-seeds,
+  // progress) is kept apart and passed on in candidate order afterwards; each candidate has the
+  // whole re-seed budget (max_reseeds); the fit to convergence has what all of them left of it.
+  const bool side_by_side = s.threads > 1 && options.restarts > 1;
+  const uint64_t draws = KMeansRandomDraws(ko);
+  std::vector<FitSummary> reports(options.restarts);
+  std::vector<Status> failures(options.restarts, Status::Ok());
+  FitOptions quiet = options;
+  quiet.warn = nullptr;  // passed on below
+  if (options.restarts > 1) quiet.progress = nullptr;  // one candidate: progress as it runs
+  detail::ParallelFor(side_by_side ? s.threads : 1, options.restarts, [&](long r) {
+    FitState cs = screen;
+    cs.summary = &reports[r];
+    cs.options = &quiet;
+    cs.threads = side_by_side ? 1 : s.threads;
+    std::mt19937_64 crng = rng;
+    crng.discard(draws * static_cast<uint64_t>(r));
     KMeansResult km;
-    Status st = KMeans(screen_xt, angle_mask, ko, &rng, &km);
-    if (!st.ok()) return st;
+    Status st = KMeans(screen_xt, angle_mask, ko, &crng, &km);
+    if (!st.ok()) {
+      failures[r] = st;
+      return;
+    }
     EmRun& run = runs[r];
-    run.restart = r;
+    run.restart = static_cast<int>(r);
     run.kmeans_inertia = km.inertia;
     run.m.dim = d;
     run.m.angle_mask = angle_mask;
@@ -558,11 +580,25 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
         if ((angle_mask >> j) & 1u) delta[j] = gmmrrt_wrap_angle(delta[j]);
       run.stats.nk[l] += 1.0;
       run.stats.s1.col(l) += delta;
-      run.stats.s2[l] += delta * delta.transpose();
+      Eigen::MatrixXd& s2 = run.stats.s2[l];
+      for (int b = 0; b < d; ++b)  // delta delta^T without a temporary matrix per point (malloc)
+        for (int a = 0; a < d; ++a) s2(a, b) += delta[a] * delta[b];
       run.score[c] = -delta.squaredNorm();
     }
-    MStep(screen, run.stats, km.centers, run.score, 0, &run.m);
-    if (run.m.k() > 0) Advance(screen, &run, options.screen_iterations);
+    MStep(cs, run.stats, km.centers, run.score, 0, &run.m);
+    if (run.m.k() > 0) Advance(cs, &run, options.screen_iterations);
+  });
+  rng.discard(draws * static_cast<uint64_t>(options.restarts));
+  int best = -1;
+  for (int r = 0; r < options.restarts; ++r) {
+    if (!failures[r].ok()) return failures[r];
+    const FitSummary& rep = reports[r];
+    for (const std::string& w : rep.warnings) s.Warn(w);
+    summary->reseed_iterations.insert(summary->reseed_iterations.end(), rep.reseed_iterations.begin(),
+                                      rep.reseed_iterations.end());
+    summary->reseeds += rep.reseeds;
+    summary->dropped += rep.dropped;
+    const EmRun& run = runs[r];
     if (run.m.k() > 0 && (best < 0 || run.ll.back() > runs[best].ll.back())) best = r;
     if (options.restarts > 1 && options.progress && run.m.k() > 0)
       options.progress(r, static_cast<int>(run.ll.size()) - 1, run.ll.back());

@@ -4,7 +4,7 @@
 // registers on the baseline target (SSE2 on x86-64, NEON on ARM) and, compiled once more for
 // AVX2 on x86-64, 4 at a time when the CPU has AVX2 (checked once at run time, so binaries still
 // run on any x86-64). The two agree up to the order of the sums (see the .inc). exp() is our own vectorised one: the library exp is a scalar call per
-// value, and Eigen's packet exp is slow on the baseline target. Contract in estep_2d.hpp.
+// value, and Eigen's packet exp is slow on the baseline target; log() likewise (one per point). Contract in estep_2d.hpp.
 #include "estep_2d.hpp"
 
 #include <algorithm>
@@ -101,6 +101,17 @@ void VectorExp4(const double* x, double* out, Simd simd) {
 #endif
   (void)simd;
   kernel_baseline::ExpOf4(x, out);
+}
+
+void VectorLog4(const double* x, double* out, Simd simd) {
+#ifdef GMMRRT_ESTEP_HAVE_AVX2
+  if (simd != Simd::kBaseline && EStep2dAvx2Available()) {
+    kernel_avx2::LogOf4(x, out);
+    return;
+  }
+#endif
+  (void)simd;
+  kernel_baseline::LogOf4(x, out);
 }
 
 double EStep2d(const Mixture& m, const double* x0, const double* x1, Eigen::Index n_points,

@@ -65,6 +65,10 @@ def lib() -> ctypes.CDLL:
         _lib.gmmrrt_features_from_xy.restype = None
         _lib.gmmrrt_features_to_xy.argtypes = [pp, d, d, pd, pd]
         _lib.gmmrrt_features_to_xy.restype = None
+        _lib.gmmrrt_path_swept_angle.argtypes = [pp, pd, ctypes.c_size_t]
+        _lib.gmmrrt_path_swept_angle.restype = d
+        _lib.gmmrrt_path_passing_side.argtypes = [pp, pd, ctypes.c_size_t]
+        _lib.gmmrrt_path_passing_side.restype = ctypes.c_int
         _lib.gmmrrt_world_to_person.argtypes = [pp, d, d, pd, pd]
         _lib.gmmrrt_world_to_person.restype = None
         _lib.gmmrrt_person_to_world.argtypes = [pp, d, d, pd, pd]
@@ -253,6 +257,25 @@ def status_str(code: int) -> str:
 def wrap_angle(a: float) -> float:
     """Angle wrapped to (-pi, pi] (gmmrrt_wrap_angle)."""
     return lib().gmmrrt_wrap_angle(float(a))
+
+
+def _xy_buffer(xy) -> Tuple[ctypes.Array, int]:
+    flat = [float(v) for p in xy for v in (p[0], p[1])]
+    return (ctypes.c_double * max(len(flat), 1))(*flat), len(flat) // 2
+
+
+def path_swept_angle(person: Tuple[float, float, float], xy) -> float:
+    """Signed angle [rad] the bearing from the person sweeps along the path (N x 2 points),
+    counter-clockwise positive (gmmrrt_path_swept_angle)."""
+    buf, n = _xy_buffer(xy)
+    return lib().gmmrrt_path_swept_angle(ctypes.byref(Pose(*person)), buf, n)
+
+
+def path_passing_side(person: Tuple[float, float, float], xy) -> int:
+    """+1 (left) / -1 (right): theta's sign at the path point closest to the person; 0 for no
+    point (gmmrrt_path_passing_side)."""
+    buf, n = _xy_buffer(xy)
+    return lib().gmmrrt_path_passing_side(ctypes.byref(Pose(*person)), buf, n)
 
 
 def features_from_xy(person: Tuple[float, float, float], x: float, y: float) -> Tuple[float, float]:

@@ -39,7 +39,7 @@ def write_demo_log(path: str, episodes: List[Episode], start_utime: int = DEFAUL
     people_every: write PEOPLE only at every k-th sample (k >= 1; the first sample always), as a
     slower people tracker would; keep (k - 1) sample periods <= MAX_PERSON_AGE_S or the readers
     drop poses. labelled=False leaves out DEMO_INFO: a continuous recording as a robot logs it
-    before anyone labels it (the input of tools/segment_demos.py). The file appears whole or not
+    before anyone labels it (the input of `gmmrrt-learn segment`). The file appears whole or not
     at all. Raises EpisodeError on invalid input."""
     if people_every < 1:
         raise EpisodeError(f"{path}: people_every must be >= 1, not {people_every}")

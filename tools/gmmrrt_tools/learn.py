@@ -10,11 +10,13 @@ The fit is the learner's FitMixture (k-means++ candidates, SQUAREM-accelerated E
 for the same seed on any thread count), the density the C core's gmmrrt_gmm_log_density (wrapped
 normal on angle dimensions), sampling gmmrrt_gmm_sample, the file format model.c: nothing is
 computed twice. Attributes after fit/load: weights_ (K), means_ (K x d), covariances_ (K x d x d),
-n_iter_, converged_, lower_bound_ (mean log-likelihood per training point).
+n_iter_, converged_, lower_bound_ (mean log-likelihood per training point); after load also
+provenance_ (what the file says it was learned from, docs/learner.md "Provenance").
 """
 from __future__ import annotations
 
 import ctypes
+import json
 import math
 import os
 from pathlib import Path
@@ -120,6 +122,7 @@ class GaussianMixture:
         if st != 0:
             raise ValueError(f"fit failed: {err.value.decode(errors='replace')}")
         self._set_handle(handle)
+        self.provenance_text_ = self.provenance_ = None  # a Python fit records none (save writes none)
         self.n_iter_, self.converged_ = int(summary.iterations), bool(summary.converged)
         self.lower_bound_ = float(summary.mean_log_likelihood)
         return self
@@ -133,7 +136,15 @@ class GaussianMixture:
 
     @classmethod
     def load(cls, path) -> "GaussianMixture":
-        """A model file, validated by the C loader (a corrupt file raises ValueError)."""
+        """A model file, validated by the C loader (a corrupt file raises ValueError).
+
+        provenance_text_: the file's provenance trailer as the C core reads it
+        (core.model_provenance, gmmrrt_model_provenance), None for a file without one;
+        provenance_: that text parsed as JSON (the object `gmmrrt-learn fit` writes: data_sha256,
+        command_line, seed, k, bic, ...), None without a trailer; a trailer that is not a JSON
+        object raises ValueError naming the file."""
+        from gmmrrt_tools import core
+
         lib = _load_lib()
         handle = ctypes.c_void_p()
         err = ctypes.create_string_buffer(512)
@@ -142,6 +153,18 @@ class GaussianMixture:
             raise ValueError(err.value.decode(errors="replace"))
         gm = cls(n_components=lib.gmmrrt_learn_k(handle))
         gm._set_handle(handle)
+        try:
+            gm.provenance_text_ = core.model_provenance(Path(path).read_bytes())
+        except (OSError, core.ModelError) as e:  # the file changed after the C loader read it
+            raise ValueError(f"{path}: {e}") from None
+        gm.provenance_ = None
+        if gm.provenance_text_ is not None:
+            try:
+                gm.provenance_ = json.loads(gm.provenance_text_)
+            except json.JSONDecodeError as e:
+                raise ValueError(f"{path}: the provenance trailer is not JSON ({e})") from None
+            if not isinstance(gm.provenance_, dict):
+                raise ValueError(f"{path}: the provenance trailer is not a JSON object")
         mask = lib.gmmrrt_learn_angle_mask(handle)
         gm.angle_dims = tuple(j for j in range(gm.means_.shape[1]) if (mask >> j) & 1)
         return gm

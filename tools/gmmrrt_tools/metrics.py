@@ -422,24 +422,22 @@ def social_metrics(path, people) -> Dict[str, float]:
 
 def passing_side(path, person: Sequence[float]) -> Optional[str]:
     """Side of the person the path passes, in the person's frame ('left': theta > 0, as the real-data
-    README defines homotopy), taken at the path point closest to the person; None for an empty path."""
+    README defines homotopy), taken at the path point closest to the person (the C core's
+    gmmrrt_path_passing_side, which the learner's segmenter labels with too)."""
     from gmmrrt_tools import core
 
-    p = as_path(path)
-    i = int(np.argmin(np.linalg.norm(p - np.asarray(person[:2], dtype=float), axis=1)))
-    _, th = core.features_from_xy(tuple(person), p[i, 0], p[i, 1])
-    return "left" if th > 0.0 else "right"
+    return "left" if core.path_passing_side(tuple(person), as_path(path)) > 0 else "right"
 
 
 def swept_angle(path, person: Sequence[float]) -> float:
     """Signed angle [rad] swept by the bearing from the person to the mover along the polyline
-    (counter-clockwise positive): the sum of the wrapped bearing changes between consecutive points.
-    Two paths with the same start and goal pass the person on the same side iff their swept angles
-    differ by less than pi (otherwise by about 2 pi): see same_homotopy."""
-    p = as_path(path) - np.asarray(person[:2], dtype=float)
-    b = np.arctan2(p[:, 1], p[:, 0])
-    db = np.array([wrap(a) for a in np.diff(b)])
-    return float(np.sum(db))
+    (counter-clockwise positive): the sum of the wrapped bearing changes between consecutive points
+    (the C core's gmmrrt_path_swept_angle). Two paths with the same start and goal pass the person
+    on the same side iff their swept angles differ by less than pi (otherwise by about 2 pi): see
+    same_homotopy."""
+    from gmmrrt_tools import core
+
+    return core.path_swept_angle(tuple(person), as_path(path))
 
 
 def same_homotopy(path_a, path_b, person: Sequence[float]) -> bool:

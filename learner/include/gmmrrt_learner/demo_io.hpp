@@ -17,6 +17,7 @@
 #ifndef GMMRRT_LEARNER_DEMO_IO_HPP
 #define GMMRRT_LEARNER_DEMO_IO_HPP
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -70,6 +71,32 @@ ReadResult ReadEpisodeCsv(const std::string& path, std::vector<Episode>* out);
 // all, no episode with samples (these name the cut too when the log was cut short). A cut
 // last event is a warning, not an error.
 ReadResult ReadDemoLog(const std::string& path, std::vector<Episode>* out);
+
+// Writes episodes as an episode CSV (the format ReadEpisodeCsv reads; robot_yaw is not part of
+// it and is dropped; numbers with 17 significant digits, so they read back exactly). The file
+// appears whole or not at all (a temporary file beside it, synced, renamed). Errors: no
+// episodes, an id that is empty or holds a comma, a task / homotopy without a CSV label
+// (homotopy "all"), a non-finite number, a file that cannot be written.
+ReadResult WriteEpisodeCsv(const std::string& path, const std::vector<Episode>& episodes);
+
+// A continuous recording (no DEMO_INFO needed: what the segmenter cuts into episodes). Times in
+// seconds from the first valid ROBOT_POSE or PEOPLE message's utime.
+struct RobotSample {
+    double t_s, x, y;
+};
+struct PersonSample {
+    double t_s, x, y, yaw;  // PEOPLE's message utime, the person's position and facing
+};
+struct Recording {
+    std::vector<RobotSample> robot;                       // ROBOT_POSE, utime strictly increasing
+    std::map<int32_t, std::vector<PersonSample>> people;  // by person id, PEOPLE order
+};
+
+// Reads a continuous recording with the same framing checks and validating decoders as
+// ReadDemoLog. On success replaces *out; on failure leaves it unchanged. Errors: cannot open,
+// not a regular file, not an LCM log, corrupted event structure, no ROBOT_POSE, no PEOPLE with
+// a person. Warnings: invalid messages, time not advancing, a cut last event.
+ReadResult ReadRecording(const std::string& path, Recording* out);
 
 // Either of the above, chosen by content: the LCM log sync word 0xEDA1DA01 at the start
 // means a log, anything else is read as an episode CSV.

@@ -42,6 +42,12 @@ void SquaredDistances(const Eigen::MatrixXd& points, const Eigen::VectorXd& cent
 Status KMeans(const Eigen::MatrixXd& points, uint32_t angle_mask, const KMeansOptions& options,
               std::mt19937_64* rng, KMeansResult* result);
 
+// How many numbers KMeans draws from rng: restarts x (1 + (k - 1) x (2 + floor(ln k))), one per
+// k-means++ draw (the first centre, then each candidate centre); Lloyd draws none. A caller that
+// runs several KMeans at once gives each a copy of rng advanced (discard) by this much per earlier
+// one, and gets the same centres as from running them in order.
+uint64_t KMeansRandomDraws(const KMeansOptions& options);
+
 // Uniform double in [0, 1) from 53 random bits: the same on every platform, unlike
 // std::uniform_real_distribution.
 double Uniform01(std::mt19937_64* rng);

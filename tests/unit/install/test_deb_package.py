@@ -62,6 +62,7 @@ def test_control_fields_and_dependencies(deb):
     for lib in ("libc6", "libfcl", "libglib2.0-0", "libinih1", "libstdc++6", "python3"):
         assert lib in depends, depends
     assert "lcm" not in depends, "LCM is linked statically; Debian's liblcm is too old: %s" % depends
+    assert "python3-matplotlib" in field(info, "Recommends")  # gmmrrt-learn plot draws with it
     control = Path(str(deb) + ".control")
     run(["dpkg-deb", "--control", str(deb), str(control)])
     assert (control / "conffiles").read_text().split() == ["/etc/gmmrrt/gmmrrtd.ini"]
@@ -88,7 +89,7 @@ def test_unpacked_into_a_throwaway_root_it_runs_and_is_complete(deb, tmp_path):
               "usr/include/gmmrrt/model_file.h", "usr/include/gmmrrt/third_party/lcm/lcm.h",
               "etc/gmmrrt/gmmrrtd.ini", "lib/systemd/system/gmmrrtd.service",
               "usr/share/doc/gmmrrt/copyright", "usr/share/doc/gmmrrt/changelog.gz",
-              "usr/share/doc/gmmrrt/install.md"):
+              "usr/share/doc/gmmrrt/install.md", "usr/share/gmmrrt/plot_render.py"):
         assert (root / f).exists(), "the package lacks /%s" % f
     sonames = sorted(p.name for p in (root / "usr" / "lib").glob("libgmmrrt.so*"))
     assert sonames == ["libgmmrrt.so", "libgmmrrt.so.0.1", "libgmmrrt.so.0.1.0"], sonames

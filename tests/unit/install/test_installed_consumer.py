@@ -10,7 +10,10 @@ no venv, no PYTHONPATH, no LD_LIBRARY_PATH) from a temporary working directory:
 - a CMake project using find_package(gmmrrt CONFIG REQUIRED) with gmmrrt::io, gmmrrt::gmmrrt and
   gmmrrt::lcmtypes does the same and round-trips a message;
 - the installed gmmrrtd runs a short file:// replay to its end and exits 0, once with flags and
-  once with the installed INI (models put where that INI and the installed unit say).
+  once with the installed INI (models put where that INI and the installed unit say);
+- the installed gmmrrt-learn goes from a raw recording to a picture of a model: `segment` cuts an
+  unlabelled log into a labelled episode CSV, `fit --homotopy all` learns from it, and `plot`
+  draws it with the system's python3 and Debian's matplotlib (no venv on PATH).
 The test's own Python (the venv) only drives these steps and writes the model files.
 """
 import os
@@ -151,3 +154,34 @@ def test_installed_unit_and_ini_point_at_the_prefix(prefix, models):
     run([str(p / "bin" / "gmmrrtd"), "--config", str(ini_moved), "--lcm-url", "file://%s?speed=0" % log,
          "--lcm-out-url", "file://%s?mode=w" % (work / "out2.lcmlog"), "--exit-at-eof", "--budget-ms", "0",
          "--budget-iterations", "100", "--log-level", "warn"], env, work)
+
+
+def test_installed_learner_segments_fits_and_plots_a_raw_recording(prefix):
+    import lcm
+    import numpy as np
+    from gmmrrt import people_t, pose2d_t  # the test's own (build) message package writes the input
+
+    p, env, work = prefix
+    log_path = work / "drive.lcmlog"
+    log = lcm.EventLog(str(log_path), "w", overwrite=True)
+    t0 = 1_700_000_000_000_000
+    rng = np.random.default_rng(3)
+    for k in range(200):  # 20 s at 10 Hz: the robot passes a standing person on their left
+        u = t0 + k * 100_000
+        pe = people_t()
+        pe.utime, pe.num_people = u, 1
+        q = pe.people[0]
+        q.utime, q.id, q.x, q.y, q.yaw = u, 1, float(rng.normal(0, 0.01)), float(rng.normal(0, 0.01)), 0.0
+        log.write_event(u, "PEOPLE", pe.encode())
+        po = pose2d_t()
+        po.utime, po.x, po.y = u, -6.0 + 0.06 * k, 1.2
+        log.write_event(u, "ROBOT_POSE", po.encode())
+    log.close()
+    learn = str(p / "bin" / "gmmrrt-learn")
+    run([learn, "segment", str(log_path), "-o", "eps.csv"], env, work)
+    head = (work / "eps.csv").read_text().splitlines()
+    assert head[0].startswith("episode_id,task,homotopy") and head[1].startswith("drive_seg0000,avoid,left,"), head[:2]
+    run([learn, "fit", "--input", "eps.csv", "--task", "avoid", "--homotopy", "all", "--k", "2", "-o", "m.gmm",
+         "-q"], env, work)
+    run([learn, "plot", "m.gmm", "-o", "m.png"], env, work)
+    assert (work / "m.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

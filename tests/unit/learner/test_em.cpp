@@ -68,6 +68,27 @@ void test_kmeans_finds_separated_centers(void** state) {
   }
 }
 
+// FitMixture runs its candidates side by side, each k-means on a copy of the RNG advanced by
+// KMeansRandomDraws per earlier candidate: that count must be what KMeans really draws.
+void test_kmeans_draws_what_kmeans_random_draws_says(void** state) {
+  (void)state;
+  const Eigen::MatrixXd rows = test_support::Sample(ThreeBlobs(), 0, 5).transpose();
+  for (int k : {1, 2, 3, 7, 19, 40}) {
+    for (int restarts : {1, 3}) {
+      for (uint32_t mask : {0u, 2u}) {
+        KMeansOptions o;
+        o.k = k;
+        o.restarts = restarts;
+        std::mt19937_64 rng(11), skipped(11);
+        KMeansResult r;
+        assert_true(KMeans(rows, mask, o, &rng, &r).ok());
+        skipped.discard(KMeansRandomDraws(o));
+        assert_true(rng == skipped);
+      }
+    }
+  }
+}
+
 void test_em_recovers_means_and_weights(void** state) {
   (void)state;
   const auto blobs = ThreeBlobs();
@@ -335,6 +356,7 @@ void test_eigen_density_equals_the_c_density(void** state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_kmeans_finds_separated_centers),
+      cmocka_unit_test(test_kmeans_draws_what_kmeans_random_draws_says),
       cmocka_unit_test(test_em_recovers_means_and_weights),
       cmocka_unit_test(test_em_log_likelihood_never_decreases),
       cmocka_unit_test(test_same_seed_gives_the_same_mixture),

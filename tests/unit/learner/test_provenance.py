@@ -150,3 +150,27 @@ def test_a_long_command_line_still_fits_the_trailer(tmp_path, data):
     assert rec["command_line_truncated"] is True and rec["data_files_omitted"] == 1
     assert rec["command_line"][:4] == ["gmmrrt-learn", "fit", "--features-csv", str(data)]
     assert rec["data_sha256"] == hashlib.sha256(data.read_bytes()).hexdigest()
+
+
+def test_python_load_exposes_the_provenance_through_the_core(tmp_path, data):
+    from gmmrrt_tools.learn import GaussianMixture
+
+    model, _ = fit(tmp_path, data)
+    gm = GaussianMixture.load(model)
+    assert gm.provenance_text_ == core.model_provenance(model.read_bytes())
+    assert gm.provenance_["data_sha256"] == hashlib.sha256(data.read_bytes()).hexdigest()
+    assert (gm.provenance_["seed"], gm.provenance_["k"], gm.provenance_["points"]) == (11, 3, 700)
+    assert gm.provenance_["command_line"][:2] == ["gmmrrt-learn", "fit"]
+    # A file without a trailer (what GaussianMixture.save writes) loads with provenance None.
+    bare = tmp_path / "bare.gmm"
+    gm.save(bare)
+    assert len(bare.read_bytes()) == MODEL_LEN
+    back = GaussianMixture.load(bare)
+    assert back.provenance_ is None and back.provenance_text_ is None
+    # A trailer that another writer filled with something other than a JSON object is named.
+    m = core.decode_model(model.read_bytes())
+    for text in ("not json", "[1, 2]"):
+        odd = tmp_path / "odd.gmm"
+        core.save_model(str(odd), m, provenance=text)
+        with pytest.raises(ValueError, match="odd.gmm: the provenance trailer is not"):
+            GaussianMixture.load(odd)

@@ -10,7 +10,6 @@ against scikit-learn, on data where both find the same optimum:
 """
 import os
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -84,23 +83,3 @@ def test_bad_input_raises_with_the_reason():
         GaussianMixture(n_components=1).fit(np.array([[0.0, 1.0], [np.nan, 2.0], [1.0, 0.0], [2.0, 3.0]]))
     with pytest.raises(RuntimeError):
         GaussianMixture().score_samples(np.zeros((1, 2)))
-
-
-def test_plot_model_draws_two_d_models_and_refuses_others(tmp_path):
-    x = data(7, 2000)
-    gm = GaussianMixture(n_components=3, random_state=1).fit(x)
-    model = tmp_path / "m.gmm"
-    gm.save(model)
-    pts = tmp_path / "pts.csv"
-    np.savetxt(pts, x, delimiter=",", header="a,b", comments="")
-    png = tmp_path / "m.png"
-    plot = Path(__file__).resolve().parents[3] / "tools" / "plot_model.py"
-    r = subprocess.run([sys.executable, str(plot), str(model), "-o", str(png), "--points", str(pts)],
-                       capture_output=True, text=True, timeout=300)
-    assert r.returncode == 0, r.stderr
-    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    m3 = tmp_path / "m3.gmm"
-    GaussianMixture(n_components=2, random_state=1).fit(np.random.default_rng(0).normal(size=(500, 3))).save(m3)
-    r = subprocess.run([sys.executable, str(plot), str(m3), "-o", str(tmp_path / "m3.png")],
-                       capture_output=True, text=True, timeout=300)
-    assert r.returncode == 1 and "only D = 2" in r.stderr and not (tmp_path / "m3.png").exists()
