@@ -41,6 +41,7 @@ struct DataSpec {
   int kind = GMMRRT_MODEL_KIND_FEATURES;  // features or xy for episodes
   std::string features_csv;          // kind generic
   uint32_t angle_mask = 0;           // for features_csv
+  bool straight_lines = false;       // each episode's straight line instead (background.hpp)
   bool quiet = false;
 };
 
@@ -57,8 +58,10 @@ std::string DescribeData(const DataSpec& spec);
 Status LoadModel(const std::string& path, gmmrrt_model_t* model, std::string* provenance = nullptr);
 
 // Encodes and writes atomically (temporary file + rename; nothing left behind on failure).
-// With provenance, the file ends with a provenance trailer holding it (model.h).
-Status SaveModel(const std::string& path, const gmmrrt_model_t& model, const std::string* provenance = nullptr);
+// With provenance, the file ends with a provenance trailer holding it (model.h); with background,
+// the file carries it as the model's background section (model.h).
+Status SaveModel(const std::string& path, const gmmrrt_model_t& model, const std::string* provenance = nullptr,
+                 const gmmrrt_model_t* background = nullptr);
 
 }  // namespace cli
 }  // namespace learn
