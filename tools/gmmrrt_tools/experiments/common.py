@@ -107,6 +107,7 @@ class Ctx:
         self.real = Path(args.real_data) if args.real_data else None
         self.split = getattr(args, "split", None) or "test"
         self.train_split = getattr(args, "train_split", None) or "train"
+        self.real_k = getattr(args, "real_k", None)  # K of the real-data models (None: the learner's default)
         self.real_sets = [x for x in (getattr(args, "real_sets", None) or "upo_avoid,ucy_avoid,ucy_approach").split(",")]
         global _REAL_DIR
         _REAL_DIR = str(self.real) if self.real else None

@@ -108,6 +108,10 @@ def _limit(ctx: Ctx, eps: list) -> list:
     return eps[:: max(1, len(eps) // n)][:n] if n else eps
 
 
+def _k_suffix(ctx: Ctx) -> str:
+    return f"_k{ctx.real_k}" if ctx.real_k else ""
+
+
 def _study_episodes(ctx: Ctx, ep_csv: str, idx: str) -> list:
     """Every episode of a study, with its split and index row (the learner's reader), after
     checking that each has a standing person and that the training and evaluation splits exist."""
@@ -126,8 +130,9 @@ def real_upo_avoid(ctx: Ctx) -> RealSet:
     s = ctx.s
     ep_csv, idx = _real_file(ctx, "upo_avoid_episodes.csv"), _real_file(ctx, "upo_avoid_index.csv")
     every = _study_episodes(ctx, ep_csv, idx)
-    mdl = R.fit_model(ctx.work / "models" / f"upo_avoid_{ctx.train_split}_all_bg.gmm", "avoid", [ep_csv], homotopy="all",
-                      seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir, background=True)
+    mdl = R.fit_model(ctx.work / "models" / f"upo_avoid_{ctx.train_split}_all_bg{_k_suffix(ctx)}.gmm", "avoid", [ep_csv],
+                      homotopy="all", k=ctx.real_k, seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir,
+                      background=True)
     people = RD.upo_people(idx, every)
     eps = _limit(ctx, [e for e in every if e.split == ctx.split])
     return RealSet("real_upo_avoid", f"Real data: UPO avoid, learned on the {ctx.train_split} split, evaluated on the "
@@ -149,8 +154,9 @@ def real_ucy_avoid(ctx: Ctx) -> RealSet:
     ep_csv, idx = _real_file(ctx, "ucy_avoid_episodes.csv"), _real_file(ctx, "ucy_index.csv")
     tracks = _real_file(ctx, "ucy_tracks.csv")
     every = _study_episodes(ctx, ep_csv, idx)
-    mdl = R.fit_model(ctx.work / "models" / f"ucy_avoid_{ctx.train_split}_all_bg.gmm", "avoid", [ep_csv], homotopy="all",
-                      seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir, background=True)
+    mdl = R.fit_model(ctx.work / "models" / f"ucy_avoid_{ctx.train_split}_all_bg{_k_suffix(ctx)}.gmm", "avoid", [ep_csv],
+                      homotopy="all", k=ctx.real_k, seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir,
+                      background=True)
     eps = _limit(ctx, [e for e in every if e.split == ctx.split])
     people = RD.ucy_people(tracks, idx, eps, every)
     scenes = [multi_person_scene(e, people[e.episode_id]) for e in eps]
