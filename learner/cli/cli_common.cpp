@@ -141,6 +141,20 @@ Status LoadModel(const std::string& path, gmmrrt_model_t* model, std::string* pr
   return Status::Ok();
 }
 
+Status BackgroundK(const std::string& path, int* k) {
+  auto model = std::make_unique<gmmrrt_model_t>();
+  auto background = std::make_unique<gmmrrt_model_t>();
+  int has = 0;
+  char err[512] = "";
+  const gmmrrt_status_t st = gmmrrt_model_load_file_background(path.c_str(), model.get(), background.get(), &has,
+                                                               nullptr, 0, nullptr, err, sizeof err);
+  if (st != GMMRRT_OK)
+    return Status::Error(st == GMMRRT_ERR_IO ? StatusCode::kIoError : StatusCode::kBadModel,
+                         err[0] ? std::string(err) : path + ": " + gmmrrt_status_str(st));
+  *k = has ? background->k : 0;
+  return Status::Ok();
+}
+
 Status SaveModel(const std::string& path, const gmmrrt_model_t& model, const std::string* provenance,
                  const gmmrrt_model_t* background) {
   char err[512] = "";

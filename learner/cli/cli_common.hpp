@@ -57,6 +57,9 @@ std::string DescribeData(const DataSpec& spec);
 // provenance, its provenance text too ("" when the file has none or an empty one).
 Status LoadModel(const std::string& path, gmmrrt_model_t* model, std::string* provenance = nullptr);
 
+// The K of the file's background model (model.h, background section) into *k, 0 when it has none.
+Status BackgroundK(const std::string& path, int* k);
+
 // Encodes and writes atomically (temporary file + rename; nothing left behind on failure).
 // With provenance, the file ends with a provenance trailer holding it (model.h); with background,
 // the file carries it as the model's background section (model.h).

@@ -83,8 +83,9 @@ gmmrrt_status_t gmmrrt_model_encode(const gmmrrt_model_t *model, uint8_t *buf, s
                                     size_t *out_len, char *err, size_t errcap);
 
 /* Parses and validates len bytes at buf into *out: magic, version, byte order, sizes
- * against len, CRC-32, the provenance trailer's framing when bytes follow the model (below;
- * its text is not stored in *out), K and D within limits.h, kind/task/homotopy/angle flags known,
+ * against len, CRC-32, the framing of the background section and of the provenance trailer
+ * when bytes follow the model (below; neither is stored in *out: gmmrrt_model_background and
+ * gmmrrt_model_provenance read them), K and D within limits.h, kind/task/homotopy/angle flags known,
  * finite numbers, positive-definite factors, weights summing to 1 (|sum - 1| <= 1e-9),
  * then derives the prepared fields. Never reads outside buf[0..len). On failure returns
  * the specific GMMRRT_ERR_MODEL_* status, writes the reason into err[errcap], and leaves

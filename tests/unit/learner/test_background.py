@@ -97,6 +97,10 @@ def test_background_is_the_mixture_of_the_straight_lines(data):
     assert core.model_background(plain.read_bytes()) is None
     size = len(plain.read_bytes())
     assert data_bytes[:size] == plain.read_bytes()
+    # inspect says which file has one
+    assert "background K = 3" in run(LEARN, "inspect", out).stdout
+    assert "background none" in run(LEARN, "inspect", plain).stdout
+    assert '"background_k": 3' in run(LEARN, "inspect", "--json", out).stdout
 
 
 def test_plan_uses_the_files_background_and_says_when_there_is_none(data):
