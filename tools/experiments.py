@@ -63,12 +63,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     ap.add_argument("--train-split", default="train", help="real data: the split models are learned on (default train)")
     ap.add_argument("--drivable", action="store_true",
                     help="score the drivable path gmmrrtd publishes instead of the tree's path (the paper's)")
+    ap.add_argument("--real-k", help="real data: components of the learned avoid models, a number or auto (BIC "
+                                     "sweep); default: gmmrrt-learn fit's (19, the paper's)")
     ap.add_argument("--real-sets", default="upo_avoid,ucy_avoid,ucy_approach",
                     help="real data: comma-separated studies of `real` (upo_avoid, ucy_avoid, ucy_approach)")
     args = ap.parse_args(argv)
     bad = [x for x in args.real_sets.split(",") if x not in REAL_SETS]
     if bad:
         ap.error(f"--real-sets: unknown {', '.join(bad)} (choose from {', '.join(REAL_SETS)})")
+    if args.real_k is not None and args.real_k != "auto" and not (args.real_k.isdigit() and int(args.real_k) >= 1):
+        ap.error(f"--real-k must be a number >= 1 or auto, got {args.real_k}")
     for k in ("trials", "iterations", "jobs", "max_episodes"):
         v = getattr(args, k)
         if v is not None and v < 1:

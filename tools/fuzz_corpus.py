@@ -40,7 +40,16 @@ def events(path):
 
 
 def model_seeds():
+    from gmmrrt_tools import core
+
     seeds = [encode_features_model(TASK_AVOID, AVOID), encode_features_model(TASK_APPROACH, APPROACH)]
+    # A file with every optional part: a background section (here the approach mixture's numbers as an
+    # avoid model) and a provenance trailer after it.
+    avoid = core.decode_model(seeds[0])
+    f = core.model_fields(core.decode_model(seeds[1]))
+    bg = core.model_from_arrays(f["kind"], TASK_AVOID, 0, f["weights"], f["means"], f["chols"], f["angle_mask"],
+                                f["delta"])
+    seeds.append(core.encode_model(avoid, provenance='{"seed":1}', background=bg))
     for name in sorted(os.listdir(VECTORS)):
         if name.endswith(".gmm"):
             with open(os.path.join(VECTORS, name), "rb") as f:

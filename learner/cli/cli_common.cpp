@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gmmrrt/model_file.h"
+#include "gmmrrt_learner/background.hpp"
 #include "gmmrrt_learner/demo_io.hpp"
 #include "gmmrrt_learner/episode_features.hpp"
 #include "gmmrrt_learner/features_csv.hpp"
@@ -101,6 +102,11 @@ Status LoadPoints(const char* cmd, const DataSpec& spec, Eigen::MatrixXd* points
   std::vector<const Episode*> chosen;
   Status s = SelectEpisodes(episodes, filter, &chosen);
   if (!s.ok()) return s;
+  std::vector<Episode> lines;
+  if (spec.straight_lines) {
+    lines = StraightLineEpisodes(chosen);
+    for (size_t i = 0; i < lines.size(); ++i) chosen[i] = &lines[i];
+  }
   s = EpisodeFeatures(chosen, spec.kind, points, angle_mask);
   if (!s.ok()) return s;
   if (!spec.quiet)
@@ -135,10 +141,25 @@ Status LoadModel(const std::string& path, gmmrrt_model_t* model, std::string* pr
   return Status::Ok();
 }
 
-Status SaveModel(const std::string& path, const gmmrrt_model_t& model, const std::string* provenance) {
+Status BackgroundK(const std::string& path, int* k) {
+  auto model = std::make_unique<gmmrrt_model_t>();
+  auto background = std::make_unique<gmmrrt_model_t>();
+  int has = 0;
+  char err[512] = "";
+  const gmmrrt_status_t st = gmmrrt_model_load_file_background(path.c_str(), model.get(), background.get(), &has,
+                                                               nullptr, 0, nullptr, err, sizeof err);
+  if (st != GMMRRT_OK)
+    return Status::Error(st == GMMRRT_ERR_IO ? StatusCode::kIoError : StatusCode::kBadModel,
+                         err[0] ? std::string(err) : path + ": " + gmmrrt_status_str(st));
+  *k = has ? background->k : 0;
+  return Status::Ok();
+}
+
+Status SaveModel(const std::string& path, const gmmrrt_model_t& model, const std::string* provenance,
+                 const gmmrrt_model_t* background) {
   char err[512] = "";
   const gmmrrt_status_t st =
-      gmmrrt_model_save_file_provenance(path.c_str(), &model, provenance ? provenance->data() : nullptr,
+      gmmrrt_model_save_file_background(path.c_str(), &model, background, provenance ? provenance->data() : nullptr,
                                         provenance ? provenance->size() : 0, err, sizeof err);
   if (st != GMMRRT_OK)
     return Status::Error(st == GMMRRT_ERR_IO ? StatusCode::kIoError : StatusCode::kBadModel,

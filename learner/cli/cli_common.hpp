@@ -41,6 +41,7 @@ struct DataSpec {
   int kind = GMMRRT_MODEL_KIND_FEATURES;  // features or xy for episodes
   std::string features_csv;          // kind generic
   uint32_t angle_mask = 0;           // for features_csv
+  bool straight_lines = false;       // each episode's straight line instead (background.hpp)
   bool quiet = false;
 };
 
@@ -56,9 +57,14 @@ std::string DescribeData(const DataSpec& spec);
 // provenance, its provenance text too ("" when the file has none or an empty one).
 Status LoadModel(const std::string& path, gmmrrt_model_t* model, std::string* provenance = nullptr);
 
+// The K of the file's background model (model.h, background section) into *k, 0 when it has none.
+Status BackgroundK(const std::string& path, int* k);
+
 // Encodes and writes atomically (temporary file + rename; nothing left behind on failure).
-// With provenance, the file ends with a provenance trailer holding it (model.h).
-Status SaveModel(const std::string& path, const gmmrrt_model_t& model, const std::string* provenance = nullptr);
+// With provenance, the file ends with a provenance trailer holding it (model.h); with background,
+// the file carries it as the model's background section (model.h).
+Status SaveModel(const std::string& path, const gmmrrt_model_t& model, const std::string* provenance = nullptr,
+                 const gmmrrt_model_t* background = nullptr);
 
 }  // namespace cli
 }  // namespace learn

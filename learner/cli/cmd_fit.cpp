@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "background_fit.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "provenance.hpp"
@@ -62,6 +63,10 @@ const char kFitHelp[] =
     "                          (0..1) of the fitted density over the training points (default 0.25;\n"
     "                          evidence in docs/planner.md, \"What delta does\")\n"
     "  -d, --delta X           store this fixed delta instead (the paper's: --delta 0.001)\n"
+    "  -B, --background B      none (default) | straight: also fit the background, a mixture over\n"
+    "                          each episode's straight line start-goal, with the same options, and\n"
+    "                          store it in the model file (for gmmrrt-plan --task-cost background;\n"
+    "                          kind features only; docs/planner.md, \"The background cost\")\n"
     "  -o, --output MODEL      model file to write (required)\n"
     "  -N, --no-provenance     write no provenance trailer (the SHA-256 of the data files, the\n"
     "                          command line, seed, K, BIC, log-likelihood, version, UTC time;\n"
@@ -101,12 +106,12 @@ int RunFit(int argc, char** argv) {
       {"quiet", no_argument, nullptr, 'q'},          {"help", no_argument, nullptr, 'h'},
       {"bic-patience", required_argument, nullptr, 'P'}, {"screen-points", required_argument, nullptr, 'p'},
       {"accel", required_argument, nullptr, 'A'},    {"split-starts", required_argument, nullptr, 'L'},    {"threads", required_argument, nullptr, 'j'},
-      {"no-provenance", no_argument, nullptr, 'N'},
+      {"no-provenance", no_argument, nullptr, 'N'},  {"background", required_argument, nullptr, 'B'},
       {nullptr, 0, nullptr, 0}};
   // The command line as given, for the provenance record (getopt_long reorders argv).
   std::vector<std::string> command_line = {"gmmrrt-learn"};
   for (int a = 0; a < argc; ++a) command_line.push_back(argv[a]);
-  bool provenance = true;
+  bool provenance = true, background = false;
   DataSpec spec;
   FitOptions options;
   std::string output, task_name, homotopy_name = "all", kind_name, angle_dims, k_text;
@@ -119,7 +124,7 @@ int RunFit(int argc, char** argv) {
   bool delta_given = false;
   optind = 1;
   int c;
-  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:L:p:S:R:m:T:A:j:d:Q:o:qhN", kLong, nullptr)) != -1) {
+  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:L:p:S:R:m:T:A:j:d:Q:o:qhNB:", kLong, nullptr)) != -1) {
     const std::string arg = optarg ? optarg : "";
     long v = 0;
     switch (c) {
@@ -193,6 +198,11 @@ int RunFit(int argc, char** argv) {
       case 'o': output = arg; break;
       case 'q': spec.quiet = true; break;
       case 'N': provenance = false; break;
+      case 'B':
+        if (arg == "straight") background = true;
+        else if (arg == "none") background = false;
+        else return UsageError(cmd, "--background '" + arg + "' is not none or straight");
+        break;
       case 'h': std::printf(kFitHelp, DefaultThreadCount()); return kExitOk;
       default: return UsageError(cmd, "unknown option or missing argument");
     }
@@ -222,6 +232,9 @@ int RunFit(int argc, char** argv) {
   if (!task_name.empty() && !(s = ParseTask(task_name, &spec.task)).ok()) return UsageError(cmd, s.message);
   if (!(s = ParseHomotopy(homotopy_name, &spec.homotopy)).ok()) return UsageError(cmd, s.message);
   spec.kind = kind;
+  if (background && kind != GMMRRT_MODEL_KIND_FEATURES)
+    return UsageError(cmd, "--background straight needs episodes (--input) and --kind features: the background "
+                           "cost is over the features (d, theta)");
   if (k_text == "auto" || (k_text.empty() && k_range_given)) {
     auto_k = true;
   } else if (!k_text.empty()) {
@@ -315,7 +328,18 @@ int RunFit(int argc, char** argv) {
     r.delta = delta;
     if (!(s = ProvenanceJson(r, &record)).ok()) return Fail(cmd, s.message);
   }
-  if (!(s = SaveModel(output, model, provenance ? &record : nullptr)).ok()) return Fail(cmd, s.message);
+  gmmrrt_model_t background_model;
+  if (background) {
+    KPolicy policy;
+    policy.auto_k = auto_k;
+    policy.k_min = k_min;
+    policy.k_max = k_max;
+    policy.patience = bic_patience;
+    policy.split_starts = split_starts;
+    if (!(s = FitBackground(cmd, spec, options, policy, delta, &background_model)).ok()) return Fail(cmd, s.message);
+  }
+  if (!(s = SaveModel(output, model, provenance ? &record : nullptr, background ? &background_model : nullptr)).ok())
+    return Fail(cmd, s.message);
   if (!spec.quiet) std::fprintf(stderr, "gmmrrt-learn fit: wrote %s\n", output.c_str());
   return kExitOk;
 }

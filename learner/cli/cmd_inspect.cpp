@@ -55,6 +55,9 @@ int RunInspect(int argc, char** argv) {
   std::string provenance_text;
   Status s = LoadModel(path, &model, &provenance_text);
   if (!s.ok()) return Fail(cmd, "invalid model: " + s.message);
+  // The background section's K (0: none), for gmmrrt-plan --task-cost background.
+  int background_k = 0;
+  if (!(s = BackgroundK(path, &background_k)).ok()) return Fail(cmd, "invalid model: " + s.message);
   // The learner writes a JSON object; any other text (another writer's) is shown as a string.
   nlohmann::ordered_json provenance = nullptr;
   if (!provenance_text.empty()) {
@@ -91,6 +94,7 @@ int RunInspect(int argc, char** argv) {
       comp["chol"] = l_rows;
       out["components"].push_back(comp);
     }
+    out["background_k"] = background_k;
     out["provenance"] = provenance;
     // 17 significant digits: the doubles of the file round-trip exactly.
     std::printf("%s\n", out.dump(1).c_str());
@@ -111,6 +115,11 @@ int RunInspect(int argc, char** argv) {
       any = true;
     }
   std::printf("%s\n", any ? " (1-based dimensions, wrapped)" : " none");
+  if (background_k > 0)
+    std::printf("background K = %d (a mixture over the episodes' straight lines, for --task-cost background)\n",
+                background_k);
+  else
+    std::printf("background none\n");
   if (provenance.is_object()) {
     std::printf("provenance\n");
     for (const auto& item : provenance.items())

@@ -110,7 +110,8 @@ static void usage(FILE *out)
             "                      within the budget: status \"no path on the preferred side\", exit 3\n"
             "  --side-person I     person index (0-based) the side is about (default: the person\n"
             "                      nearest the segment start-goal)\n"
-            "  --background-model FILE  features model of where walkers go without the person\n"
+            "  --background-model FILE  background model other than the --model file's (for\n"
+            "                      --task-cost background; default: the --model file's own)\n"
             "  --json              print one JSON object instead of CSV\n"
             "  -h, --help          this text\n"
             "\n"
@@ -454,9 +455,13 @@ int main(int argc, char **argv)
         return fail("--start and --goal are required (see --help)%s%s", "", "");
 
     static gmmrrt_model_t model;
+    static gmmrrt_model_t background; /* the model file's own background, or --background-model */
+    int model_has_background = 0;
     char err[512];
     if (model_path) {
-        const gmmrrt_status_t ms = gmmrrt_model_load_file(model_path, &model, err, sizeof err);
+        const gmmrrt_status_t ms = gmmrrt_model_load_file_background(model_path, &model, &background,
+                                                                     &model_has_background, NULL, 0, NULL, err,
+                                                                     sizeof err);
         if (ms != GMMRRT_OK)
             return fail("cannot use --model: %s%s", err, "");
     }
@@ -496,15 +501,17 @@ int main(int argc, char **argv)
         model_path = set_dir;
         task = GMMRRT_TASK_APPROACH;
     }
-    static gmmrrt_model_t background;
-    if (bg_path) {
+    if (bg_path) { /* overrides the model file's own background */
         const gmmrrt_status_t ms = gmmrrt_model_load_file(bg_path, &background, err, sizeof err);
         if (ms != GMMRRT_OK)
             return fail("cannot use --background-model: %s%s", err, "");
         pr.background_model = &background;
+    } else if (model_has_background && !set_dir) {
+        pr.background_model = &background;
     }
-    if (cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND && !bg_path)
-        return fail("--task-cost background needs --background-model%s%s", "", "");
+    if (cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND && !pr.background_model)
+        return fail("--task-cost background needs a background model: the --model file has none (fit it with "
+                    "gmmrrt-learn fit --background straight) and no --background-model FILE was given%s%s", "", "");
     if (planner == 0)
         planner = model_path ? GMMRRT_PLANNER_GMM_RRT_STAR : GMMRRT_PLANNER_RRT_STAR;
     if (planner != GMMRRT_PLANNER_RRT_STAR && !model_path)

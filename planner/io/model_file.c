@@ -42,16 +42,27 @@ gmmrrt_status_t gmmrrt_model_load_file(const char *path, gmmrrt_model_t *model, 
 gmmrrt_status_t gmmrrt_model_load_file_provenance(const char *path, gmmrrt_model_t *model, char *text,
                                                   size_t text_cap, size_t *text_len, char *err, size_t errcap)
 {
+    return gmmrrt_model_load_file_background(path, model, NULL, NULL, text, text_cap, text_len, err, errcap);
+}
+
+gmmrrt_status_t gmmrrt_model_load_file_background(const char *path, gmmrrt_model_t *model, gmmrrt_model_t *background,
+                                                  int *has_background, char *text, size_t text_cap, size_t *text_len,
+                                                  char *err, size_t errcap)
+{
     gmmrrt_clear_error(err, errcap);
-    if (path == NULL || model == NULL || (text != NULL && text_len == NULL))
+    if (path == NULL || model == NULL || (text != NULL && text_len == NULL) ||
+        (background != NULL && has_background == NULL))
         return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap,
-                                "model path or model is NULL, or text without text_len");
+                                "model path or model is NULL, text without text_len, or background without "
+                                "has_background");
 
     const size_t cap = gmmrrt_model_max_file_size() + 1; /* one more: detects oversized files */
     uint8_t *buf = malloc(cap);
     gmmrrt_model_t *scratch = malloc(sizeof *scratch);
+    gmmrrt_model_t *bg_scratch = background != NULL ? malloc(sizeof *bg_scratch) : NULL;
+    int has_bg = 0;
     gmmrrt_status_t st = GMMRRT_OK;
-    if (buf == NULL || scratch == NULL) {
+    if (buf == NULL || scratch == NULL || (background != NULL && bg_scratch == NULL)) {
         st = gmmrrt_set_error(GMMRRT_ERR_IO, err, errcap, "%s: out of memory reading the model", path);
         goto done;
     }
@@ -97,8 +108,21 @@ gmmrrt_status_t gmmrrt_model_load_file_provenance(const char *path, gmmrrt_model
             goto done;
         }
     }
+    if (background != NULL) {
+        st = gmmrrt_model_background(buf, (size_t)n, bg_scratch, &has_bg, why, sizeof why);
+        if (st != GMMRRT_OK) {
+            gmmrrt_set_error(st, err, errcap, "%s: %s", path, why);
+            goto done;
+        }
+    }
     memcpy(model, scratch, sizeof *model);
+    if (background != NULL) {
+        *has_background = has_bg;
+        if (has_bg)
+            memcpy(background, bg_scratch, sizeof *background);
+    }
 done:
+    free(bg_scratch);
     free(scratch);
     free(buf);
     return st;
@@ -142,6 +166,13 @@ gmmrrt_status_t gmmrrt_model_save_file(const char *path, const gmmrrt_model_t *m
 gmmrrt_status_t gmmrrt_model_save_file_provenance(const char *path, const gmmrrt_model_t *model, const char *text,
                                                   size_t text_len, char *err, size_t errcap)
 {
+    return gmmrrt_model_save_file_background(path, model, NULL, text, text_len, err, errcap);
+}
+
+gmmrrt_status_t gmmrrt_model_save_file_background(const char *path, const gmmrrt_model_t *model,
+                                                  const gmmrrt_model_t *background, const char *text, size_t text_len,
+                                                  char *err, size_t errcap)
+{
     gmmrrt_clear_error(err, errcap);
     if (path == NULL || model == NULL)
         return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "model path or model is NULL");
@@ -172,11 +203,10 @@ gmmrrt_status_t gmmrrt_model_save_file_provenance(const char *path, const gmmrrt
 
     size_t len = 0;
     char why[256];
-    st = text != NULL ? gmmrrt_model_encode_provenance(model, text, text_len, buf, cap, &len, why, sizeof why)
-                      : gmmrrt_model_encode(model, buf, cap, &len, why, sizeof why);
+    st = gmmrrt_model_encode_file(model, background, text, text_len, buf, cap, &len, why, sizeof why);
     if (st != GMMRRT_OK) {
-        gmmrrt_set_error(st, err, errcap, "%s: not written, the model or its provenance is invalid: %s", path,
-                         why);
+        gmmrrt_set_error(st, err, errcap, "%s: not written, the model, its background or its provenance is invalid: %s",
+                         path, why);
         goto done;
     }
 

@@ -8,7 +8,8 @@
  *   length >= header + CRC (TRUNCATED), length <= largest valid file (TOO_LARGE), magic,
  *   version, byte-order mark, D and K within limits.h (BAD_SIZE), reserved == 0
  *   (BAD_FIELD), length >= encoded size (TRUNCATED), CRC-32, then any bytes after the
- *   model's CRC-32 as a provenance trailer (model_provenance.c; anything else BAD_SIZE),
+ *   model's CRC-32 as an optional background section (model_background.c) followed by an
+ *   optional provenance trailer (model_provenance.c; anything else BAD_SIZE),
  * then the stored fields as gmmrrt_model_prepare() does:
  *   kind/task/homotopy/angle_mask/delta (BAD_FIELD), finite numbers (NOT_FINITE),
  *   weights (BAD_WEIGHTS), Cholesky factors (NOT_POSITIVE_DEFINITE), angle means in
@@ -291,12 +292,10 @@ gmmrrt_status_t gmmrrt_model_encode(const gmmrrt_model_t *model, uint8_t *buf, s
     return GMMRRT_OK;
 }
 
-gmmrrt_status_t gmmrrt_model_check_frame(const uint8_t *buf, size_t len, size_t *model_len, size_t *text_off,
-                                         size_t *text_len, char *err, size_t errcap)
+gmmrrt_status_t gmmrrt_model_check_frame(const uint8_t *buf, size_t len, gmmrrt_model_frame_t *frame, char *err,
+                                         size_t errcap)
 {
-    *model_len = 0;
-    *text_off = 0;
-    *text_len = 0;
+    memset(frame, 0, sizeof *frame);
     const size_t min_len = GMMRRT_MODEL_HEADER_BYTES + CRC_BYTES;
     const size_t max_len = gmmrrt_model_max_file_size();
     if (len < min_len)
@@ -305,7 +304,8 @@ gmmrrt_status_t gmmrrt_model_check_frame(const uint8_t *buf, size_t len, size_t 
     if (len > max_len)
         return gmmrrt_set_error(GMMRRT_ERR_MODEL_TOO_LARGE, err, errcap,
                                 "%zu bytes is larger than any valid model file "
-                                "(at most %zu bytes, D <= %d, K <= %d, provenance <= %d bytes)",
+                                "(at most %zu bytes, D <= %d, K <= %d, a background model, provenance <= %d "
+                                "bytes)",
                                 len, max_len, GMMRRT_MAX_DIM, GMMRRT_MAX_K, GMMRRT_MAX_PROVENANCE_BYTES);
     if (memcmp(buf, GMMRRT_MODEL_MAGIC, 8) != 0)
         return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_MAGIC, err, errcap,
@@ -339,13 +339,32 @@ gmmrrt_status_t gmmrrt_model_check_frame(const uint8_t *buf, size_t len, size_t 
     if (len < want)
         return gmmrrt_set_error(GMMRRT_ERR_MODEL_TRUNCATED, err, errcap,
                                 "%zu bytes, but D = %d, K = %d needs %zu", len, (int)dim, (int)k, want);
-    /* Bytes after the model's CRC-32: a provenance trailer, or the file is refused. */
-    if (len > want) {
+    /* Bytes after the model's CRC-32: a background section, then a provenance trailer; anything
+     * else and the file is refused. */
+    size_t at = want;
+    /* The section's magic and the trailer's share "GMMRRT": 7 bytes tell them apart, fewer are
+     * left to the trailer's check (a truncated trailer or section alike). */
+    const size_t magic_len = sizeof GMMRRT_BACKGROUND_MAGIC - 1;
+    const size_t rest = len - at;
+    if (rest >= 7 && memcmp(buf + at, GMMRRT_BACKGROUND_MAGIC, rest < magic_len ? rest : magic_len) == 0) {
+        size_t section_len, inner_off, inner_len;
         const gmmrrt_status_t st =
-            gmmrrt_provenance_check(buf + want, len - want, want, text_off, text_len, err, errcap);
+            gmmrrt_background_check(buf + at, rest, at, &section_len, &inner_off, &inner_len, err, errcap);
         if (st != GMMRRT_OK)
             return st;
-        *text_off += want;
+        frame->background_off = at + inner_off;
+        frame->background_len = inner_len;
+        at += section_len;
+    }
+    if (len > at) {
+        size_t text_off, text_len;
+        const gmmrrt_status_t st =
+            gmmrrt_provenance_check(buf + at, len - at, at, &text_off, &text_len, err, errcap);
+        if (st != GMMRRT_OK)
+            return st;
+        frame->text_off = at + text_off;
+        frame->text_len = text_len;
+        frame->has_provenance = 1;
     }
     const uint32_t stored_crc = get_u32(buf + want - CRC_BYTES);
     const uint32_t crc = gmmrrt_crc32(buf, want - CRC_BYTES);
@@ -353,7 +372,7 @@ gmmrrt_status_t gmmrrt_model_check_frame(const uint8_t *buf, size_t len, size_t 
         return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_CHECKSUM, err, errcap,
                                 "CRC-32 stored 0x%08X, computed 0x%08X: the file is corrupt",
                                 (unsigned)stored_crc, (unsigned)crc);
-    *model_len = want;
+    frame->model_len = want;
     return GMMRRT_OK;
 }
 
@@ -363,10 +382,10 @@ gmmrrt_status_t gmmrrt_model_decode(const uint8_t *buf, size_t len, gmmrrt_model
     gmmrrt_clear_error(err, errcap);
     if (out == NULL || (buf == NULL && len > 0))
         return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "buf or out is NULL");
-    size_t model_len, text_off, text_len;
-    const gmmrrt_status_t frame = gmmrrt_model_check_frame(buf, len, &model_len, &text_off, &text_len, err, errcap);
-    if (frame != GMMRRT_OK)
-        return frame;
+    gmmrrt_model_frame_t frame;
+    const gmmrrt_status_t framed = gmmrrt_model_check_frame(buf, len, &frame, err, errcap);
+    if (framed != GMMRRT_OK)
+        return framed;
     const int32_t dim = buf[15];
     const int32_t k = get_u16(buf + 16);
 

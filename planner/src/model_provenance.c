@@ -25,7 +25,8 @@ static void put_u32(uint8_t *p, uint32_t v)
 
 size_t gmmrrt_model_max_file_size(void)
 {
-    return gmmrrt_model_max_encoded_size() + GMMRRT_PROVENANCE_OVERHEAD + GMMRRT_MAX_PROVENANCE_BYTES;
+    return gmmrrt_model_max_encoded_size() + GMMRRT_BACKGROUND_OVERHEAD + gmmrrt_model_max_encoded_size() +
+           GMMRRT_PROVENANCE_OVERHEAD + GMMRRT_MAX_PROVENANCE_BYTES;
 }
 
 /* Offset of the first byte of s[0..n) that is not valid UTF-8 (RFC 3629: no overlong forms,
@@ -128,14 +129,8 @@ gmmrrt_status_t gmmrrt_provenance_check(const uint8_t *buf, size_t len, size_t a
     return GMMRRT_OK;
 }
 
-gmmrrt_status_t gmmrrt_model_encode_provenance(const gmmrrt_model_t *model, const char *text, size_t text_len,
-                                               uint8_t *buf, size_t cap, size_t *out_len, char *err,
-                                               size_t errcap)
+gmmrrt_status_t gmmrrt_provenance_text_check(const char *text, size_t text_len, char *err, size_t errcap)
 {
-    gmmrrt_clear_error(err, errcap);
-    if (out_len == NULL || (text == NULL && text_len > 0))
-        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "out_len or text is NULL");
-    *out_len = 0;
     if (text_len > GMMRRT_MAX_PROVENANCE_BYTES)
         return gmmrrt_set_error(GMMRRT_ERR_MODEL_TOO_LARGE, err, errcap,
                                 "provenance text of %zu bytes exceeds %d bytes", text_len,
@@ -144,15 +139,11 @@ gmmrrt_status_t gmmrrt_model_encode_provenance(const gmmrrt_model_t *model, cons
     if (bad != text_len)
         return gmmrrt_set_error(GMMRRT_ERR_MODEL_BAD_FIELD, err, errcap,
                                 "provenance text byte %zu is NUL or not valid UTF-8", bad);
-    size_t model_len = 0;
-    gmmrrt_status_t st = gmmrrt_model_encode(model, buf, cap, &model_len, err, errcap);
-    if (st != GMMRRT_OK)
-        return st;
-    const size_t len = model_len + GMMRRT_PROVENANCE_OVERHEAD + text_len;
-    if (cap < len)
-        return gmmrrt_set_error(GMMRRT_ERR_BUFFER_TOO_SMALL, err, errcap,
-                                "the model with its provenance needs %zu bytes, the buffer has %zu", len, cap);
-    uint8_t *p = buf + model_len;
+    return GMMRRT_OK;
+}
+
+void gmmrrt_provenance_write(uint8_t *p, const char *text, size_t text_len)
+{
     memcpy(p, GMMRRT_PROVENANCE_MAGIC, 8);
     p[8] = (uint8_t)(GMMRRT_PROVENANCE_VERSION & 0xFF);
     p[9] = (uint8_t)(GMMRRT_PROVENANCE_VERSION >> 8);
@@ -162,8 +153,18 @@ gmmrrt_status_t gmmrrt_model_encode_provenance(const gmmrrt_model_t *model, cons
     if (text_len > 0)
         memcpy(p + TRAILER_HEAD, text, text_len);
     put_u32(p + TRAILER_HEAD + text_len, gmmrrt_crc32(p, TRAILER_HEAD + text_len));
-    *out_len = len;
-    return GMMRRT_OK;
+}
+
+gmmrrt_status_t gmmrrt_model_encode_provenance(const gmmrrt_model_t *model, const char *text, size_t text_len,
+                                               uint8_t *buf, size_t cap, size_t *out_len, char *err,
+                                               size_t errcap)
+{
+    gmmrrt_clear_error(err, errcap);
+    if (out_len == NULL || (text == NULL && text_len > 0))
+        return gmmrrt_set_error(GMMRRT_ERR_INVALID_ARGUMENT, err, errcap, "out_len or text is NULL");
+    /* An empty text still writes an (empty) trailer: "" stands for text NULL, length 0. */
+    return gmmrrt_model_encode_file(model, NULL, text != NULL ? text : "", text_len, buf, cap, out_len, err,
+                                    errcap);
 }
 
 gmmrrt_status_t gmmrrt_model_provenance(const uint8_t *buf, size_t len, char *text, size_t cap, size_t *text_len,
@@ -175,10 +176,11 @@ gmmrrt_status_t gmmrrt_model_provenance(const uint8_t *buf, size_t len, char *te
     *text_len = 0;
     if (has_trailer != NULL)
         *has_trailer = 0;
-    size_t model_len, off, n;
-    const gmmrrt_status_t st = gmmrrt_model_check_frame(buf, len, &model_len, &off, &n, err, errcap);
+    gmmrrt_model_frame_t frame;
+    const gmmrrt_status_t st = gmmrrt_model_check_frame(buf, len, &frame, err, errcap);
     if (st != GMMRRT_OK)
         return st;
+    const size_t off = frame.text_off, n = frame.text_len;
     if (cap < n + 1)
         return gmmrrt_set_error(GMMRRT_ERR_BUFFER_TOO_SMALL, err, errcap,
                                 "the provenance text needs %zu bytes with its terminator, the buffer has %zu",
@@ -188,6 +190,6 @@ gmmrrt_status_t gmmrrt_model_provenance(const uint8_t *buf, size_t len, char *te
     text[n] = '\0';
     *text_len = n;
     if (has_trailer != NULL)
-        *has_trailer = model_len < len;
+        *has_trailer = frame.has_provenance;
     return GMMRRT_OK;
 }

@@ -9,7 +9,10 @@
  *   - a rejected input always comes with a non-empty message;
  *   - an accepted model encodes again, and the encoding decodes to the same stored fields;
  *   - an accepted file's provenance text (if any) reads back (the same framing rules) and
- *     re-encodes with the model to a file that gives the same text.
+ *     re-encodes with the model to a file that gives the same text;
+ *   - an accepted file's background section (if any) either decodes or is refused with a
+ *     message, and a decoded background re-encodes with the model to a file whose background
+ *     has the same stored fields.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -20,7 +23,7 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static gmmrrt_model_t g_model, g_again;
+static gmmrrt_model_t g_model, g_again, g_bg, g_bg_again;
 static uint8_t g_fixed[1 << 16];
 static uint8_t g_encoded[1 << 16];
 static char g_text[GMMRRT_MAX_PROVENANCE_BYTES + 1], g_text_again[GMMRRT_MAX_PROVENANCE_BYTES + 1];
@@ -49,6 +52,25 @@ static void check_one(const uint8_t *buf, size_t len)
                                     sizeof err) != GMMRRT_OK ||
             again_len != text_len || memcmp(g_text, g_text_again, text_len) != 0) {
             fprintf(stderr, "fuzz_model: the provenance text does not survive a round trip: %s\n", err);
+            abort();
+        }
+    }
+    int has_bg = 0;
+    const gmmrrt_status_t bst = gmmrrt_model_background(buf, len, &g_bg, &has_bg, err, sizeof err);
+    if (bst != GMMRRT_OK && err[0] == '\0') {
+        fprintf(stderr, "fuzz_model: background status %d without a message\n", (int)bst);
+        abort();
+    }
+    if (bst == GMMRRT_OK && has_bg) {
+        int again_has = 0;
+        if (gmmrrt_model_encode_file(&g_model, &g_bg, NULL, 0, g_encoded, sizeof g_encoded, &n, err, sizeof err) !=
+                GMMRRT_OK ||
+            gmmrrt_model_background(g_encoded, n, &g_bg_again, &again_has, err, sizeof err) != GMMRRT_OK ||
+            !again_has || g_bg_again.k != g_bg.k ||
+            memcmp(g_bg_again.weight, g_bg.weight, sizeof g_bg.weight) != 0 ||
+            memcmp(g_bg_again.mean, g_bg.mean, sizeof g_bg.mean) != 0 ||
+            memcmp(g_bg_again.chol, g_bg.chol, sizeof g_bg.chol) != 0) {
+            fprintf(stderr, "fuzz_model: the background does not survive a round trip: %s\n", err);
             abort();
         }
     }

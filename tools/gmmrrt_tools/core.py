@@ -105,6 +105,12 @@ def lib() -> ctypes.CDLL:
         _lib.gmmrrt_model_save_file_provenance.argtypes = [ctypes.c_char_p, ctypes.c_void_p, ctypes.c_char_p, sz,
                                                            ctypes.c_char_p, sz]
         _lib.gmmrrt_model_save_file_provenance.restype = ctypes.c_int
+        _lib.gmmrrt_model_encode_file.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_char_p, sz,
+                                                  ctypes.c_char_p, sz, psz, ctypes.c_char_p, sz]
+        _lib.gmmrrt_model_encode_file.restype = ctypes.c_int
+        _lib.gmmrrt_model_background.argtypes = [ctypes.c_char_p, sz, ctypes.c_void_p, ctypes.POINTER(ctypes.c_int),
+                                                 ctypes.c_char_p, sz]
+        _lib.gmmrrt_model_background.restype = ctypes.c_int
         _lib.gmmrrt_approach_direction_name.argtypes = [ctypes.c_int32]
         _lib.gmmrrt_approach_direction_name.restype = ctypes.c_char_p
         pk = ctypes.POINTER(_ConfigKey)
@@ -369,19 +375,19 @@ def model_from_arrays(kind: int, task: int, homotopy: int, weights, means, chols
     return buf
 
 
-def encode_model(model: ctypes.Array, provenance: Optional[str] = None) -> bytes:
-    """The file bytes of a prepared model (gmmrrt_model_encode; docs/model-format.md), with a
-    provenance trailer holding the text `provenance` when given (gmmrrt_model_encode_provenance)."""
+def encode_model(model: ctypes.Array, provenance: Optional[str] = None,
+                 background: Optional[ctypes.Array] = None) -> bytes:
+    """The file bytes of a prepared model (gmmrrt_model_encode_file; docs/model-format.md), with a
+    background section holding the prepared model `background` and a provenance trailer holding the
+    text `provenance` when given."""
     core = lib()
     cap = core.gmmrrt_model_max_file_size()
     out = ctypes.create_string_buffer(cap)
     n = ctypes.c_size_t()
-    err = ctypes.create_string_buffer(256)
-    if provenance is None:
-        st = core.gmmrrt_model_encode(model, out, cap, ctypes.byref(n), err, len(err))
-    else:
-        text = provenance.encode("utf-8")
-        st = core.gmmrrt_model_encode_provenance(model, text, len(text), out, cap, ctypes.byref(n), err, len(err))
+    err = ctypes.create_string_buffer(320)
+    text = None if provenance is None else provenance.encode("utf-8")
+    st = core.gmmrrt_model_encode_file(model, background, text, len(text) if text is not None else 0, out, cap,
+                                       ctypes.byref(n), err, len(err))
     if st != 0:
         raise ModelError("cannot encode the model (" + _status_text(st, err) + ")")
     return out.raw[:n.value]
@@ -414,6 +420,20 @@ def model_provenance(data: bytes) -> Optional[str]:
     if st != 0:
         raise ModelError("not a valid model (" + _status_text(st, err) + ")")
     return text.raw[:n.value].decode("utf-8") if has.value else None
+
+
+def model_background(data: bytes) -> Optional[ctypes.Array]:
+    """The background model of a model file's bytes (gmmrrt_model_background: decoded, validated and
+    checked against the task model), None when the file has no background section. Raises
+    ModelError with the core's reason."""
+    core = lib()
+    buf = ctypes.create_string_buffer(core.gmmrrt_model_sizeof())
+    has = ctypes.c_int()
+    err = ctypes.create_string_buffer(320)
+    st = core.gmmrrt_model_background(bytes(data), len(data), buf, ctypes.byref(has), err, len(err))
+    if st != 0:
+        raise ModelError("not a valid model (" + _status_text(st, err) + ")")
+    return buf if has.value else None
 
 
 def decode_model(data: bytes) -> ctypes.Array:

@@ -103,13 +103,7 @@ def ucy_people(tracks_path: str, index_path: str, episodes, all_episodes=()) -> 
     import numpy as np
 
     rows = read_index(index_path)
-    tracks: Dict[Tuple[str, str], Dict[float, Tuple[float, float]]] = {}
-    try:
-        with open(tracks_path, newline="") as f:
-            for r in csv.DictReader(f):
-                tracks.setdefault((r["scene"], r["track"]), {})[round(float(r["t"]), 1)] = (float(r["x"]), float(r["y"]))
-    except (OSError, KeyError, ValueError) as exc:
-        raise EpisodeError(f"{tracks_path}: cannot read scene,track,t,x,y: {exc}") from None
+    tracks = _read_tracks(tracks_path)
     yaw_of: Dict[Tuple[str, str], float] = {}
     for e in list(all_episodes) + list(episodes):
         r = rows.get(e.episode_id)
@@ -139,6 +133,54 @@ def ucy_people(tracks_path: str, index_path: str, episodes, all_episodes=()) -> 
             people.append((float(c[0]), float(c[1]), float(yaw)))
         del t0, t1
         out[e.episode_id] = people
+    return out
+
+
+def _read_tracks(tracks_path: str) -> Dict[Tuple[str, str], Dict[float, Tuple[float, float]]]:
+    """(scene, track) -> {t [s, rounded to 0.1]: (x, y)} of ucy_tracks.csv."""
+    tracks: Dict[Tuple[str, str], Dict[float, Tuple[float, float]]] = {}
+    try:
+        with open(tracks_path, newline="") as f:
+            for r in csv.DictReader(f):
+                tracks.setdefault((r["scene"], r["track"]), {})[round(float(r["t"]), 1)] = (float(r["x"]), float(r["y"]))
+    except (OSError, KeyError, ValueError) as exc:
+        raise EpisodeError(f"{tracks_path}: cannot read scene,track,t,x,y: {exc}") from None
+    return tracks
+
+
+# A pedestrian is given as walking when their first step is at least this fast: clearly above the
+# planner's standing threshold (gmmrrt-plan --person: below 0.2 m/s standing), so that no one is
+# handed to the planner as a walker it would then treat as standing.
+WALKING_MIN_SPEED_M_S = 0.3
+
+
+def ucy_walkers(tracks_path: str, index_path: str, episodes,
+                bounds_of: Dict[str, Tuple[float, float, float, float]]) -> Dict[str, List[Tuple[float, ...]]]:
+    """episode id -> the pedestrians walking in the scene when the episode starts, as a planner at
+    that moment would see them: position at t0 = 0.4 k0, velocity of their next 0.4 s step (the
+    constant-velocity prediction of gmmrrt-plan --person x,y,yaw,vx,vy), yaw = their heading;
+    everyone tracked at t0 and t0 + 0.4 except the walker and the standing person of the episode,
+    whose step is at least WALKING_MIN_SPEED_M_S, inside bounds_of[episode id] (xmin, ymin, xmax, ymax)."""
+    rows = read_index(index_path)
+    tracks = _read_tracks(tracks_path)
+    out = {}
+    for e in episodes:
+        r = rows.get(e.episode_id)
+        if r is None:
+            raise EpisodeError(f"{index_path}: episode {e.episode_id} is not in the index")
+        t0 = round(0.4 * int(r["k0"]), 1)
+        t1 = round(t0 + 0.4, 1)
+        b = bounds_of[e.episode_id]
+        walkers = []
+        for (scene, track), pos in tracks.items():
+            if scene != r["scene"] or track in (r["person_track"], r["robot_track"]) or t0 not in pos or t1 not in pos:
+                continue
+            (x0, y0), (x1, y1) = pos[t0], pos[t1]
+            vx, vy = (x1 - x0) / 0.4, (y1 - y0) / 0.4
+            if math.hypot(vx, vy) < WALKING_MIN_SPEED_M_S or not (b[0] <= x0 <= b[2] and b[1] <= y0 <= b[3]):
+                continue
+            walkers.append((x0, y0, math.atan2(vy, vx), vx, vy))
+        out[e.episode_id] = walkers
     return out
 
 

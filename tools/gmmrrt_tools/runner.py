@@ -135,9 +135,10 @@ def learn(args: Sequence[str], bin_dir: Optional[str] = None, timeout_s: float =
 
 def fit_model(out: Path, task: str, inputs: Sequence[str], homotopy: str = "all", kind: str = "features",
               k: Optional[str] = None, seed: int = 1, index: Optional[str] = None,
-              split: Optional[str] = None, bin_dir: Optional[str] = None) -> Path:
+              split: Optional[str] = None, bin_dir: Optional[str] = None, background: bool = False) -> Path:
     """`gmmrrt-learn fit` into `out` (skipped when `out` exists and is newer than every input and than the
-    gmmrrt-learn executable, so a rebuilt learner with other defaults refits)."""
+    gmmrrt-learn executable, so a rebuilt learner with other defaults refits); background: with the
+    task model's background in the file (`--background straight`, for `gmmrrt-plan --task-cost background`)."""
     out = Path(out)
     learner = Path(find_tool("gmmrrt-learn", bin_dir))
     if out.exists() and all(out.stat().st_mtime >= Path(i).stat().st_mtime for i in [*inputs, learner]):
@@ -151,6 +152,8 @@ def fit_model(out: Path, task: str, inputs: Sequence[str], homotopy: str = "all"
         args += ["--index", index]
     if split:
         args += ["--split", split]
+    if background:
+        args += ["--background", "straight"]
     learn(args, bin_dir)
     return out
 

@@ -83,8 +83,9 @@ gmmrrt_status_t gmmrrt_model_encode(const gmmrrt_model_t *model, uint8_t *buf, s
                                     size_t *out_len, char *err, size_t errcap);
 
 /* Parses and validates len bytes at buf into *out: magic, version, byte order, sizes
- * against len, CRC-32, the provenance trailer's framing when bytes follow the model (below;
- * its text is not stored in *out), K and D within limits.h, kind/task/homotopy/angle flags known,
+ * against len, CRC-32, the framing of the background section and of the provenance trailer
+ * when bytes follow the model (below; neither is stored in *out: gmmrrt_model_background and
+ * gmmrrt_model_provenance read them), K and D within limits.h, kind/task/homotopy/angle flags known,
  * finite numbers, positive-definite factors, weights summing to 1 (|sum - 1| <= 1e-9),
  * then derives the prepared fields. Never reads outside buf[0..len). On failure returns
  * the specific GMMRRT_ERR_MODEL_* status, writes the reason into err[errcap], and leaves
@@ -145,7 +146,8 @@ gmmrrt_status_t gmmrrt_model_task_fits(const gmmrrt_model_t *model, int32_t task
 #define GMMRRT_PROVENANCE_VERSION 1
 #define GMMRRT_PROVENANCE_OVERHEAD 20 /* magic, version, reserved, length, CRC-32 */
 
-/* Largest valid file this build accepts: the largest model plus the largest trailer. */
+/* Largest valid file this build accepts: the largest model, the largest background section and
+ * the largest trailer. */
 size_t gmmrrt_model_max_file_size(void);
 
 /* As gmmrrt_model_encode, then appends a provenance trailer holding text[0..text_len) (text
@@ -169,6 +171,48 @@ gmmrrt_status_t gmmrrt_model_provenance(const uint8_t *buf, size_t len, char *te
  * and gmmrrt_model_provenance; status and message as documented above. */
 gmmrrt_status_t gmmrrt_provenance_check(const uint8_t *buf, size_t len, size_t at, size_t *text_off,
                                         size_t *text_len, char *err, size_t errcap);
+
+/* ------------------------------------------------------------------ background section
+ *
+ * A model file may carry a second mixture, the task model's background: the density of the
+ * same features where the demonstrators would have been had they not reacted to the person
+ * (for GMMRRT_TASK_COST_BACKGROUND, config.h; docs/planner.md, "The background cost"). It is
+ * a complete model encoding (gmmrrt_model_encode, its own header and CRC-32) wrapped in a
+ * section between the task model's CRC-32 and the provenance trailer, so the task model's
+ * bytes are those of a file without it and gmmrrt_model_t stays one mixture (fixed memory).
+ * Layout (docs/model-format.md), E = gmmrrt_model_encoded_size(D, K):
+ *   E      8  magic "GMMRRTBG"
+ *   E + 8  2  u16 section version (1)
+ *   E + 10 2  u16 reserved (0)
+ *   E + 12 4  u32 n: the embedded model's length, gmmrrt_model_encoded_size of its D and K
+ *   E + 16 n  the background model, as gmmrrt_model_encode writes it (no trailer of its own)
+ *   E+16+n 4  u32 CRC-32 of the section bytes E .. E + 16 + n
+ * gmmrrt_model_decode checks the section's framing and the embedded model's framing and
+ * CRC-32 and ignores it otherwise; gmmrrt_model_background decodes it and checks it against
+ * the task model (same kind, task, D and angle mask: it is a density over the same features). */
+#define GMMRRT_BACKGROUND_MAGIC "GMMRRTBG" /* 8 bytes, no terminator in the file */
+#define GMMRRT_BACKGROUND_VERSION 1
+#define GMMRRT_BACKGROUND_OVERHEAD 20 /* magic, version, reserved, length, CRC-32 */
+
+/* Encodes a whole file: model, then a background section holding `background` when it is not
+ * NULL, then a provenance trailer holding text[0..text_len) when text is not NULL (an empty
+ * text writes an empty trailer). Both models are validated (the statuses of
+ * gmmrrt_model_encode, the message naming which model); the background must match the model
+ * (kind, task, D, angle mask: GMMRRT_ERR_MODEL_MISMATCH); the text as in
+ * gmmrrt_model_encode_provenance. GMMRRT_ERR_BUFFER_TOO_SMALL when cap is short
+ * (gmmrrt_model_max_file_size() always suffices). Nothing is trusted in buf unless GMMRRT_OK. */
+gmmrrt_status_t gmmrrt_model_encode_file(const gmmrrt_model_t *model, const gmmrrt_model_t *background,
+                                         const char *text, size_t text_len, uint8_t *buf, size_t cap,
+                                         size_t *out_len, char *err, size_t errcap);
+
+/* The background model of the model file buf[0..len), decoded and validated into *out (decode
+ * into a scratch model, as for gmmrrt_model_decode). The file's framing is checked as decode
+ * does (not the task model's numbers: decode it for those). A file without a background
+ * section gives GMMRRT_OK with *has_background = 0 and *out untouched; with one,
+ * *has_background = 1, or the status of the embedded model's decode (the message says
+ * "background model") or GMMRRT_ERR_MODEL_MISMATCH when it does not match the task model. */
+gmmrrt_status_t gmmrrt_model_background(const uint8_t *buf, size_t len, gmmrrt_model_t *out, int *has_background,
+                                        char *err, size_t errcap);
 
 /* CRC-32 (IEEE 802.3 / zlib polynomial, reflected, init and final xor 0xFFFFFFFF), so
  * Python's zlib.crc32 checks files too. */

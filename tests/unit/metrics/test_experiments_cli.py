@@ -94,13 +94,13 @@ def test_real_data_harness_scores_what_the_planner_returns(tmp_path):
     out = tmp_path / "out"
     md = (out / "real_upo_avoid-quick.md").read_text()
     for row in ("| GMM-RRT* (paper cost) |", "| GMM-RRT* (inward cost) |", "| RRT* |", "| human (reference) |",
-                "| GMM-RRT* (background cost) |",
+                "| GMM-RRT* (background cost) |", "| GMM-RRT* (background cost, human's side) |",
                 "| GMM-RRT* (paper cost, human's side) |", "| GMM-RRT* (paper cost, own person only) |"):
         assert row in md
     assert "tools/experiments.py real --quick" in md and "two humans in nearly the same situation" in md
     data = json.loads((out / "real_upo_avoid-quick.json").read_text())
     runs = data["runs"]
-    assert len(runs) == 14  # 2 episodes x 7 planners
+    assert len(runs) == 16  # 2 episodes x 8 planners
     assert sorted({r["seed"] for r in runs}) == [7, 8]
     assert all("--seed" in r["argv"] and "--json" in r["argv"] for r in runs)
     gmm_runs = [r for r in runs if r["planner"].startswith("GMM-RRT*")]
@@ -112,13 +112,18 @@ def test_real_data_harness_scores_what_the_planner_returns(tmp_path):
         assert n == (1 if "own person only" in r["planner"] else r["people"]) and n >= 1
         assert ("--side " in r["argv"]) == ("side)" in r["planner"])
     # the learner was asked for the train split only
-    model_args = (tmp_path / "work" / "models" / "upo_avoid_train_all.gmm").read_text()
-    assert "--split train" in model_args and "--task avoid" in model_args
-    bg_args = (tmp_path / "work" / "models" / "upo_avoid_straight_train.gmm").read_text()
-    assert "--split train" in bg_args and "upo_avoid_straight.csv" in bg_args
-    assert all("--background-model" in r["argv"] for r in runs if "background" in r["planner"])
-    ucy_args = (tmp_path / "work" / "models" / "ucy_avoid_train_all.gmm").read_text()
-    assert "--split train" in ucy_args and "ucy_index.csv" in ucy_args
+    # with its background in the same file (gmmrrt-learn fit --background straight)
+    model_args = (tmp_path / "work" / "models" / "upo_avoid_train_all_bg.gmm").read_text()
+    assert "--split train" in model_args and "--task avoid" in model_args and "--background straight" in model_args
+    assert all("--task-cost background" in r["argv"] and "--background-model" not in r["argv"]
+               for r in runs if "background" in r["planner"])
+    ucy_args = (tmp_path / "work" / "models" / "ucy_avoid_train_all_bg.gmm").read_text()
+    assert "--split train" in ucy_args and "ucy_index.csv" in ucy_args and "--background straight" in ucy_args
+    # UCY: the walking-people rows pass people with a velocity and the walker's pace
+    ucy = json.loads((out / "real_ucy_avoid-quick.json").read_text())["runs"]
+    walking = [r for r in ucy if "walking people given" in r["planner"]]
+    assert len(walking) == 2 * 3 and all("--nominal-speed" in r["argv"] for r in walking)
+    assert not any("--nominal-speed" in r["argv"] for r in ucy if "walking" not in r["planner"])
     assert (out / "real_upo_avoid-quick.png").stat().st_size > 1000
     episodes = (out / "real_upo_avoid_episodes-quick.md").read_text()
     assert sum(line.startswith("| avoid_upo_") for line in episodes.splitlines()) == 2

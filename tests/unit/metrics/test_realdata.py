@@ -62,6 +62,31 @@ def test_ucy_people_are_the_standing_pedestrians_of_the_window(tmp_path):
     assert people[2][:2] == pytest.approx((-4, 2)) and people[2][2] == pytest.approx(math.atan2(3, 6))
 
 
+def test_ucy_walkers_are_the_people_walking_at_the_start(tmp_path):
+    idx = tmp_path / "ucy_index.csv"
+    idx.write_text("episode_id,scene,person_track,robot_track,k0,k1,split\ne1,z,1,2,1,3,test\n")
+    tracks = tmp_path / "tracks.csv"
+    rows = ["scene,track,t,x,y"]
+    for k in (1, 2, 3):
+        t = round(0.4 * k, 1)
+        rows += [f"z,1,{t},0,0", f"z,2,{t},{k},5",            # the person, the walker: never walkers
+                 f"z,3,{t},4,{0.04 * k}",                     # 0.1 m/s: standing, left out
+                 f"z,4,{t},{-2 + 0.4 * k},{2 - 0.2 * k}",     # walks at (1, -0.5) m/s
+                 f"z,5,{t},{30 + k},0",                       # walks, outside the bounds
+                 f"q,6,{t},{k},1"]                            # another scene
+    rows += ["z,7,0.8,1,1"]                                   # not there at t0 = 0.4
+    tracks.write_text("\n".join(rows) + "\n")
+    e1 = ep("e1", (0, 0, 0.5), [(1, 5), (2, 5), (3, 5)])
+    w = RD.ucy_walkers(str(tracks), str(idx), [e1], {"e1": (-10, -10, 10, 10)})["e1"]
+    assert len(w) == 1
+    x, y, yaw, vx, vy = w[0]
+    assert (x, y) == pytest.approx((-1.6, 1.8))
+    assert (vx, vy) == pytest.approx((1.0, -0.5))
+    assert yaw == pytest.approx(math.atan2(-0.5, 1.0))
+    with pytest.raises(EpisodeError, match="not in the index"):
+        RD.ucy_walkers(str(tracks), str(idx), [ep("zz", (0, 0, 0), [(0, 1)])], {"zz": (0, 0, 1, 1)})
+
+
 def test_human_agreement_pairs_nearest_situations_of_other_groups():
     person = (0, 0, 0)
     left = [(-3, 0.1), (0, -1), (3, 0.1)]
@@ -84,3 +109,22 @@ def test_missing_split_and_missing_person_are_named(tmp_path):
     bad = ep("x7", (0, float("nan"), 0), [(1, 1)])
     with pytest.raises(EpisodeError, match="eps.csv: episode x7: no standing person"):
         RD._require_person("eps.csv", [bad])
+
+
+def test_side_limit_counts_the_other_side_plans_a_target_allows():
+    """experiments.real._side_limit: with same-side mean s and other-side mean o, a target T allows
+    X <= n (T - s) / (o - s) plans on the other side."""
+    from gmmrrt_tools.experiments import real as RE
+
+    rs = RE.RealSet("real_upo_avoid", "", "", [None] * 10, [], [])
+    gmm = [{"tdm_m": 0.2, "same_side": True}] * 8 + [{"tdm_m": 1.0, "same_side": False}] * 2
+    rrt = [{"tdm_m": 0.5, "same_side": True}] * 10
+    text = RE._side_limit(rs, {"GMM-RRT* (paper cost)": gmm, "RRT*": rrt}, ["GMM-RRT* (paper cost)", "RRT*"])
+    # mean 0.36; T = 0.30 allows 10 (0.30 - 0.2) / 0.8 = 1.25 -> 1 plan: agreement >= 88 % (it has 80 %)
+    assert "2 of 10 plans on the other side carry 56 %" in text
+    assert "allows 1 such plans, a side agreement ≥ 88 % (it has 80 %)" in text
+    rs.name = "real_ucy_avoid"  # 0.9 x RRT* = 0.45: 10 (0.45 - 0.2) / 0.8 = 3.1 -> 3 plans
+    text = RE._side_limit(rs, {"GMM-RRT* (paper cost)": gmm, "RRT*": rrt}, ["GMM-RRT* (paper cost)", "RRT*"])
+    assert "0.450 m" in text and "allows 3 such plans" in text
+    rs.name = "real_ucy_approach"
+    assert RE._side_limit(rs, {}, []) == ""

@@ -274,9 +274,11 @@ static void test_oversized_input_is_too_large_and_trailing_bytes_bad_size(void *
 {
     (void)state;
     const size_t max = gmmrrt_model_max_encoded_size();
-    /* The largest file: the largest model and the largest provenance trailer. */
+    /* The largest file: the largest model, the largest background section and the largest
+     * provenance trailer. */
     const size_t max_file = gmmrrt_model_max_file_size();
-    assert_int_equal(max_file, max + GMMRRT_PROVENANCE_OVERHEAD + GMMRRT_MAX_PROVENANCE_BYTES);
+    assert_int_equal(max_file, max + GMMRRT_BACKGROUND_OVERHEAD + max + GMMRRT_PROVENANCE_OVERHEAD +
+                                   GMMRRT_MAX_PROVENANCE_BYTES);
     uint8_t *big = calloc(max_file + 4096, 1);
     assert_non_null(big);
     const size_t len = encode_fixture(big, max_file + 4096);

@@ -156,7 +156,7 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0", "--goal", "1,1", "--side-person", "-1"], "--side-person"),
     (["--start", "0,0", "--goal", "3,3", "--person", "1,1,0", "--side-person", "1"], "--side-person"),
     (["--start", "0,0", "--goal", "1,1", "--task-cost", "max"], "--task-cost 'max'"),
-    (["--start", "0,0", "--goal", "1,1", "--task-cost", "background"], "needs --background-model"),
+    (["--start", "0,0", "--goal", "1,1", "--task-cost", "background"], "--task-cost background needs a background model"),
     (["--start", "0,0", "--goal", "1,1", "--background-model", "/nonexistent/bg.gmm"], "/nonexistent/bg.gmm"),
     (["--start", "0,0", "--goal", "1,1", "--gmm-bias", "1.5"], "--gmm-bias '1.5': config.gmm_bias must be in [0, 1]"),
     (["--start", "0,0", "--goal", "1,1", "--robot-radius", "-0.1"], "--robot-radius '-0.1': config.robot_radius_m"),

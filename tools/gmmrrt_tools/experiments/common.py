@@ -1,6 +1,6 @@
 """Shared by every study of tools/experiments.py: settings, the run context (paths, the command line,
 running gmmrrt-plan in parallel, writing the outputs), scoring, the synthetic demonstrations and their
-models, the background model, drawing helpers.
+models, drawing helpers.
 """
 from __future__ import annotations
 
@@ -107,6 +107,7 @@ class Ctx:
         self.real = Path(args.real_data) if args.real_data else None
         self.split = getattr(args, "split", None) or "test"
         self.train_split = getattr(args, "train_split", None) or "train"
+        self.real_k = getattr(args, "real_k", None)  # K of the real-data models (None: the learner's default)
         self.real_sets = [x for x in (getattr(args, "real_sets", None) or "upo_avoid,ucy_avoid,ucy_approach").split(",")]
         global _REAL_DIR
         _REAL_DIR = str(self.real) if self.real else None
@@ -232,11 +233,13 @@ def demo_logs(ctx: Ctx, task: str) -> List[str]:
     return logs or sorted(str(p) for p in Path(ctx.demos_dir).glob("*.lcmlog"))
 
 
-def model(ctx: Ctx, task: str, homotopy: str = "all", kind: str = "features") -> Path:
-    """The learner's model for task/homotopy/kind, fitted from logs/demos/ into the work folder."""
-    out = ctx.work / "models" / f"demos_{task}_{homotopy}_{kind}.gmm"
+def model(ctx: Ctx, task: str, homotopy: str = "all", kind: str = "features", background: bool = False) -> Path:
+    """The learner's model for task/homotopy/kind, fitted from logs/demos/ into the work folder; with
+    background, the file also carries the background of the same demonstrations (their straight lines,
+    `gmmrrt-learn fit --background straight`) for the background cost."""
+    out = ctx.work / "models" / f"demos_{task}_{homotopy}_{kind}{'_bg' if background else ''}.gmm"
     return R.fit_model(out, task, demo_logs(ctx, task), homotopy=homotopy, kind=kind, seed=ctx.s.seed,
-                       bin_dir=ctx.bin_dir)
+                       bin_dir=ctx.bin_dir, background=background)
 
 
 def demo_scene(ctx: Ctx, demo: S.Episode) -> R.Scene:
@@ -292,27 +295,3 @@ def draw_scene(ax, scene: R.Scene, endpoints: bool = True):
     ax.set_ylim(b[1], b[3])
     ax.set_aspect("equal")
     ax.grid(alpha=0.3)
-
-
-def background_model(ctx: Ctx, name: str, ep_csv: Optional[str], index: Optional[str], task: str = "avoid",
-                     episodes: Optional[List[S.Episode]] = None) -> Path:
-    """The background of the task model: a features model fitted (gmmrrt-learn fit, same split) to the
-    straight lines start-goal of the same episodes, as many points per episode as the human's, each
-    with its own person: where the walkers would have been had they not reacted to the person."""
-    eps = episodes if episodes is not None else S.read_episodes(ep_csv, index=index)
-    csv_out = ctx.work / "models" / f"{name}_straight.csv"
-    csv_out.parent.mkdir(parents=True, exist_ok=True)
-    lines = ["episode_id,task,homotopy,t,robot_x,robot_y,person_x,person_y,person_yaw"]
-    for e in eps:
-        n = len(e.xy)
-        for i in range(n):
-            u = i / (n - 1) if n > 1 else 0.0
-            x, y = (1 - u) * e.xy[0] + u * e.xy[-1]
-            lines.append(f"{e.episode_id},{e.task},{e.homotopy},{0.1 * i:.1f},{x!r},{y!r},{e.person[0]!r},"
-                         f"{e.person[1]!r},{e.person[2]!r}")
-    text = "\n".join(lines) + "\n"
-    if not csv_out.is_file() or csv_out.read_text() != text:
-        csv_out.write_text(text)
-    return R.fit_model(ctx.work / "models" / f"{name}_straight_{ctx.train_split if index else 'all'}.gmm", task,
-                       [str(csv_out)], homotopy="all", seed=ctx.s.seed, index=index,
-                       split=ctx.train_split if index else None, bin_dir=ctx.bin_dir)

@@ -13,7 +13,7 @@ from gmmrrt_tools import runner as R
 from gmmrrt_tools import scenes as S
 
 from .common import CLEARANCE_M, Ctx, classify, demo_scene, demos, fmt_ms, homotopies, model, record
-from .real import real_dir
+from .real import real_dir, real_ucy_avoid, real_upo_avoid
 
 # ==================================================================== the delta study
 
@@ -103,46 +103,93 @@ def exp_delta(ctx: Ctx) -> None:
                     f"The demonstrations' own passing distance: {fmt_ms(*demo_min, 2)} m. Data-driven δ per model "
                     f"(q-quantile of the model's density over its training points): {'; '.join(qinfo)}.\n\n" + head +
                     "\n".join(_delta_row(k, v, len(v)) for k, v in table.items()) + "\n")
-    # (b) real data
-    try:
+    # (b) real data: every episode of each avoid test split, every standing person, model learned on train
+    curves: Dict[str, Dict[str, List[dict]]] = {"synthetic (logs/demos)": dict(table)}
+    deltas: Dict[str, Dict[str, float]] = {"synthetic (logs/demos)": {}}
+    for label, _d, _w in _delta_configs({}):
+        deltas["synthetic (logs/demos)"][label.split(" (")[0]] = _d
+    for set_name, build, train_files in (("UPO avoid", real_upo_avoid, ("upo_avoid_episodes.csv", "upo_avoid_index.csv")),
+                                         ("UCY avoid", real_ucy_avoid, ("ucy_avoid_episodes.csv", "ucy_index.csv"))):
+        try:
+            rs = build(ctx)
+        except (RuntimeError, ValueError) as exc:
+            md_parts.append(f"### Real data: {set_name}\n\nNot run: {exc}\n")
+            continue
+        mdl = rs.planners[0][2]
         real = real_dir(ctx)
-    except RuntimeError as exc:
-        md_parts.append(f"### Real data\n\nNot run: {exc}\n")
-        real = None
-    if real is not None:
-        ep_csv, idx = str(real / "upo_avoid_episodes.csv"), str(real / "upo_avoid_index.csv")
-        mdl = R.fit_model(ctx.work / "models" / "upo_avoid_train_all.gmm", "avoid", [ep_csv], homotopy="all",
-                          seed=s.seed, index=idx, split="train", bin_dir=ctx.bin_dir)
-        train = S.read_episodes(ep_csv, index=idx, split="train")
+        train = S.read_episodes(str(real / train_files[0]), index=str(real / train_files[1]), split=ctx.train_split)
         qs = training_density_quantiles(mdl, [(e.person, e.xy) for e in train], DELTA_QUANTILES)
-        eps = S.read_episodes(ep_csv, index=idx, split="test")
-        if s.real_max_episodes:
-            eps = eps[:: max(1, len(eps) // s.real_max_episodes)][: s.real_max_episodes]
         cfgs = [c for c in _delta_configs(qs) if c[2] == 2.0]
+        deltas[set_name] = {c[0].split(" (")[0]: c[1] for c in cfgs}
         jobs = []
-        for k, e in enumerate(eps):
-            scene = S.episode_scene(e, clearance_m=CLEARANCE_M)
+        for k, (e, scene) in enumerate(zip(rs.episodes, rs.scenes)):
             for label, delta, w in cfgs:
-                jobs.append(({"part": "real", "config": label.split(" (")[0], "delta": delta, "w_task": w,
-                              "episode": e.episode_id, "k": k},
+                jobs.append(({"part": set_name, "config": label.split(" (")[0], "delta": delta, "w_task": w,
+                              "episode": e.episode_id, "k": k, "people": len(scene.people)},
                              ctx.plan(scene, "gmm-rrt-star", s.seed + k, mdl, None, s.bias,
-                                      extra=["--delta", repr(delta), "--w-task", repr(w)]), s.seed + k))
-        results = ctx.run_plans(jobs, "delta real")
+                                      extra=["--task-cost", "paper", "--delta", repr(delta), "--w-task", repr(w)]),
+                             s.seed + k))
+        results = ctx.run_plans(jobs, f"delta {set_name}")
         table = {}
         for tag, res in results:
-            e = eps[tag["k"]]
-            rec = record(tag, res, **_score_against(res, S.episode_scene(e, clearance_m=CLEARANCE_M), e.xy, e.person))
+            e, scene = rs.episodes[tag["k"]], rs.scenes[tag["k"]]
+            rec = record(tag, res, **_score_against(res, scene, e.xy, e.person))
             records.append(rec)
             table.setdefault(tag["config"], []).append(rec)
-        human_min = M.mean_std([M.min_distance_to_people(e.xy, [e.person]) for e in eps])
-        md_parts.append(f"### Real data: UPO avoid test split ({len(eps)} episodes)\n\nModel: all homotopies, learned "
-                        f"on the {len(train)} train episodes; each test episode re-planned (seed base + k) and scored "
-                        f"against what the human drove. The humans' passing distance: {fmt_ms(*human_min, 2)} m. "
-                        f"Data-driven δ: " + ", ".join(f"q{int(100 * q)} = {v:.3g}" for q, v in qs.items()) +
+        curves[set_name] = table
+        human_min = M.mean_std([M.min_distance_to_people(e.xy, [e.person]) for e in rs.episodes])
+        n_people = [len(sc.people) for sc in rs.scenes]
+        md_parts.append(f"### Real data: {set_name} {ctx.split} split ({len(rs.episodes)} episodes, every standing "
+                        f"person: {min(n_people)}-{max(n_people)} per episode, mean {np.mean(n_people):.1f})\n\n"
+                        f"Model: all homotopies, learned on the {len(train)} {ctx.train_split} episodes; each "
+                        f"{ctx.split} episode re-planned with every standing person of its scene (as in "
+                        f"`tools/experiments.py real`; seed base + k, the paper's cost form) and scored against what "
+                        f"the human did; passing distance = closest approach to the episode's own person. The "
+                        f"humans' passing distance: {fmt_ms(*human_min, 2)} m. Data-driven δ: " +
+                        ", ".join(f"q{int(100 * q)} = {v:.3g}" for q, v in qs.items()) +
                         ".\n\n" + head + "\n".join(_delta_row(k, v, len(v)) for k, v in table.items()) + "\n")
+    fig = _delta_figure(curves, deltas)
     md = ctx.header("The task-cost floor δ: TDM, l_e, side and passing distance vs δ and w_task",
                     "GMM-RRT* with c = δ / max(p, δ) (paper Sect. 4; the paper's δ = 0.001) for fixed δ, for a "
                     "data-driven δ (the q-quantile of the model's own density over its training points) and for "
                     "w_task = 1, 5 besides the default 2. Passing distance = closest approach of the path to the "
                     "person's centre; its error is against the demonstration / human the plan re-does.")
-    ctx.write("delta", md + "\n".join(md_parts), records)
+    md_parts.append("\nThe figure: mean TDM and mean absolute passing-distance error against δ for each data set "
+                    "(lines: the fixed δ; markers: the data-driven quantiles at the δ they gave, ★ = q25, the "
+                    "default).\n")
+    ctx.write("delta", md + "\n".join(md_parts), records, fig=fig)
+
+
+def _delta_figure(curves: Dict[str, Dict[str, List[dict]]], deltas: Dict[str, Dict[str, float]]):
+    """TDM and |passing-distance error| against delta, one line per data set (fixed deltas), the
+    quantile configurations as markers at their delta."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    markers = {"δ = q5": "v", "δ = q25": "*", "δ = q50": "^"}
+    for ci, (name, table) in enumerate(curves.items()):
+        color = f"C{ci}"
+        for ax, metric in zip(axes, ("tdm", "err")):
+            def value(recs):
+                ok = [r for r in recs if r.get("outcome") == M.SUCCESS]
+                vals = ([r["tdm_m"] for r in ok] if metric == "tdm" else
+                        [abs(r["min_dist_m"] - r["ref_min_dist_m"]) for r in ok])
+                return float(np.mean(vals)) if vals else math.nan
+            fixed = sorted((deltas[name][k], value(v)) for k, v in table.items()
+                           if k in deltas.get(name, {}) and not k.startswith("δ = q") and "w_task" not in k)
+            if fixed:
+                ax.plot(*zip(*fixed), "o-", color=color, label=name)
+            for k, mk in markers.items():
+                if k in table and k in deltas.get(name, {}):
+                    ax.plot(deltas[name][k], value(table[k]), mk, color=color, ms=13 if mk == "*" else 8,
+                            mec="k", mew=0.6)
+    for ax, ylabel in zip(axes, ("mean TDM vs the human / demonstration (m)", "mean |passing-distance error| (m)")):
+        ax.set_xscale("log")
+        ax.set_xlabel("δ of c = δ / max(p, δ)  [1/(m rad)]")
+        ax.set_ylabel(ylabel)
+        ax.grid(alpha=0.3, which="both")
+    axes[0].legend(fontsize=8)
+    fig.tight_layout()
+    return fig

@@ -16,7 +16,7 @@ from gmmrrt_tools import runner as R
 from gmmrrt_tools import scenes as S
 
 from .common import (
-    CLEARANCE_M, Ctx, PERSON_RADIUS_M, ROBOT_RADIUS_M, UPO_APPROACH_SET, legend_handles, background_model,
+    CLEARANCE_M, Ctx, PERSON_RADIUS_M, ROBOT_RADIUS_M, UPO_APPROACH_SET, legend_handles,
     classify, fmt_ms, record
 )
 
@@ -78,6 +78,7 @@ class RealSet:
     planners: List[Tuple[str, str, Optional[Path], Tuple[str, ...]]]  # label, planner, model, extra args
     approach: bool = False
     agreement: Tuple[float, float, int] = (math.nan, math.nan, 0)
+    walkers: Optional[List[list]] = None  # per episode: (x, y, yaw, vx, vy) of the people walking at its start
 
 
 # GMM-RRT* runs name their task cost (--task-cost) so a table does not depend on the CLI's default;
@@ -86,17 +87,18 @@ DEFAULT_COST = "paper"
 DEFAULT_LABEL = f"GMM-RRT* ({DEFAULT_COST} cost)"
 
 
-def _avoid_planners(mdl: Path, one_person: bool, bg: Optional[Path] = None) -> List[Tuple[str, str, Optional[Path], Tuple[str, ...]]]:
+def _avoid_planners(mdl: Path, one_person: bool) -> List[Tuple[str, str, Optional[Path], Tuple[str, ...]]]:
+    """The avoid study's planners; mdl carries its background (gmmrrt-learn fit --background straight)."""
     d = ("--task-cost", DEFAULT_COST)
     out = [("GMM-RRT* (paper cost)", "gmm-rrt-star", mdl, ("--task-cost", "paper")),
            ("GMM-RRT* (inward cost)", "gmm-rrt-star", mdl, ("--task-cost", "inward"))]
-    if bg is not None:
-        out.append(("GMM-RRT* (background cost)", "gmm-rrt-star", mdl, ("--task-cost", "background", "--background-model",
-                                                                       str(bg))))
+    out.append(("GMM-RRT* (background cost)", "gmm-rrt-star", mdl, ("--task-cost", "background")))
     if one_person:
         out.append(("GMM-RRT* (paper cost, own person only)", "gmm-rrt-star", mdl, ("--task-cost", "paper", "ONE_PERSON")))
     out += [(f"GMM-RRT* ({DEFAULT_COST} cost, straight line's side)", "gmm-rrt-star", mdl, d + ("STRAIGHT_SIDE",)),
             (f"GMM-RRT* ({DEFAULT_COST} cost, human's side)", "gmm-rrt-star", mdl, d + ("HUMAN_SIDE",)),
+            # What the background cost can reach once the side is right: the floor the side leaves.
+            ("GMM-RRT* (background cost, human's side)", "gmm-rrt-star", mdl, ("--task-cost", "background", "HUMAN_SIDE")),
             ("RRT*", "rrt-star", None, ())]
     return out
 
@@ -104,6 +106,10 @@ def _avoid_planners(mdl: Path, one_person: bool, bg: Optional[Path] = None) -> L
 def _limit(ctx: Ctx, eps: list) -> list:
     n = ctx.s.real_max_episodes
     return eps[:: max(1, len(eps) // n)][:n] if n else eps
+
+
+def _k_suffix(ctx: Ctx) -> str:
+    return f"_k{ctx.real_k}" if ctx.real_k else ""
 
 
 def _study_episodes(ctx: Ctx, ep_csv: str, idx: str) -> list:
@@ -124,8 +130,9 @@ def real_upo_avoid(ctx: Ctx) -> RealSet:
     s = ctx.s
     ep_csv, idx = _real_file(ctx, "upo_avoid_episodes.csv"), _real_file(ctx, "upo_avoid_index.csv")
     every = _study_episodes(ctx, ep_csv, idx)
-    mdl = R.fit_model(ctx.work / "models" / f"upo_avoid_{ctx.train_split}_all.gmm", "avoid", [ep_csv], homotopy="all",
-                      seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir)
+    mdl = R.fit_model(ctx.work / "models" / f"upo_avoid_{ctx.train_split}_all_bg{_k_suffix(ctx)}.gmm", "avoid", [ep_csv],
+                      homotopy="all", k=ctx.real_k, seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir,
+                      background=True)
     people = RD.upo_people(idx, every)
     eps = _limit(ctx, [e for e in every if e.split == ctx.split])
     return RealSet("real_upo_avoid", f"Real data: UPO avoid, learned on the {ctx.train_split} split, evaluated on the "
@@ -136,7 +143,7 @@ def real_upo_avoid(ctx: Ctx) -> RealSet:
                    "person of its recording (the index's scene column: the persons of all episodes of that recording), "
                    "its own person first, and compared with what the human drove.",
                    eps, [multi_person_scene(e, people[e.episode_id]) for e in eps],
-                   _avoid_planners(mdl, one_person=True, bg=background_model(ctx, "upo_avoid", ep_csv, idx)),
+                   _avoid_planners(mdl, one_person=True),
                    agreement=RD.human_side_agreement(every, lambda e: e.meta["scene"]))
 
 
@@ -147,10 +154,20 @@ def real_ucy_avoid(ctx: Ctx) -> RealSet:
     ep_csv, idx = _real_file(ctx, "ucy_avoid_episodes.csv"), _real_file(ctx, "ucy_index.csv")
     tracks = _real_file(ctx, "ucy_tracks.csv")
     every = _study_episodes(ctx, ep_csv, idx)
-    mdl = R.fit_model(ctx.work / "models" / f"ucy_avoid_{ctx.train_split}_all.gmm", "avoid", [ep_csv], homotopy="all",
-                      seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir)
+    mdl = R.fit_model(ctx.work / "models" / f"ucy_avoid_{ctx.train_split}_all_bg{_k_suffix(ctx)}.gmm", "avoid", [ep_csv],
+                      homotopy="all", k=ctx.real_k, seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir,
+                      background=True)
     eps = _limit(ctx, [e for e in every if e.split == ctx.split])
     people = RD.ucy_people(tracks, idx, eps, every)
+    scenes = [multi_person_scene(e, people[e.episode_id]) for e in eps]
+    walkers = RD.ucy_walkers(tracks, idx, eps, {e.episode_id: sc.bounds for e, sc in zip(eps, scenes)})
+    planners = _avoid_planners(mdl, one_person=False)
+    # The crowd: the same planners given everyone walking at the episode's start (constant-velocity
+    # prediction), to see whether the people the standing-person models ignore explain the humans.
+    planners += [("GMM-RRT* (paper cost, walking people given)", "gmm-rrt-star", mdl, ("--task-cost", "paper", "WALKERS")),
+                 ("GMM-RRT* (background cost, walking people given)", "gmm-rrt-star", mdl,
+                  ("--task-cost", "background", "WALKERS")),
+                 ("RRT* (walking people given)", "rrt-star", None, ("WALKERS",))]
     return RealSet("real_ucy_avoid", f"Real data: UCY avoid, learned on the UCY {ctx.train_split} split, evaluated "
                    f"on the {ctx.split} split, every standing pedestrian given",
                    f"Avoid model (all homotopies, features) fitted by `gmmrrt-learn fit --index ucy_index.csv --split "
@@ -159,9 +176,9 @@ def real_ucy_avoid(ctx: Ctx) -> RealSet:
                    "every other pedestrian of the scene who stands (positions within "
                    f"{RD.STANDING_SPAN_M} m of their mean) through the whole episode (ucy_tracks.csv); their facing is "
                    "the annotated gaze when an episode is about them, else towards the walker.",
-                   eps, [multi_person_scene(e, people[e.episode_id]) for e in eps],
-                   _avoid_planners(mdl, one_person=False, bg=background_model(ctx, "ucy_avoid", ep_csv, idx)),
-                   agreement=RD.human_side_agreement(every, lambda e: (e.meta["scene"], e.meta["person_track"])))
+                   eps, scenes, planners,
+                   agreement=RD.human_side_agreement(every, lambda e: (e.meta["scene"], e.meta["person_track"])),
+                   walkers=[walkers[e.episode_id] for e in eps])
 
 
 def real_ucy_approach(ctx: Ctx) -> RealSet:
@@ -214,7 +231,13 @@ def _real_jobs(ctx: Ctx, rs: RealSet):
     for k, (e, scene) in enumerate(zip(rs.episodes, rs.scenes)):
         seed = ctx.s.seed + k
         for label, planner, mdl, extra in rs.planners:
-            sc, args = scene, [a for a in extra if a not in ("HUMAN_SIDE", "ONE_PERSON", "STRAIGHT_SIDE")]
+            sc, args = scene, [a for a in extra if a not in ("HUMAN_SIDE", "ONE_PERSON", "STRAIGHT_SIDE", "WALKERS")]
+            if "WALKERS" in extra and rs.walkers is not None:
+                for w in rs.walkers[k]:
+                    args += ["--person", ",".join(repr(float(v)) for v in w)]
+                # The robot keeps the walker's own pace, so the prediction times the crowd as the human met it.
+                dur = float(e.t[-1] - e.t[0])
+                args += ["--nominal-speed", repr(M.path_length(e.xy) / dur if dur > 0 else 0.5)]
             if "ONE_PERSON" in extra:
                 sc = R.Scene(scene.start, scene.goal, scene.people[:1], scene.bounds)
             if "HUMAN_SIDE" in extra:
@@ -322,6 +345,7 @@ def _real_report(ctx: Ctx, rs: RealSet, results) -> None:
                f"nearly the same situation (each episode of the whole data set and the episode of another "
                f"recording/person with the nearest start and goal in the person frame, median {dist:.2f} m apart; "
                f"{pairs} pairs) pass on the same side in {100 * a:.0f} %.\n")
+        md += _side_limit(rs, per, labels)
     # per-episode table
     ep_lines = ["| episode | people | human side | " + " | ".join(f"{l}: TDM (m){'' if rs.approach else ', side'}"
                                                                 for l in labels) + " |",
@@ -342,6 +366,43 @@ def _real_report(ctx: Ctx, rs: RealSet, results) -> None:
     md += "The figure shows the six episodes where the default planner is farthest from the human.\n"
     fig = _worst_figure(rs, paths, per, labels)
     ctx.write(rs.name, md, records, fig)
+
+
+# The project's TDM targets for the avoid studies (docs/experiments.md, "Targets"): an absolute TDM,
+# or a fraction of plain RRT*'s TDM on the same episodes.
+TDM_TARGETS = {"real_upo_avoid": ("m", 0.30), "real_ucy_avoid": ("x RRT*", 0.9)}
+
+
+def _side_limit(rs: RealSet, per, labels) -> str:
+    """What the side costs: for each GMM-RRT* planner that picks its own side, the share of its total TDM
+    carried by plans on the other side of the person from the human, and how many such plans the TDM
+    target allows at the planner's own same-side and other-side means: mean TDM = ((n - X) s + X o) / n
+    <= T gives X <= n (T - s) / (o - s), i.e. a side agreement of at least 1 - X / n, to compare with the
+    humans' own agreement."""
+    if rs.name not in TDM_TARGETS:
+        return ""
+    unit, t = TDM_TARGETS[rs.name]
+    rrt = [m["tdm_m"] for m in per.get("RRT*", []) if m is not None]
+    target = t if unit == "m" else t * float(np.mean(rrt)) if rrt else math.nan
+    out = [f"\nWhat the side costs (target TDM ≤ {t:g} {unit} = {target:.3f} m): "]
+    rows = []
+    for l in labels:
+        if not l.startswith("GMM-RRT*") or "side)" in l or "own person" in l:
+            continue
+        ok = [m for m in per[l] if m is not None]
+        same = [m["tdm_m"] for m in ok if m["same_side"]]
+        other = [m["tdm_m"] for m in ok if not m["same_side"]]
+        if not ok or not same or not other:
+            continue
+        n, s_, o_ = len(ok), float(np.mean(same)), float(np.mean(other))
+        share = sum(other) / max(1e-12, sum(same) + sum(other))
+        x_max = n * (target - s_) / (o_ - s_) if o_ > s_ else math.inf
+        need = "unreachable at this same-side TDM" if x_max < 0 else f"≥ {100 * (1 - max(0.0, x_max) / n):.0f} %"
+        rows.append(f"{l}: {len(other)} of {n} plans on the other side carry {100 * share:.0f} % of its TDM "
+                    f"({o_:.2f} m each against {s_:.2f} m); the target allows {max(0, math.floor(x_max)) if x_max >= 0 else 0} "
+                    f"such plans, a side agreement {need} (it has {100 * len(same) / n:.0f} %)")
+    out.append("; ".join(rows) + ".\n")
+    return "".join(out) if rows else ""
 
 
 def _worst_figure(rs: RealSet, paths, per, labels, n=6):

@@ -8,7 +8,7 @@ import numpy as np
 
 from gmmrrt_tools import metrics as M
 from .common import (
-    Ctx, GMM_RRT_BIAS, PAPER_TABLE1, draw_scene, legend_handles, background_model, classify, demo_scene, demos,
+    Ctx, GMM_RRT_BIAS, PAPER_TABLE1, draw_scene, legend_handles, classify, demo_scene, demos,
     fmt_ms, homotopies, medoid, model, record
 )
 
@@ -37,11 +37,10 @@ def exp_table1(ctx: Ctx) -> None:
         for hom in homotopies(ctx, task):
             ds = d[(task, hom)]
             for label, planner, mh, kind, extra in PLANNERS_T1:
-                mdl = model(ctx, task, hom if mh == "row" else "all", kind) if mh else None
-                if "BACKGROUND" in extra:  # the straight lines of all the task's demonstrations
-                    every = [e for (t, _), es in d.items() if t == task for e in es]
-                    bg = background_model(ctx, f"demos_{task}", None, None, task, every)
-                    extra = tuple(a for a in extra if a != "BACKGROUND") + ("--background-model", str(bg))
+                # The background cost's model file carries the background of its own demonstrations.
+                bg = "BACKGROUND" in extra
+                mdl = model(ctx, task, hom if mh == "row" else "all", kind, background=bg) if mh else None
+                extra = tuple(a for a in extra if a != "BACKGROUND")
                 iters = s.gmm_rrt_iterations if planner == "gmm-rrt" else s.iterations
                 for i in range(s.trials):
                     demo = ds[i % len(ds)]
@@ -96,7 +95,8 @@ def exp_table1(ctx: Ctx) -> None:
         "person pose, hence one demonstration per trial instead of all nine (see docs/experiments.md). GMM-RRT* "
         "uses the features model of the row's homotopy, bias 0.95 and the paper's task cost c = δ / max(p, δ), "
         "'GMM-RRT* (inward cost)' the same with the inward cost and 'GMM-RRT* (background cost)' with the background cost "
-        "(docs/planner.md; background = the straight lines start-goal of all the task's demonstrations); "
+        "(docs/planner.md; background = the straight lines start-goal of the same demonstrations, fitted into the "
+        "model file by gmmrrt-learn fit --background straight); "
         "'GMM-RRT* (task model)' one model of all "
         "the task's homotopies (the paper's Sect. 5.1: one model per task); GMM-RRT the x-y model of the row's "
         "homotopy; RRT* no model. Models are learned from the same demonstrations, as in the paper (no hold-out). "

@@ -51,6 +51,21 @@ gmmrrt_status_t gmmrrt_model_load_file_provenance(const char *path, gmmrrt_model
 gmmrrt_status_t gmmrrt_model_save_file_provenance(const char *path, const gmmrrt_model_t *model, const char *text,
                                                   size_t text_len, char *err, size_t errcap);
 
+/* As gmmrrt_model_load_file_provenance (text may be NULL), and the file's background model
+ * (gmmrrt_model_background) into *background when background is not NULL: *has_background = 1
+ * and *background overwritten when the file has one, *has_background = 0 and *background
+ * untouched when it has none. A bad background fails the whole load (its status; nothing of
+ * the caller's is touched). */
+gmmrrt_status_t gmmrrt_model_load_file_background(const char *path, gmmrrt_model_t *model, gmmrrt_model_t *background,
+                                                  int *has_background, char *text, size_t text_cap, size_t *text_len,
+                                                  char *err, size_t errcap);
+
+/* As gmmrrt_model_save_file_provenance, with a background section holding *background when it
+ * is not NULL (gmmrrt_model_encode_file: it must match the model). */
+gmmrrt_status_t gmmrrt_model_save_file_background(const char *path, const gmmrrt_model_t *model,
+                                                  const gmmrrt_model_t *background, const char *text, size_t text_len,
+                                                  char *err, size_t errcap);
+
 #ifdef __cplusplus
 }
 #endif
