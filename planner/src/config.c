@@ -33,6 +33,7 @@ void gmmrrt_planner_config_default(gmmrrt_planner_config_t *cfg)
     cfg->rewire_gamma = 15.0;
     cfg->rewire_k_factor = 4.485; /* OMPL's k_rrg, 1.1 e (1 + 1/d), d = 2 */
     cfg->informed_sampling = 1;
+    cfg->connect_first = 1;
     cfg->w_length = 1.0;
     cfg->w_task = 2.0;
     cfg->task_cost = GMMRRT_TASK_COST_PAPER; /* measured better on the real splits (docs/planner.md) */
@@ -80,6 +81,7 @@ gmmrrt_status_t gmmrrt_planner_config_validate(const gmmrrt_planner_config_t *cf
     CHECK(isfinite(cfg->rewire_k_factor) && cfg->rewire_k_factor >= 0.0 && cfg->rewire_k_factor <= 64.0,
           "rewire_k_factor", "must be in [0, 64] (0: radius rewiring)");
     CHECK(cfg->informed_sampling == 0 || cfg->informed_sampling == 1, "informed_sampling", "must be 0 or 1");
+    CHECK(cfg->connect_first == 0 || cfg->connect_first == 1, "connect_first", "must be 0 or 1");
     CHECK(isfinite(cfg->w_length) && cfg->w_length >= 0.0 && cfg->w_length <= GMMRRT_MAX_COST_WEIGHT, "w_length",
           "must be in [0, 1e6] (GMMRRT_MAX_COST_WEIGHT)");
     CHECK(isfinite(cfg->w_task) && cfg->w_task >= 0.0 && cfg->w_task <= GMMRRT_MAX_COST_WEIGHT, "w_task",
