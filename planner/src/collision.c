@@ -30,6 +30,7 @@
 #include "block_layout.h"
 #include "collision_internal.h"
 #include "fcl_adapter.h"
+#include "segment_exact.h"
 
 #define GMMRRT_CLEARANCE_CAP_CELLS 4.0
 /* Lattice indices are kept in doubles and must stay exact integers with room for + 0.5. */
@@ -626,6 +627,14 @@ int gmmrrt_world_point_free(const gmmrrt_world_t *world, double x, double y)
 {
     if (!world || !isfinite(x) || !isfinite(y) || !inside_bounds(world, x, y))
         return 0;
+    if (!world->raster && (world->exact_only || world->exact_queries_left > 0)) {
+        /* While the closed forms answer: the same test, squared distances (segment_exact.h). */
+        if (!world->exact_only)
+            ((struct gmmrrt_world *)(uintptr_t)world)->exact_queries_left--;
+        return gmmrrt_point_clear_of_shapes(&world->obstacles, world->box_cos, world->box_sin,
+                                            world->robot_radius_m + EXACT_MARGIN_M, x, y) &&
+               people_point_free(world, x, y);
+    }
     near_statics_t near; /* not zero-initialised: 0.5 KB per query; filled on first need */
     set_near_box(&near, x, y, x, y);
     return static_clearance(world, &near, x, y, 0.0) > 0.0 && people_point_free(world, x, y);
@@ -647,6 +656,18 @@ int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0,
     if (!isfinite(x0) || !isfinite(y0) || !isfinite(x1) || !isfinite(y1) || !inside_bounds(world, x0, y0) ||
         !inside_bounds(world, x1, y1))
         return 0;
+    if (!world->raster && (world->exact_only || world->exact_queries_left > 0)) {
+        /* While the closed forms answer: the exact segment test, one distance per shape
+         * (segment_exact.h), refusing what comes within the edge margin as the walk below does. */
+        if (!world->exact_only)
+            ((struct gmmrrt_world *)(uintptr_t)world)->exact_queries_left--;
+        const double ex = x1 - x0, ey = y1 - y0, el2 = ex * ex + ey * ey;
+        if (!gmmrrt_segment_clear_of_shapes(&world->obstacles, world->box_cos, world->box_sin,
+                                            world->robot_radius_m + GMMRRT_EDGE_MIN_CLEARANCE_M + EXACT_MARGIN_M,
+                                            x0, y0, x1, y1))
+            return 0;
+        return el2 == 0.0 ? people_point_free(world, x0, y0) : people_segment_free(world, x0, y0, ex, ey, el2);
+    }
     /* The end points' clearance bounds (as gmmrrt_world_point_free) are also the first probes. */
     const double m = GMMRRT_EDGE_MIN_CLEARANCE_M;
     near_statics_t near; /* not zero-initialised: 0.5 KB per query; filled on first need */
