@@ -334,7 +334,14 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
     const grid_layout_t old = keep ? (grid_layout_t){w->gi0, w->gj0, w->tnx, w->tny} : (grid_layout_t){0};
     const gmmrrt_world_grid_stats_t counts = prev ? w->stats : (gmmrrt_world_grid_stats_t){0};
 
-    memcpy(&w->obstacles, obstacles, sizeof *obstacles);
+    w->obstacles.bounds = obstacles->bounds;
+    w->obstacles.num_circles = obstacles->num_circles;
+    memcpy(w->obstacles.circles, obstacles->circles, (size_t)obstacles->num_circles * sizeof obstacles->circles[0]);
+    w->obstacles.num_boxes = obstacles->num_boxes;
+    memcpy(w->obstacles.boxes, obstacles->boxes, (size_t)obstacles->num_boxes * sizeof obstacles->boxes[0]);
+    w->obstacles.num_people = obstacles->num_people;
+    memcpy(w->obstacles.people, obstacles->people, (size_t)obstacles->num_people * sizeof obstacles->people[0]);
+    w->obstacles.raster = obstacles->raster;
     w->resolution_m = resolution_m;
     w->inv_resolution = 1.0 / resolution_m;
     w->robot_radius_m = robot_radius_m;

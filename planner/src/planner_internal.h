@@ -80,14 +80,6 @@ struct gmmrrt_planner {
     gmmrrt_connect_t connect;      /* connect phase (connect.c) */
     int64_t *hist_iter;            /* cfg.history_capacity */
     double *hist_cost;
-    int32_t near_idx[GMMRRT_KNN_SCRATCH];  /* near set (first GMMRRT_NEAR_CAP + 1); k-nearest scratch */
-    double near_edge[GMMRRT_NEAR_CAP + 1]; /* exact edge cost, NAN until needed */
-    double near_len[GMMRRT_NEAR_CAP + 1];  /* m */
-    double near_d2[GMMRRT_KNN_SCRATCH];    /* m^2, squared distances of near_idx */
-    double near_cost[GMMRRT_NEAR_CAP + 1]; /* their cost-to-come when the iteration's near set was taken */
-    int8_t near_free[GMMRRT_NEAR_CAP + 1];
-    int32_t goal_idx[GMMRRT_GOAL_CAP];
-    double goal_edge[GMMRRT_GOAL_CAP];
 
     /* Problem */
     int has_problem;
@@ -133,6 +125,18 @@ struct gmmrrt_planner {
     int64_t conv_ref_iter;
     double setup_ms;               /* duration of the last successful set_problem */
     int64_t pruned;                /* nodes recycled by pruning since set_problem */
+
+    /* Scratch, last and not cleared by gmmrrt_planner_init (30 KB: clearing it was most of a
+     * one-shot plan's set-up on a cold cache); every entry is written before it is read (the
+     * near set per iteration, the solution candidates up to num_goal). */
+    int32_t near_idx[GMMRRT_KNN_SCRATCH];  /* near set (first GMMRRT_NEAR_CAP + 1); k-nearest scratch */
+    double near_edge[GMMRRT_NEAR_CAP + 1]; /* exact edge cost, NAN until needed */
+    double near_len[GMMRRT_NEAR_CAP + 1];  /* m */
+    double near_d2[GMMRRT_KNN_SCRATCH];    /* m^2, squared distances of near_idx */
+    double near_cost[GMMRRT_NEAR_CAP + 1]; /* their cost-to-come when the iteration's near set was taken */
+    int8_t near_free[GMMRRT_NEAR_CAP + 1];
+    int32_t goal_idx[GMMRRT_GOAL_CAP];
+    double goal_edge[GMMRRT_GOAL_CAP];
 };
 
 /* objective.c: the edge cost, integral of (w_length + w_task c) ds by the midpoint rule at

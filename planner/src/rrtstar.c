@@ -18,6 +18,7 @@
 #include "gmmrrt/rrtstar.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 #include <time.h>
 
@@ -68,7 +69,7 @@ gmmrrt_status_t gmmrrt_planner_init(gmmrrt_planner_t **out, void *mem, size_t si
         return GMMRRT_ERR_BUFFER_TOO_SMALL;
     uint8_t *base = mem;
     struct gmmrrt_planner *p = mem;
-    memset(p, 0, sizeof *p);
+    memset(p, 0, offsetof(struct gmmrrt_planner, near_idx)); /* not the scratch (planner_internal.h) */
     p->cfg = *cfg;
     p->pool.xy = (gmmrrt_xy_t *)(void *)(base + l.xy);
     p->pool.cost = (double *)(void *)(base + l.cost);
