@@ -52,7 +52,7 @@ static void usage(FILE *out)
             "       [--planner gmm-rrt-star|rrt-star|gmm-rrt] [--bias B] [--budget-ms N]\n"
             "       [--iterations N] [--seed S] [--robot-radius R] [--bounds xmin,ymin,xmax,ymax]\n"
             "       [--task avoid|approach] [--target-person I] [--goal-tolerance M]\n"
-            "       [--delta D] [--w-task W] [--rewire-k F] [--informed 0|1] [--max-nodes N] [--json]\n"
+            "       [--delta D] [--w-task W] [--rewire-k F] [--informed 0|1] [--connect 0|1] [--max-nodes N] [--json]\n"
             "       [--goal-yaw-tolerance DEG] [--min-turn-radius M] [--nominal-speed M_S] [--raw-path]\n"
             "       [--approach-models DIR] [--map FILE.yaml]\n"
             "       [--side left|right|either] [--cost paper|inward|background] [--background-model FILE]\n"
@@ -109,6 +109,7 @@ static void usage(FILE *out)
             "  --rewire-k F        near set: at least the F ln(n+1) nearest nodes (default 4.485,\n"
             "                      OMPL's k_rrg); 0: the radius 15 sqrt(ln n / n)\n"
             "  --informed 0|1      informed sampling once a path exists (default 1)\n"
+            "  --connect 0|1       RRT-Connect until the first path (default 1)\n"
             "  --max-nodes N       tree node pool, 2..%d (default %d); memory grows with it\n"
             "  --side S            left: the path goes counterclockwise round the person (the person\n"
             "                      stays on the robot's left), right: clockwise; either: plan both and\n"
@@ -236,7 +237,7 @@ int main(int argc, char **argv)
 {
     enum { OPT_MODEL = 256, OPT_START, OPT_GOAL, OPT_PERSON, OPT_OBSTACLE, OPT_PLANNER, OPT_BIAS, OPT_BUDGET,
            OPT_ITER, OPT_SEED, OPT_RADIUS, OPT_BOUNDS, OPT_TASK, OPT_TARGET, OPT_TOL, OPT_JSON, OPT_DELTA,
-           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_YAW_TOL, OPT_TURN_RADIUS, OPT_SPEED, OPT_RAW, OPT_SET, OPT_MAX_NODES, OPT_MAP,
+           OPT_WTASK, OPT_REWIRE_K, OPT_INFORMED, OPT_CONNECT, OPT_YAW_TOL, OPT_TURN_RADIUS, OPT_SPEED, OPT_RAW, OPT_SET, OPT_MAX_NODES, OPT_MAP,
            OPT_SIDE, OPT_SIDE_PERSON, OPT_COST, OPT_BG };
     static const struct option opts[] = {
         {"model", required_argument, NULL, OPT_MODEL},       {"start", required_argument, NULL, OPT_START},
@@ -249,6 +250,7 @@ int main(int argc, char **argv)
         {"goal-tolerance", required_argument, NULL, OPT_TOL}, {"json", no_argument, NULL, OPT_JSON},
         {"delta", required_argument, NULL, OPT_DELTA},       {"w-task", required_argument, NULL, OPT_WTASK},
         {"rewire-k", required_argument, NULL, OPT_REWIRE_K}, {"informed", required_argument, NULL, OPT_INFORMED},
+        {"connect", required_argument, NULL, OPT_CONNECT},
         {"max-nodes", required_argument, NULL, OPT_MAX_NODES},
         {"goal-yaw-tolerance", required_argument, NULL, OPT_YAW_TOL},
         {"min-turn-radius", required_argument, NULL, OPT_TURN_RADIUS},
@@ -451,6 +453,13 @@ int main(int argc, char **argv)
                 return fail("--informed '%s': expected an integer%s", optarg, "");
             cfg.informed_sampling = (int32_t)n;
             if ((rc = check_config_flag(&cfg, "--informed", optarg)) != 0)
+                return rc;
+            break;
+        case OPT_CONNECT:
+            if (!parse_int64(optarg, &n) || n < INT32_MIN || n > INT32_MAX)
+                return fail("--connect '%s': expected an integer%s", optarg, "");
+            cfg.connect_first = (int32_t)n;
+            if ((rc = check_config_flag(&cfg, "--connect", optarg)) != 0)
                 return rc;
             break;
         case OPT_MAX_NODES:

@@ -133,6 +133,8 @@ static const key_t_ k_keys[] = {
         "near set: at least this times ln(n+1) nearest nodes (0: radius rewiring)"),
     CFG_I32("planner", "informed_sampling", "informed", informed_sampling,
         "1: sample the informed ellipse once a path exists, 0: off"),
+    CFG_I32("planner", "connect_first", "connect", connect_first,
+        "1: connect phase (RRT-Connect) until the first path, then RRT* from it; 0: RRT* from the first sample"),
     CFG_F64("planner", "w_length", "w-length", w_length, "weight of length in the cost"),
     CFG_F64("planner", "w_task", "w-task", w_task, "weight of the task cost"),
     CFG_F64("planner", "waypoint_spacing_m", "waypoint-spacing", waypoint_spacing_m, "plan spacing, m"),
