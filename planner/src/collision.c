@@ -30,6 +30,7 @@
 #include "block_layout.h"
 #include "collision_internal.h"
 #include "fcl_adapter.h"
+#include "segment_exact.h"
 
 #define GMMRRT_CLEARANCE_CAP_CELLS 4.0
 /* Lattice indices are kept in doubles and must stay exact integers with room for + 0.5. */
@@ -332,7 +333,14 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
     const grid_layout_t old = keep ? (grid_layout_t){w->gi0, w->gj0, w->tnx, w->tny} : (grid_layout_t){0};
     const gmmrrt_world_grid_stats_t counts = prev ? w->stats : (gmmrrt_world_grid_stats_t){0};
 
-    memcpy(&w->obstacles, obstacles, sizeof *obstacles);
+    w->obstacles.bounds = obstacles->bounds;
+    w->obstacles.num_circles = obstacles->num_circles;
+    memcpy(w->obstacles.circles, obstacles->circles, (size_t)obstacles->num_circles * sizeof obstacles->circles[0]);
+    w->obstacles.num_boxes = obstacles->num_boxes;
+    memcpy(w->obstacles.boxes, obstacles->boxes, (size_t)obstacles->num_boxes * sizeof obstacles->boxes[0]);
+    w->obstacles.num_people = obstacles->num_people;
+    memcpy(w->obstacles.people, obstacles->people, (size_t)obstacles->num_people * sizeof obstacles->people[0]);
+    w->obstacles.raster = obstacles->raster;
     w->resolution_m = resolution_m;
     w->inv_resolution = 1.0 / resolution_m;
     w->robot_radius_m = robot_radius_m;
@@ -625,6 +633,14 @@ int gmmrrt_world_point_free(const gmmrrt_world_t *world, double x, double y)
 {
     if (!world || !isfinite(x) || !isfinite(y) || !inside_bounds(world, x, y))
         return 0;
+    if (!world->raster && (world->exact_only || world->exact_queries_left > 0)) {
+        /* While the closed forms answer: the same test, squared distances (segment_exact.h). */
+        if (!world->exact_only)
+            ((struct gmmrrt_world *)(uintptr_t)world)->exact_queries_left--;
+        return gmmrrt_point_clear_of_shapes(&world->obstacles, world->box_cos, world->box_sin,
+                                            world->robot_radius_m + EXACT_MARGIN_M, x, y) &&
+               people_point_free(world, x, y);
+    }
     near_statics_t near; /* not zero-initialised: 0.5 KB per query; filled on first need */
     set_near_box(&near, x, y, x, y);
     return static_clearance(world, &near, x, y, 0.0) > 0.0 && people_point_free(world, x, y);
@@ -663,6 +679,18 @@ int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0,
     if (!isfinite(x0) || !isfinite(y0) || !isfinite(x1) || !isfinite(y1) || !inside_bounds(world, x0, y0) ||
         !inside_bounds(world, x1, y1))
         return 0;
+    if (!world->raster && (world->exact_only || world->exact_queries_left > 0)) {
+        /* While the closed forms answer: the exact segment test, one distance per shape
+         * (segment_exact.h), refusing what comes within the edge margin as the walk below does. */
+        if (!world->exact_only)
+            ((struct gmmrrt_world *)(uintptr_t)world)->exact_queries_left--;
+        const double ex = x1 - x0, ey = y1 - y0, el2 = ex * ex + ey * ey;
+        if (!gmmrrt_segment_clear_of_shapes(&world->obstacles, world->box_cos, world->box_sin,
+                                            world->robot_radius_m + GMMRRT_EDGE_MIN_CLEARANCE_M + EXACT_MARGIN_M,
+                                            x0, y0, x1, y1))
+            return 0;
+        return el2 == 0.0 ? people_point_free(world, x0, y0) : people_segment_free(world, x0, y0, ex, ey, el2);
+    }
     /* The end points' clearance bounds (as gmmrrt_world_point_free) are also the first probes. */
     const double m = GMMRRT_EDGE_MIN_CLEARANCE_M;
     near_statics_t near; /* not zero-initialised: 0.5 KB per query; filled on first need */

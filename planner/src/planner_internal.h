@@ -12,6 +12,9 @@
 #include "gmmrrt/planner.h"
 #include "nn.h"
 
+/* Two points closer than this are the same point (no edge between them). */
+#define GMMRRT_SAME_POINT_M 1e-9
+
 /* Near-set scratch: choose-parent and rewire look at no more than this many nodes; when the
  * rewiring disc holds more, the radius is halved until they fit (rrtstar.c). */
 #define GMMRRT_NEAR_CAP 256
@@ -66,6 +69,23 @@ typedef struct {
     char freeze_reason[192];            /* why it escapes, or why no escape exists */
 } gmmrrt_escape_t;
 
+/* The connect phase (connect.c): two trees, the start's and the goal's, in one fixed array
+ * of GMMRRT_CONNECT_MAX_NODES entries (the start's from entry 0 up, the goal's from the last
+ * entry down), and room for the joined path. */
+#define GMMRRT_CONNECT_MAX_NODES 4096
+typedef enum {
+    GMMRRT_CONNECT_OFF = 0,     /* not configured, not applicable, or over for this problem */
+    GMMRRT_CONNECT_GROWING = 1  /* no path yet: run() iterates the connect phase */
+} gmmrrt_connect_state_t;
+typedef struct {
+    gmmrrt_xy_t *xy;            /* GMMRRT_CONNECT_MAX_NODES, in the planner block */
+    int32_t *parent;            /* same index space; -1 for the two roots */
+    double *path_x, *path_y;    /* GMMRRT_CONNECT_MAX_NODES: the joined path, start first */
+    int32_t state;              /* gmmrrt_connect_state_t */
+    int32_t n_start, n_goal;    /* nodes of each tree */
+    int32_t turn;               /* 0: the start tree extends towards the next sample, 1: the goal tree */
+} gmmrrt_connect_t;
+
 /* Set by collision.c's internal hook: segment walk step. */
 void gmmrrt_world_set_edge_resolution(gmmrrt_world_t *world, double edge_resolution_m);
 
@@ -80,16 +100,9 @@ struct gmmrrt_planner {
     void *world_mem;
     size_t world_size;
     gmmrrt_world_t *world;         /* NULL until set_problem succeeds */
+    gmmrrt_connect_t connect;      /* connect phase (connect.c) */
     int64_t *hist_iter;            /* cfg.history_capacity */
     double *hist_cost;
-    int32_t near_idx[GMMRRT_KNN_SCRATCH];  /* near set (first GMMRRT_NEAR_CAP + 1); k-nearest scratch */
-    double near_edge[GMMRRT_NEAR_CAP + 1]; /* exact edge cost, NAN until needed */
-    double near_len[GMMRRT_NEAR_CAP + 1];  /* m */
-    double near_d2[GMMRRT_KNN_SCRATCH];    /* m^2, squared distances of near_idx */
-    double near_cost[GMMRRT_NEAR_CAP + 1]; /* their cost-to-come when the iteration's near set was taken */
-    int8_t near_free[GMMRRT_NEAR_CAP + 1];
-    int32_t goal_idx[GMMRRT_GOAL_CAP];
-    double goal_edge[GMMRRT_GOAL_CAP];
 
     /* Problem */
     int has_problem;
@@ -130,6 +143,18 @@ struct gmmrrt_planner {
     int64_t conv_ref_iter;
     double setup_ms;               /* duration of the last successful set_problem */
     int64_t pruned;                /* nodes recycled by pruning since set_problem */
+
+    /* Scratch, last and not cleared by gmmrrt_planner_init (30 KB: clearing it was most of a
+     * one-shot plan's set-up on a cold cache); every entry is written before it is read (the
+     * near set per iteration, the solution candidates up to num_goal). */
+    int32_t near_idx[GMMRRT_KNN_SCRATCH];  /* near set (first GMMRRT_NEAR_CAP + 1); k-nearest scratch */
+    double near_edge[GMMRRT_NEAR_CAP + 1]; /* exact edge cost, NAN until needed */
+    double near_len[GMMRRT_NEAR_CAP + 1];  /* m */
+    double near_d2[GMMRRT_KNN_SCRATCH];    /* m^2, squared distances of near_idx */
+    double near_cost[GMMRRT_NEAR_CAP + 1]; /* their cost-to-come when the iteration's near set was taken */
+    int8_t near_free[GMMRRT_NEAR_CAP + 1];
+    int32_t goal_idx[GMMRRT_GOAL_CAP];
+    double goal_edge[GMMRRT_GOAL_CAP];
 };
 
 /* objective.c: the edge cost, integral of (w_length + w_task c) ds by the midpoint rule at
@@ -178,6 +203,21 @@ double gmmrrt_escape_signed_clearance(const struct gmmrrt_planner *p, const gmmr
                                       double y, int32_t *what);
 gmmrrt_status_t gmmrrt_escape_find(struct gmmrrt_planner *p, const gmmrrt_problem_t *pr, double *exit_x,
                                    double *exit_y);
+
+/* rrtstar.c: an edge the tree may use: collision-free (walkers included) and on the preferred
+ * side (problem.side). The one predicate of every tree edge, the connect phase's too. */
+int gmmrrt_planner_edge_allowed(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1);
+
+/* connect.c: bytes of the connect phase's arrays for cfg (0 when cfg->connect_first is 0 or the
+ * planner is gmm-rrt); gmmrrt_connect_bind points p->connect into mem (that many bytes, 8-byte
+ * aligned). gmmrrt_connect_reset arms the phase for a new problem (set_problem's tree reset).
+ * gmmrrt_connect_iterate is one iteration of it (one sample drawn: p->iterations + 1): when the
+ * trees join, the path is inserted into the RRT* tree (as gmmrrt_planner_seed_path) and the
+ * phase ends; it also ends, leaving the RRT* tree as it was, when its array is full. */
+size_t gmmrrt_connect_mem_size(const gmmrrt_planner_config_t *cfg);
+void gmmrrt_connect_bind(struct gmmrrt_planner *p, void *mem);
+void gmmrrt_connect_reset(struct gmmrrt_planner *p);
+void gmmrrt_connect_iterate(struct gmmrrt_planner *p);
 
 /* sampler.c: draws one sample; returns 0 when the draw fell outside the bounds (the
  * iteration is spent, as OMPL counts). Prepares informed sampling and the GMM-RRT stages. */

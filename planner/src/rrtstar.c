@@ -6,7 +6,8 @@
  *
  * Block layout (8-byte aligned pieces, in this order): planner struct, node pool
  * (max_nodes x 40 B), bucket heads (max_nodes x 4 B), history (capacity x 16 B),
- * collision world (gmmrrt_world_mem_size(grid_max_cells)). Nothing else is used:
+ * connect phase (gmmrrt_connect_mem_size, connect.c), collision world
+ * (gmmrrt_world_mem_size(grid_max_cells)). Nothing else is used:
  * set_problem, run, seed_path and best_path allocate nothing (tests/unit/planner/test_alloc.c).
  *
  * Iterations: one sample drawn, kept or not (as OMPL counts). Near radius:
@@ -18,6 +19,7 @@
 
 #include <assert.h>
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 #include <time.h>
 
@@ -25,11 +27,9 @@
 #include "planner_internal.h"
 #include "tree_check.h"
 
-#define GMMRRT_SAME_POINT_M 1e-9
-
 
 typedef struct {
-    size_t xy, cost, link, next, heads, hist_iter, hist_cost, world, total;
+    size_t xy, cost, link, next, heads, hist_iter, hist_cost, connect, world, total;
 } layout_t;
 
 static layout_t layout_of(const gmmrrt_planner_config_t *cfg)
@@ -44,6 +44,7 @@ static layout_t layout_of(const gmmrrt_planner_config_t *cfg)
     l.heads = gmmrrt_block_take(&off, (size_t)gmmrrt_nn_capacity(cfg->max_nodes) * sizeof(int32_t));
     l.hist_iter = gmmrrt_block_take(&off, (size_t)cfg->history_capacity * sizeof(int64_t));
     l.hist_cost = gmmrrt_block_take(&off, (size_t)cfg->history_capacity * sizeof(double));
+    l.connect = gmmrrt_block_take(&off, gmmrrt_connect_mem_size(cfg));
     l.world = off;
     off += gmmrrt_world_mem_size(cfg->grid_max_cells);
     l.total = off;
@@ -70,7 +71,7 @@ gmmrrt_status_t gmmrrt_planner_init(gmmrrt_planner_t **out, void *mem, size_t si
         return GMMRRT_ERR_BUFFER_TOO_SMALL;
     uint8_t *base = mem;
     struct gmmrrt_planner *p = mem;
-    memset(p, 0, sizeof *p);
+    memset(p, 0, offsetof(struct gmmrrt_planner, near_idx)); /* not the scratch (planner_internal.h) */
     p->cfg = *cfg;
     p->strategy = gmmrrt_strategy_of(cfg->planner);
     p->pool.xy = (gmmrrt_xy_t *)(void *)(base + l.xy);
@@ -81,6 +82,7 @@ gmmrrt_status_t gmmrrt_planner_init(gmmrrt_planner_t **out, void *mem, size_t si
     p->nn.capacity = gmmrrt_nn_capacity(cfg->max_nodes);
     p->hist_iter = (int64_t *)(void *)(base + l.hist_iter);
     p->hist_cost = (double *)(void *)(base + l.hist_cost);
+    gmmrrt_connect_bind(p, base + l.connect);
     p->world_mem = base + l.world;
     p->world_size = l.total - l.world;
     p->world = NULL;
@@ -140,6 +142,7 @@ static void reset_tree(struct gmmrrt_planner *p)
     p->conv_ref_iter = 0;
     p->pruned = 0;
     gmmrrt_rng_seed(&p->rng, p->cfg.seed);
+    gmmrrt_connect_reset(p);
 }
 
 gmmrrt_status_t gmmrrt_planner_model_fits(const gmmrrt_planner_config_t *cfg, const gmmrrt_model_t *m)
@@ -220,6 +223,11 @@ static int side_allows(const struct gmmrrt_planner *p, double x0, double y0, dou
 static int edge_allowed(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1)
 {
     return gmmrrt_planner_segment_free(p, x0, y0, x1, y1) && side_allows(p, x0, y0, x1, y1);
+}
+
+int gmmrrt_planner_edge_allowed(const struct gmmrrt_planner *p, double x0, double y0, double x1, double y1)
+{
+    return edge_allowed(p, x0, y0, x1, y1);
 }
 
 gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_problem_t *pr)
@@ -800,6 +808,10 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
                 st = GMMRRT_POOL_FULL;
                 break;
             }
+        }
+        if (p->connect.state == GMMRRT_CONNECT_GROWING) {
+            gmmrrt_connect_iterate(p); /* no path yet: the connect phase (connect.c) */
+            continue;
         }
         iterate(p);
     }

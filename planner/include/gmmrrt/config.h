@@ -65,6 +65,11 @@ typedef struct {
                                   cheaper path (Informed RRT*, Gammell et al. 2014; bound in
                                   docs/planner.md), and mixture samples outside it are dropped;
                                   0: off */
+    int32_t connect_first;     /* 1: until the first path exists, grow a tree from the start and one
+                                  from the goal towards each sample and greedily towards each
+                                  other (RRT-Connect, Kuffner & LaValle 2000), then hand the joined
+                                  path to the RRT* tree, which goes on from it (connect.c;
+                                  docs/planner.md); 0: RRT* from the first sample. Not used by gmm-rrt */
     double w_length;           /* >= 0, weight of length in the edge cost */
     double w_task;             /* >= 0, weight of the task cost c(f) (paper Sect. 4) */
     int32_t task_cost;         /* gmmrrt_task_cost_kind_t (default PAPER; a model that is not over

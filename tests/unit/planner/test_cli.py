@@ -40,7 +40,7 @@ def test_help_lists_every_option():
     assert r.returncode == 0
     for opt in ["--model", "--start", "--goal", "--person", "--obstacle", "--planner", "--gmm-bias",
                 "--budget-ms", "--iterations", "--seed", "--robot-radius", "--bounds", "--json", "--delta",
-                "--w-task", "--rewire-k", "--informed", "--map", "cost_history", "setup_ms",
+                "--w-task", "--rewire-k", "--informed", "--connect", "--map", "cost_history", "setup_ms",
                 "--goal-yaw-tolerance", "--min-turn-radius", "--nominal-speed", "--raw-path", "--approach-models",
                 "--side", "--side-person", "--task-cost", "--background-model", "--face-target"]:
         assert opt in r.stdout
@@ -149,6 +149,7 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0", "--goal", "1,1", "--rewire-k", "-1"], "--rewire-k"),
     (["--start", "0,0", "--goal", "1,1", "--rewire-k", "x"], "--rewire-k"),
     (["--start", "0,0", "--goal", "1,1", "--informed", "2"], "--informed"),
+    (["--start", "0,0", "--goal", "1,1", "--connect", "2"], "--connect '2': config.connect_first must be"),
     (["--start", "0,0", "--goal", "1,1", "--max-nodes", "1"], "--max-nodes '1': config.max_nodes must be in 2..4194304"),
     (["--start", "0,0", "--goal", "1,1", "--max-nodes", "99999999"], "--max-nodes"),
     (["--start", "0,0", "--goal", "1,1", "--max-nodes", "1e4"], "--max-nodes"),
@@ -344,14 +345,15 @@ def test_approach_model_set_picks_the_start_direction_and_refuses_a_missing_one(
 
 
 def test_search_flags_take_effect():
-    """--informed 0 and --rewire-k 0 (radius rewiring) plan the disc problem too, and each
+    """--informed 0, --connect 0 and --rewire-k 0 (radius rewiring) plan the disc problem too, and each
     changes the search: the same seed then gives other cost histories. The bounds are tight and
     the tree dense enough that the step_m disc holds more nodes than the k-nearest set takes;
     on a sparser tree both near sets are 'every node within step_m' and the searches agree."""
     base = ["--start", "-5,0", "--goal", "5,0", "--obstacle", "circle:0,0,2", "--robot-radius", "0",
             "--bounds", "-6,-3,6,3", "--iterations", "6000", "--json"]
     hist = {}
-    for name, extra in (("default", []), ("plain", ["--informed", "0"]), ("radius", ["--rewire-k", "0"])):
+    for name, extra in (("default", []), ("plain", ["--informed", "0"]), ("radius", ["--rewire-k", "0"]),
+                        ("no-connect", ["--connect", "0"])):
         r = run(*base, *extra)
         assert r.returncode == 0, r.stderr
         out = json.loads(r.stdout)
@@ -359,6 +361,7 @@ def test_search_flags_take_effect():
         hist[name] = out["stats"]["cost_history"]
     assert hist["default"] != hist["plain"]
     assert hist["default"] != hist["radius"]
+    assert hist["default"] != hist["no-connect"]
 
 
 def test_side_is_kept_and_either_reports_both_sides(tmp_path):

@@ -1,0 +1,196 @@
+/*
+ * connect.c - the connect phase of the planner (config.h, connect_first): until a first path
+ * exists, RRT-Connect (Kuffner & LaValle 2000, as OMPL's RRTConnect): a tree from the start and
+ * one from the goal take turns; the one whose turn it is extends one step (at most step_m)
+ * towards the iteration's sample, and the other then extends greedily towards that new node,
+ * step after step, until it reaches it (the trees are joined) or an edge is blocked. Once
+ * joined, the path start -> goal is inserted into the RRT* tree as a warm start
+ * (gmmrrt_planner_seed_path: each edge re-checked, its cost-to-come from the planner's own edge
+ * cost, the goal node a solution) and RRT* goes on from that tree, so the anytime search keeps
+ * its sampling, cost and rewiring (Karaman & Frazzoli 2011; the paper, Sect. 4) and only the time
+ * to the first path changes.
+ *
+ * Why: RRT*'s first path needs a sample near the goal side to join a tree that grows from the
+ * start alone, each iteration paying for a near set; the greedy connection reaches across the
+ * free space between two trees in a few collision checks, and a narrow passage is found from
+ * whichever side reaches it first.
+ *
+ * The samples are the planner's own (gmmrrt_sample: the mixture, uniform or the goal, by the
+ * configured biases), one per iteration as the RRT* loop counts them. Every edge of both trees
+ * is checked with the tree's one predicate (gmmrrt_planner_edge_allowed); the goal tree's edges
+ * are checked from the goal side, which gives the same answer (the segment test is symmetric,
+ * and so is the preferred side's ray). Memory: one array of GMMRRT_CONNECT_MAX_NODES points with
+ * parents for both trees (the start's from entry 0 up, the goal's from the last entry down) and
+ * one for the joined path, inside the planner block; when it is full the phase ends and RRT*
+ * searches alone. Nearest nodes by a linear scan: the trees stay small while no path exists on
+ * the problems this phase is for, and the scan is a tight loop over 16-byte points.
+ * Not used with walking people (gmmrrt_connect_reset says why) nor by gmm-rrt (a baseline whose
+ * staged sampling is the point).
+ */
+#include <math.h>
+#include <stdint.h>
+
+#include "block_layout.h"
+#include "planner_internal.h"
+
+enum { TRAPPED, ADVANCED, REACHED, FULL };
+
+size_t gmmrrt_connect_mem_size(const gmmrrt_planner_config_t *cfg)
+{
+    if (!cfg || !cfg->connect_first || cfg->planner == GMMRRT_PLANNER_GMM_RRT)
+        return 0;
+    const size_t n = GMMRRT_CONNECT_MAX_NODES;
+    return gmmrrt_align8(n * sizeof(gmmrrt_xy_t)) + gmmrrt_align8(n * sizeof(int32_t)) +
+           2 * gmmrrt_align8(n * sizeof(double));
+}
+
+void gmmrrt_connect_bind(struct gmmrrt_planner *p, void *mem)
+{
+    gmmrrt_connect_t *c = &p->connect;
+    c->state = GMMRRT_CONNECT_OFF;
+    c->n_start = c->n_goal = 0;
+    c->turn = 0;
+    if (gmmrrt_connect_mem_size(&p->cfg) == 0) {
+        c->xy = NULL;
+        c->parent = NULL;
+        c->path_x = c->path_y = NULL;
+        return;
+    }
+    const size_t n = GMMRRT_CONNECT_MAX_NODES;
+    uint8_t *base = mem;
+    size_t off = 0;
+    c->xy = (gmmrrt_xy_t *)(void *)(base + gmmrrt_block_take(&off, n * sizeof(gmmrrt_xy_t)));
+    c->parent = (int32_t *)(void *)(base + gmmrrt_block_take(&off, n * sizeof(int32_t)));
+    c->path_x = (double *)(void *)(base + gmmrrt_block_take(&off, n * sizeof(double)));
+    c->path_y = (double *)(void *)(base + gmmrrt_block_take(&off, n * sizeof(double)));
+}
+
+void gmmrrt_connect_reset(struct gmmrrt_planner *p)
+{
+    gmmrrt_connect_t *c = &p->connect;
+    c->turn = 0;
+    c->n_start = c->n_goal = 0;
+    c->state = GMMRRT_CONNECT_OFF;
+    /* Walking people are tested against a time window from each point's straight distance to
+     * the root (moving_people.c), which holds for the near-straight paths RRT* converges to but
+     * not for a connect path's detours: with walkers RRT* searches alone. */
+    if (!c->xy || p->walkers.count > 0)
+        return;
+    const int32_t top = GMMRRT_CONNECT_MAX_NODES - 1;
+    c->xy[0] = p->pool.xy[0]; /* the RRT* tree's root: the start, or the escape's exit */
+    c->parent[0] = -1;
+    c->xy[top].x = p->problem.goal_x;
+    c->xy[top].y = p->problem.goal_y;
+    c->parent[top] = -1;
+    c->n_start = c->n_goal = 1;
+    c->state = GMMRRT_CONNECT_GROWING;
+}
+
+/* Index of the node of entries [lo, hi) nearest to (x, y); of equally near ones the first. */
+static int32_t nearest(const gmmrrt_xy_t *xy, int32_t lo, int32_t hi, double x, double y)
+{
+    int32_t best = lo;
+    double best_d2 = INFINITY;
+    for (int32_t i = lo; i < hi; ++i) {
+        const double dx = xy[i].x - x, dy = xy[i].y - y;
+        const double d2 = dx * dx + dy * dy;
+        if (d2 < best_d2) {
+            best_d2 = d2;
+            best = i;
+        }
+    }
+    return best;
+}
+
+/* One step of the start tree (goal_tree 0) or the goal tree (1) towards (x, y), a free point:
+ * from its nearest node, at most step_m. REACHED with *out the node at (x, y) (added, or one
+ * already there), ADVANCED with *out the node added short of it, TRAPPED when the step is
+ * blocked, FULL when the array has no room. */
+static int extend(struct gmmrrt_planner *p, int goal_tree, double x, double y, int32_t *out)
+{
+    gmmrrt_connect_t *c = &p->connect;
+    const int32_t lo = goal_tree ? GMMRRT_CONNECT_MAX_NODES - c->n_goal : 0;
+    const int32_t hi = goal_tree ? GMMRRT_CONNECT_MAX_NODES : c->n_start;
+    const int32_t n = nearest(c->xy, lo, hi, x, y);
+    const double nx = c->xy[n].x, ny = c->xy[n].y;
+    const double dx = x - nx, dy = y - ny;
+    const double dist = sqrt(dx * dx + dy * dy); /* plain sqrt: map coordinates */
+    if (dist <= GMMRRT_SAME_POINT_M) {
+        *out = n;
+        return REACHED;
+    }
+    if (c->n_start + c->n_goal >= GMMRRT_CONNECT_MAX_NODES)
+        return FULL;
+    const int steered = dist > p->cfg.step_m;
+    double qx = x, qy = y;
+    if (steered) {
+        qx = nx + dx * (p->cfg.step_m / dist);
+        qy = ny + dy * (p->cfg.step_m / dist);
+        if (!gmmrrt_planner_point_free(p, qx, qy))
+            return TRAPPED;
+    }
+    if (!gmmrrt_planner_edge_allowed(p, nx, ny, qx, qy))
+        return TRAPPED;
+    const int32_t i = goal_tree ? GMMRRT_CONNECT_MAX_NODES - 1 - c->n_goal++ : c->n_start++;
+    c->xy[i].x = qx;
+    c->xy[i].y = qy;
+    c->parent[i] = n;
+    *out = i;
+    return steered ? ADVANCED : REACHED;
+}
+
+/* The joined path, start first: the start tree's branch to node a, then the goal tree's branch
+ * from node b (at the same point as a) to the goal; inserted into the RRT* tree. */
+static void hand_over(struct gmmrrt_planner *p, int32_t a, int32_t b)
+{
+    gmmrrt_connect_t *c = &p->connect;
+    int32_t len = 0;
+    for (int32_t i = a; i >= 0; i = c->parent[i])
+        ++len;
+    for (int32_t i = a, k = len - 1; i >= 0; i = c->parent[i], --k) {
+        c->path_x[k] = c->xy[i].x;
+        c->path_y[k] = c->xy[i].y;
+    }
+    for (int32_t i = c->parent[b]; i >= 0; i = c->parent[i]) {
+        c->path_x[len] = c->xy[i].x;
+        c->path_y[len] = c->xy[i].y;
+        ++len;
+    }
+    /* Its first point is the root, which seed_path skips (the same point). A pool too small for
+     * the whole path keeps what fits; RRT* then goes on without a path. */
+    (void)gmmrrt_planner_seed_path(p, c->path_x, c->path_y, len);
+}
+
+void gmmrrt_connect_iterate(struct gmmrrt_planner *p)
+{
+    gmmrrt_connect_t *c = &p->connect;
+    if (isfinite(p->best_cost)) { /* a path exists already (a warm start): nothing to connect */
+        c->state = GMMRRT_CONNECT_OFF;
+        return;
+    }
+    ++p->iterations;
+    double sx, sy;
+    if (!gmmrrt_sample(p, &sx, &sy) || !gmmrrt_planner_point_free(p, sx, sy))
+        return;
+    const int from_goal = c->turn;
+    c->turn ^= 1;
+    int32_t grown;
+    int st = extend(p, from_goal, sx, sy, &grown);
+    if (st == TRAPPED)
+        return;
+    int32_t other = -1;
+    if (st != FULL) {
+        const double tx = c->xy[grown].x, ty = c->xy[grown].y;
+        do
+            st = extend(p, !from_goal, tx, ty, &other);
+        while (st == ADVANCED);
+    }
+    if (st == FULL) {
+        c->state = GMMRRT_CONNECT_OFF; /* RRT* alone from here */
+        return;
+    }
+    if (st == REACHED) {
+        c->state = GMMRRT_CONNECT_OFF;
+        hand_over(p, from_goal ? other : grown, from_goal ? grown : other);
+    }
+}
