@@ -169,12 +169,12 @@ def test_installed_learner_segments_fits_and_plots_a_raw_recording(prefix):
     for k in range(200):  # 20 s at 10 Hz: the robot passes a standing person on their left
         u = t0 + k * 100_000
         pe = people_t()
-        pe.utime, pe.num_people = u, 1
+        pe.utime, pe.frame, pe.num_people = u, "map", 1
         q = pe.people[0]
         q.utime, q.id, q.x, q.y, q.yaw = u, 1, float(rng.normal(0, 0.01)), float(rng.normal(0, 0.01)), 0.0
         log.write_event(u, "PEOPLE", pe.encode())
         po = pose2d_t()
-        po.utime, po.x, po.y = u, -6.0 + 0.06 * k, 1.2
+        po.utime, po.frame, po.x, po.y = u, "map", -6.0 + 0.06 * k, 1.2
         log.write_event(u, "ROBOT_POSE", po.encode())
     log.close()
     learn = str(p / "bin" / "gmmrrt-learn")

@@ -149,7 +149,7 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0", "--goal", "1,1", "--rewire-k", "-1"], "--rewire-k"),
     (["--start", "0,0", "--goal", "1,1", "--rewire-k", "x"], "--rewire-k"),
     (["--start", "0,0", "--goal", "1,1", "--informed", "2"], "--informed"),
-    (["--start", "0,0", "--goal", "1,1", "--connect", "2"], "--connect '2': config.connect_first must be"),
+    (["--start", "0,0", "--goal", "1,1", "--connect", "2"], "--connect '2': config.connect_first: \"2\" is not a switch (0 or 1)"),
     (["--start", "0,0", "--goal", "1,1", "--max-nodes", "1"], "--max-nodes '1': config.max_nodes must be in 2..4194304"),
     (["--start", "0,0", "--goal", "1,1", "--max-nodes", "99999999"], "--max-nodes"),
     (["--start", "0,0", "--goal", "1,1", "--max-nodes", "1e4"], "--max-nodes"),

@@ -18,7 +18,7 @@ BIN = Path(os.environ.get("GMMRRT_BIN_DIR", ROOT / "build" / "bin"))
 PROBLEM = ["--start", "0,0", "--goal", "1,1"]
 
 # A text each kind of setting refuses: out of range for a number, an unknown name for a choice.
-BAD = {"seed": "-1", "planner": "a-star", "task_cost": "max", "informed_sampling": "2"}
+BAD = {"seed": "-1", "planner": "a-star", "task_cost": "max"}
 
 
 def run(name, *args, **kw):
@@ -31,6 +31,8 @@ def run(name, *args, **kw):
 def bad_value(key):
     if key.name in BAD:
         return BAD[key.name]
+    if key.range == "0 or 1":  # a switch
+        return "2"
     return "-1" if ">" in key.range or "[0" in key.range or "(0" in key.range else "0"
 
 
