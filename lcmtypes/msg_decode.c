@@ -7,6 +7,8 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
+#include <stdio.h>
+#include <string.h>
 
 #include "gmmrrt/detail/reason_text.h"
 #include "gmmrrt/limits.h"
@@ -14,6 +16,9 @@
 /* One bound: the wire's capacity is the core's scan capacity (raster.h). */
 _Static_assert(GMMRRT_PLANAR_SCAN_T_MAX_RANGES == GMMRRT_MAX_SCAN_RANGES,
                "planar_scan_t.MAX_RANGES must equal GMMRRT_MAX_SCAN_RANGES");
+/* A grid must fit the raster's hard ceilings (limits.h). */
+_Static_assert(GMMRRT_OCCUPANCY_GRID_T_MAX_CELLS <= GMMRRT_MAX_RASTER_CELLS,
+               "occupancy_grid_t.MAX_CELLS above GMMRRT_MAX_RASTER_CELLS");
 
 static gmmrrt_msg_result_t reject(gmmrrt_msg_result_t r, char *err, size_t errcap, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
@@ -247,5 +252,61 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_planar_scan(const void *buf, size_t len, g
         return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
                       "planar_scan_t.range_max_m = %g must be > range_min_m = %g", out->range_max_m,
                       out->range_min_m);
+    return GMMRRT_MSG_OK;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_occupancy_grid(const void *buf, size_t len, gmmrrt_occupancy_grid_t *out,
+                                                     char *err, size_t errcap)
+{
+    /* LCM's string decoder mallocs the length the wire claims before it checks that the bytes are
+     * there (and leaks it when they are not): the frame's length is judged first. It sits after
+     * the fixed part: fingerprint 8, utime 8, resolution and origin 4 x 8, three int32, the cells. */
+    enum { k_frame_len_at = 8 + 8 + 4 * 8 + 3 * 4 + GMMRRT_OCCUPANCY_GRID_T_MAX_CELLS };
+    if (buf != NULL && decodable_len(len) && len >= (size_t)k_frame_len_at + 4u) {
+        const uint8_t *b = (const uint8_t *)buf + k_frame_len_at;
+        const int64_t n = (int32_t)((uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | b[3]);
+        if (n < 1 || n > (int64_t)(len - (size_t)k_frame_len_at - 4u))
+            return reject(GMMRRT_MSG_DECODE_FAILED, err, errcap,
+                          "occupancy_grid_t: cannot decode %zu bytes (the frame's length %lld does not fit)", len,
+                          (long long)n);
+    }
+    DECODE_OR_REJECT(occupancy_grid_t, buf, len, out, err, errcap);
+    /* The generated decoder allocates the frame string. Only "map" and "" are accepted, so it is
+     * freed here and out->frame points to a static copy of the same value: the caller's message
+     * owns no memory (a rejected one leaves nothing behind either) and re-encodes to the same bytes. */
+    static const char k_map[] = "map", k_none[] = "";
+    const int is_map = out->frame != NULL && strcmp(out->frame, k_map) == 0;
+    const int frame_ok = is_map || out->frame == NULL || out->frame[0] == '\0';
+    char frame[40];
+    snprintf(frame, sizeof frame, "%.32s%s", out->frame ? out->frame : "",
+             out->frame && strlen(out->frame) > 32 ? "..." : "");
+    gmmrrt_occupancy_grid_t_decode_cleanup(out);
+    out->frame = (char *)(is_map ? k_map : k_none);
+    if (!frame_ok)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
+                      "occupancy_grid_t.frame = \"%s\": only \"map\" (or \"\", the same) is planned in", frame);
+    if (out->width < 1 || out->height < 1)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "occupancy_grid_t: width %d and height %d must be >= 1",
+                      (int)out->width, (int)out->height);
+    if ((int64_t)out->width * (int64_t)out->height > GMMRRT_OCCUPANCY_GRID_T_MAX_CELLS)
+        return reject(GMMRRT_MSG_COUNT_OVER_BOUND, err, errcap,
+                      "occupancy_grid_t: width %d x height %d is above MAX_CELLS = %d", (int)out->width,
+                      (int)out->height, (int)GMMRRT_OCCUPANCY_GRID_T_MAX_CELLS);
+    if ((int64_t)out->num_cells != (int64_t)out->width * (int64_t)out->height)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "occupancy_grid_t.num_cells = %d, but width %d x height %d = %lld",
+                      (int)out->num_cells, (int)out->width, (int)out->height,
+                      (long long)((int64_t)out->width * (int64_t)out->height));
+    REQUIRE_FINITE(occupancy_grid_t, "resolution_m", out->resolution_m, err, errcap);
+    REQUIRE_FINITE(occupancy_grid_t, "origin_x", out->origin_x, err, errcap);
+    REQUIRE_FINITE(occupancy_grid_t, "origin_y", out->origin_y, err, errcap);
+    REQUIRE_FINITE(occupancy_grid_t, "origin_yaw", out->origin_yaw, err, errcap);
+    if (!(out->resolution_m > 0.0))
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "occupancy_grid_t.resolution_m = %g must be > 0",
+                      out->resolution_m);
+    for (int32_t k = 0; k < out->num_cells; ++k)
+        if (out->data[k] < -1 || out->data[k] > 100)
+            return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
+                          "occupancy_grid_t.data[%d] = %d (cell %d, %d) is not -1 or 0..100", (int)k,
+                          (int)out->data[k], (int)(k % out->width), (int)(k / out->width));
     return GMMRRT_MSG_OK;
 }

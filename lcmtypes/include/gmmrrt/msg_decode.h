@@ -4,8 +4,9 @@
  * LCM's generated decoders check only the wire format. These wrappers add what a
  * planner must not trust: counts within the declared capacity (MAX_* constants in
  * lcmtypes/), finite numbers in every meaningful field, positive sizes, known enum
- * values. All gmmrrt messages use fixed-capacity arrays, so decoding never
- * allocates and nothing on the wire sizes an allocation.
+ * values. All gmmrrt messages use fixed-capacity arrays, so nothing on the wire
+ * sizes an allocation (occupancy_grid_t's frame string is the one allocation of a
+ * generated decoder, freed before its wrapper returns).
  *
  * Every function: decodes `len` bytes at `buf` into `*out` (caller-owned), returns
  * GMMRRT_MSG_OK or the reason for rejection, and on rejection writes a one-line
@@ -19,6 +20,7 @@
 #include "gmmrrt/gmmrrt_demo_info_t.h"
 #include "gmmrrt/gmmrrt_nav_goal_t.h"
 #include "gmmrrt/gmmrrt_obstacles_t.h"
+#include "gmmrrt/gmmrrt_occupancy_grid_t.h"
 #include "gmmrrt/gmmrrt_people_t.h"
 #include "gmmrrt/gmmrrt_planar_scan_t.h"
 #include "gmmrrt/gmmrrt_planner_status_t.h"
@@ -60,6 +62,14 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_planner_status(const void *buf, size_t len
  * judged: NaN, +-inf and out-of-range values are "no return" and kept as they are. */
 gmmrrt_msg_result_t gmmrrt_msg_decode_planar_scan(const void *buf, size_t len, gmmrrt_planar_scan_t *out,
                                                   char *err, size_t errcap);
+/* occupancy_grid_t: frame "map" or "" (BAD_VALUE: the daemon has no transforms); width and
+ * height >= 1 (BAD_VALUE) with width x height <= MAX_CELLS (COUNT_OVER_BOUND) and num_cells equal
+ * to it (BAD_VALUE); resolution and origin finite (NOT_FINITE), resolution > 0 (BAD_VALUE); every
+ * used cell -1 or 0..100 (BAD_VALUE, naming the first bad cell). The frame string the generated
+ * decoder allocates is freed before returning: out->frame then points to a static "map" or "" (the
+ * value received when accepted), so the caller's copy owns no memory. */
+gmmrrt_msg_result_t gmmrrt_msg_decode_occupancy_grid(const void *buf, size_t len, gmmrrt_occupancy_grid_t *out,
+                                                     char *err, size_t errcap);
 gmmrrt_msg_result_t gmmrrt_msg_decode_demo_info(const void *buf, size_t len, gmmrrt_demo_info_t *out,
                                                 char *err, size_t errcap);
 
