@@ -13,7 +13,8 @@
 
 #include "daemon.h"
 
-static const char *const k_input_names[] = {"pose", "people", "goal", "obstacles"};
+static const char *const k_input_names[] = {"pose", "people", "goal", "obstacles", "scan", "grid"};
+_Static_assert(sizeof k_input_names / sizeof k_input_names[0] == GMMRRTD_NUM_INPUTS, "a name per input");
 
 static int reason_of(gmmrrt_msg_result_t r)
 {
@@ -139,9 +140,23 @@ int gmmrrtd_inputs_decode(gmmrrtd_t *d, int input, int64_t local_us, const void 
         DECODE_INPUT(d, input, gmmrrt_msg_decode_obstacles, buf, len, &st->m.obstacles);
         utime = st->m.obstacles.utime;
         break;
+    case GMMRRTD_IN_SCAN:
+        DECODE_INPUT(d, input, gmmrrt_msg_decode_planar_scan, buf, len, &st->m.scan);
+        utime = st->m.scan.utime;
+        break;
+    case GMMRRTD_IN_GRID:
+        DECODE_INPUT(d, input, gmmrrt_msg_decode_occupancy_grid, buf, len, &st->m.grid);
+        if (!gmmrrtd_grid_check(d, &st->m.grid))
+            return 0;
+        utime = st->m.grid.utime;
+        break;
     default: return 0;
     }
     if (!accept_time(d, input, utime, local_us))
+        return 0;
+    /* A scan is placed with the robot's pose at its stamp (pose ring, scan.c) now, while the
+     * poses it needs are known; a scan no pose places is refused. */
+    if (input == GMMRRTD_IN_SCAN && !gmmrrtd_scan_place(d, &st->m.scan))
         return 0;
     st->input = input;
     return 1;
@@ -179,7 +194,12 @@ void gmmrrtd_inputs_apply(gmmrrtd_t *d)
      * world. A re-sent goal or obstacle list with the same content does not. */
     const int64_t goal_version = d->goal_version, obstacles_version = d->obstacles_version;
     switch (input) {
-    case GMMRRTD_IN_POSE: d->pose = st->m.pose; break;
+    case GMMRRTD_IN_POSE:
+        d->pose = st->m.pose;
+        gmmrrtd_scan_add_pose(d, &st->m.pose);
+        break;
+    case GMMRRTD_IN_SCAN: gmmrrtd_scan_apply(d); break;
+    case GMMRRTD_IN_GRID: gmmrrtd_grid_apply(d); break;
     case GMMRRTD_IN_PEOPLE: d->people = st->m.people; break;
     case GMMRRTD_IN_GOAL:
         if (!had || !same_goal(&st->m.goal, &d->goal)) {
@@ -199,8 +219,9 @@ void gmmrrtd_inputs_apply(gmmrrtd_t *d)
         break;
     default: break;
     }
-    if (input == GMMRRTD_IN_POSE || input == GMMRRTD_IN_PEOPLE || goal_version != d->goal_version ||
-        obstacles_version != d->obstacles_version)
+    /* Scans do not start a cycle (they come at the lidar's rate; the next pose does). */
+    if (input == GMMRRTD_IN_POSE || input == GMMRRTD_IN_PEOPLE || input == GMMRRTD_IN_GRID ||
+        goal_version != d->goal_version || obstacles_version != d->obstacles_version)
         d->event_pending = 1;
     st->input = -1;
 }

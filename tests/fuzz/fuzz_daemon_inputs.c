@@ -8,7 +8,7 @@
  * plan and status it publishes (into a file:///dev/null LCM).
  *
  * Input format (tools/fuzz_corpus.py writes seeds from the scenario logs): records of
- *   [channel: 1 byte, low 2 bits = GMMRRTD_IN_*][length: 2 bytes LE][payload: length bytes]
+ *   [channel: 1 byte, value mod GMMRRTD_NUM_INPUTS = GMMRRTD_IN_*][length: 2 bytes LE][payload: length bytes]
  * (a length past the end takes what is left), then one more cycle after the last record.
  * Each record is received at the log time of its own utime (bytes 8..15, big-endian, as in
  * a recorded log, where the recorder stamps a message as it arrives); a record too short for
@@ -134,7 +134,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     size_t off = 0;
     int64_t recv = 0;
     while (size - off >= 3) {
-        const int input = data[off] & 3;
+        const int input = data[off] % GMMRRTD_NUM_INPUTS;
         size_t len = (size_t)data[off + 1] | (size_t)data[off + 2] << 8;
         off += 3;
         if (len > size - off)
