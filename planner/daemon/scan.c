@@ -12,7 +12,8 @@
  * A placed scan marks and clears the raster planned in (gmmrrt_raster_apply_scan: cells along
  * each beam cleared of marks, the end cell marked, as a costmap's obstacle layer; NaN, inf and
  * out-of-range ranges do nothing). At most scan_max_per_cycle scans are integrated between two
- * cycles; the rest of a flood is dropped, counted and logged. The field is not computed per
+ * cycles; the rest of a flood is dropped, counted as REJECT_COUNT_OVER_BOUND (the count of
+ * one cycle's scans over its bound) and logged. The field is not computed per
  * scan but once per cycle, over the problem's bounds only (gmmrrtd_world_prepare), so a cycle's
  * extra work depends on the bounds and scan_reach_m, not on the map's size or the scan rate.
  */
@@ -101,11 +102,11 @@ void gmmrrtd_scan_apply(gmmrrtd_t *d)
     if (r == NULL)
         return; /* placed against a raster that a reload has since removed */
     if (d->scans_this_cycle >= d->set.scan_max_per_cycle) {
+        /* A count over its bound: the scans of one cycle. The newest scans get through next cycle. */
         d->scans_dropped++;
-        gmmrrtd_log_limited(&d->rl[GMMRRTD_IN_SCAN][ST(REJECT_COUNT_OVER_BOUND)], gmmrrtd_mono_us() / 1000,
-                            (int64_t)d->set.log_interval_ms, GMMRRTD_LOG_WARN,
-                            "scan dropped (%lld in total): more than scan_max_per_cycle = %d scans between two cycles",
-                            (long long)d->scans_dropped, (int)d->set.scan_max_per_cycle);
+        gmmrrtd_reject(d, GMMRRTD_IN_SCAN, ST(REJECT_COUNT_OVER_BOUND),
+                       "scan at %lld dropped: more than scan_max_per_cycle = %d scans since the last cycle (a flood)",
+                       (long long)m->utime, (int)d->set.scan_max_per_cycle);
         return;
     }
     const gmmrrt_scan_t scan = {m->rad0, m->radstep, m->range_min_m, m->range_max_m, m->num_ranges, m->ranges};

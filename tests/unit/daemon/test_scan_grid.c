@@ -155,6 +155,7 @@ static void test_a_flood_is_cut_and_nan_ranges_mark_nothing(void **state)
         send_scan(d, 10 * MS + k * MS, T0 + 10 * MS + k * MS, 1081, -2.356, 0.00436, NAN);
     assert_int_equal(d->scans_applied, d->set.scan_max_per_cycle);
     assert_int_equal(d->scans_dropped, 20 - d->set.scan_max_per_cycle);
+    assert_int_equal(d->status.rejected[ST(REJECT_COUNT_OVER_BOUND)], 20 - d->set.scan_max_per_cycle);
     assert_int_equal(d->scan_cells_marked, 0);
     assert_int_equal(marks_count(d), 0);
     for (int k = 1; k <= 5; ++k)
