@@ -125,7 +125,7 @@ typedef struct {
     int32_t pose_ring_n, pose_ring_next;
     int64_t scan_last_utime;     /* the newest applied scan's stamp (the marks' clock) */
     int32_t scans_this_cycle;    /* applied since the last cycle (scan_max_per_cycle) */
-    int64_t scans_applied, scans_dropped, scan_cells_marked, scan_cells_cleared;
+    int64_t scans_applied, scans_dropped, scans_blind, scan_cells_marked, scan_cells_cleared;
 
     /* The local grid (grid.c): a raster of the wire's capacity, allocated at start-up, that
      * replaces the map while grids arrive; a malformed grid leaves the last good one. */

@@ -363,9 +363,10 @@ int main(int argc, char **argv)
              (long long)d->status.missed_deadlines, (long long)d->status.escapes, summary, stops);
     LOG_INFO("clearance grid: %lld built, %lld shifted, %lld kept", (long long)d->grid_updates[GMMRRT_GRID_BUILT],
              (long long)d->grid_updates[GMMRRT_GRID_SHIFTED], (long long)d->grid_updates[GMMRRT_GRID_KEPT]);
-    LOG_INFO("scans: %lld integrated (%lld cells marked, %lld cleared), %lld dropped in floods; grids: %lld accepted",
+    LOG_INFO("scans: %lld integrated (%lld cells marked, %lld cleared; %lld without a return), %lld dropped in "
+             "floods; grids: %lld accepted",
              (long long)d->scans_applied, (long long)d->scan_cells_marked, (long long)d->scan_cells_cleared,
-             (long long)d->scans_dropped, (long long)d->grid_version);
+             (long long)d->scans_blind, (long long)d->scans_dropped, (long long)d->grid_version);
     if (d->lcm_out != d->lcm_in)
         lcm_destroy(d->lcm_out);
     if (d->lcm_in != NULL)

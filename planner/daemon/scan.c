@@ -122,6 +122,16 @@ void gmmrrtd_scan_apply(gmmrrtd_t *d)
     }
     d->scans_this_cycle++;
     d->scans_applied++;
+    if (marked == 0 && cleared == 0) {
+        /* Valid ("no return" is what a lidar says of open space), but a lidar that says nothing
+         * else for long is blind: worth a line. It marks and clears nothing. */
+        d->scans_blind++;
+        gmmrrtd_log_limited(&d->rl[GMMRRTD_IN_SCAN][ST(REJECT_NOT_FINITE)], gmmrrtd_mono_us() / 1000,
+                            (int64_t)d->set.log_interval_ms, GMMRRTD_LOG_WARN,
+                            "scan at %lld has no return (%lld such scans): every range NaN, inf or out of range; "
+                            "the marks stay as they were",
+                            (long long)m->utime, (long long)d->scans_blind);
+    }
     d->scan_cells_marked += marked;
     d->scan_cells_cleared += cleared;
     if (m->utime > d->scan_last_utime)

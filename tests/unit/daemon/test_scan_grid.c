@@ -157,6 +157,7 @@ static void test_a_flood_is_cut_and_nan_ranges_mark_nothing(void **state)
     assert_int_equal(d->scans_dropped, 20 - d->set.scan_max_per_cycle);
     assert_int_equal(d->status.rejected[ST(REJECT_COUNT_OVER_BOUND)], 20 - d->set.scan_max_per_cycle);
     assert_int_equal(d->scan_cells_marked, 0);
+    assert_int_equal(d->scans_blind, d->set.scan_max_per_cycle);
     assert_int_equal(marks_count(d), 0);
     for (int k = 1; k <= 5; ++k)
         send_pose(d, k * 100 * MS, T0 + k * 100 * MS, 0.0, 5.0);
