@@ -7,8 +7,9 @@
  * drivable path, drivable.h) and PLANNER_STATUS. A start in collision is not a stop: it plans
  * an escape, published with status GMMRRT_ESCAPE and counted; only GMMRRT_ERR_FROZEN (no
  * motion increases the clearance) stops, with the core's reason logged. A stale pose or
- * obstacle list, stale scans or a stale grid (docs/world.md), a missing model or target, an unusable goal or no path publishes a stop (an
- * empty plan whose status says why), never an old plan; every stop is counted by reason
+ * obstacle list, stale scans or a stale grid (docs/world.md), a missing model or target, an
+ * unusable goal or no path publishes a stop (an empty plan whose status says why), never an
+ * old plan; every stop is counted by reason
  * (planner_status_t.stops) and logged rate-limited. A stale people list is dropped: the plan
  * no longer avoids people who may have left.
  */

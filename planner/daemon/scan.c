@@ -26,14 +26,18 @@
 
 void gmmrrtd_scan_add_pose(gmmrrtd_t *d, const gmmrrt_pose2d_t *pose)
 {
+    /* The ring stays sorted by stamp: a pose stamped before the newest (accepted only when its
+     * source's clock stepped back, clock.h) starts a new history. */
+    if (d->pose_ring_n > 0 &&
+        pose->utime < d->pose_ring[(d->pose_ring_next + GMMRRTD_POSE_RING - 1) % GMMRRTD_POSE_RING].utime)
+        d->pose_ring_n = 0;
     d->pose_ring[d->pose_ring_next] = (gmmrrtd_pose_sample_t){pose->utime, pose->x, pose->y, pose->yaw};
     d->pose_ring_next = (d->pose_ring_next + 1) % GMMRRTD_POSE_RING;
     if (d->pose_ring_n < GMMRRTD_POSE_RING)
         d->pose_ring_n++;
 }
 
-/* The k-th oldest pose of the ring (k = 0 the oldest). Pose stamps never decrease (the pose
- * channel's clock check refuses older ones), so the ring is sorted. */
+/* The k-th oldest pose of the ring (k = 0 the oldest); sorted by stamp (above). */
 static const gmmrrtd_pose_sample_t *ring_at(const gmmrrtd_t *d, int32_t k)
 {
     const int32_t oldest = (d->pose_ring_next - d->pose_ring_n + GMMRRTD_POSE_RING) % GMMRRTD_POSE_RING;

@@ -146,6 +146,31 @@ static void test_scans_no_pose_places_are_refused_and_counted(void **state)
     assert_int_equal(marks_count(d), 1);
 }
 
+static void test_pose_ring_restarts_when_pose_stamps_step_back(void **state)
+{
+    gmmrrtd_t *d = *state;
+    gmmrrt_pose2d_t p;
+    memset(&p, 0, sizeof p);
+    p.y = 5.0;
+    p.utime = T0 + 1000 * MS;
+    gmmrrtd_scan_add_pose(d, &p);
+    p.utime = T0 + 1100 * MS;
+    gmmrrtd_scan_add_pose(d, &p);
+    p.utime = T0 + 500 * MS; /* the pose source's clock stepped back (accepted after a resync) */
+    p.x = 1.0;
+    gmmrrtd_scan_add_pose(d, &p);
+    assert_int_equal(d->pose_ring_n, 1);
+    static gmmrrt_planar_scan_t m;
+    memset(&m, 0, sizeof m);
+    m.range_max_m = 8.0;
+    m.utime = T0 + 1050 * MS; /* bracketed only by the old clock's poses: no longer placed */
+    assert_int_equal(gmmrrtd_scan_place(d, &m), 0);
+    assert_int_equal(d->status.rejected[ST(REJECT_TIME_FUTURE)], 1);
+    m.utime = T0 + 520 * MS;
+    assert_int_equal(gmmrrtd_scan_place(d, &m), 1);
+    assert_true(d->staged.sensor_x == 1.0 && d->staged.sensor_y == 5.0);
+}
+
 static void test_a_flood_is_cut_and_nan_ranges_mark_nothing(void **state)
 {
     gmmrrtd_t *d = *state;
@@ -302,6 +327,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_scan_is_placed_at_the_pose_interpolated_at_its_stamp, setup, teardown),
         cmocka_unit_test_setup_teardown(test_scans_no_pose_places_are_refused_and_counted, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_pose_ring_restarts_when_pose_stamps_step_back, setup, teardown),
         cmocka_unit_test_setup_teardown(test_a_flood_is_cut_and_nan_ranges_mark_nothing, setup, teardown),
         cmocka_unit_test_setup_teardown(test_plan_goes_around_what_scans_mark_and_stale_scans_stop, setup, teardown),
         cmocka_unit_test_setup_teardown(test_stale_scans_are_forgotten_when_configured, setup, teardown),
