@@ -21,6 +21,9 @@
 /* One bound: the wire's capacity is the core's scan capacity (raster.h). */
 _Static_assert(GMMRRT_PLANAR_SCAN_T_MAX_RANGES == GMMRRT_MAX_SCAN_RANGES,
                "planar_scan_t.MAX_RANGES must equal GMMRRT_MAX_SCAN_RANGES");
+/* A grid must fit the raster's hard ceilings (limits.h). */
+_Static_assert(GMMRRT_OCCUPANCY_GRID_T_MAX_CELLS <= GMMRRT_MAX_RASTER_CELLS,
+               "occupancy_grid_t.MAX_CELLS above GMMRRT_MAX_RASTER_CELLS");
 
 static gmmrrt_msg_result_t reject(gmmrrt_msg_result_t r, char *err, size_t errcap, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
@@ -448,6 +451,52 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_waypoints(const void *buf, size_t len, gmm
 }
 
 void gmmrrt_msg_release_waypoints(gmmrrt_waypoints_t *m)
+{
+    if (m == NULL)
+        return;
+    free(m->frame);
+    m->frame = NULL;
+}
+
+static gmmrrt_msg_result_t validate_occupancy_grid(const gmmrrt_occupancy_grid_t *out, char *err, size_t errcap)
+{
+    if (out->width < 1 || out->height < 1)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "occupancy_grid_t: width %d and height %d must be >= 1",
+                      (int)out->width, (int)out->height);
+    if ((int64_t)out->width * (int64_t)out->height > GMMRRT_OCCUPANCY_GRID_T_MAX_CELLS)
+        return reject(GMMRRT_MSG_COUNT_OVER_BOUND, err, errcap,
+                      "occupancy_grid_t: width %d x height %d is above MAX_CELLS = %d", (int)out->width,
+                      (int)out->height, (int)GMMRRT_OCCUPANCY_GRID_T_MAX_CELLS);
+    if ((int64_t)out->num_cells != (int64_t)out->width * (int64_t)out->height)
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
+                      "occupancy_grid_t.num_cells = %d, but width %d x height %d = %lld", (int)out->num_cells,
+                      (int)out->width, (int)out->height, (long long)((int64_t)out->width * (int64_t)out->height));
+    REQUIRE_FINITE(occupancy_grid_t, "resolution_m", out->resolution_m, err, errcap);
+    REQUIRE_FINITE(occupancy_grid_t, "origin_x", out->origin_x, err, errcap);
+    REQUIRE_FINITE(occupancy_grid_t, "origin_y", out->origin_y, err, errcap);
+    REQUIRE_FINITE(occupancy_grid_t, "origin_yaw", out->origin_yaw, err, errcap);
+    if (!(out->resolution_m > 0.0))
+        return reject(GMMRRT_MSG_BAD_VALUE, err, errcap, "occupancy_grid_t.resolution_m = %g must be > 0",
+                      out->resolution_m);
+    for (int32_t k = 0; k < out->num_cells; ++k)
+        if (out->data[k] < -1 || out->data[k] > 100)
+            return reject(GMMRRT_MSG_BAD_VALUE, err, errcap,
+                          "occupancy_grid_t.data[%d] = %d (cell %d, %d) is not -1 or 0..100", (int)k,
+                          (int)out->data[k], (int)(k % out->width), (int)(k / out->width));
+    return GMMRRT_MSG_OK;
+}
+
+gmmrrt_msg_result_t gmmrrt_msg_decode_occupancy_grid(const void *buf, size_t len, gmmrrt_occupancy_grid_t *out,
+                                                     char *err, size_t errcap)
+{
+    DECODE_WITH_FRAME_OR_REJECT(occupancy_grid_t, buf, len, out, err, errcap);
+    const gmmrrt_msg_result_t r = validate_occupancy_grid(out, err, errcap);
+    if (r != GMMRRT_MSG_OK)
+        gmmrrt_msg_release_occupancy_grid(out);
+    return r;
+}
+
+void gmmrrt_msg_release_occupancy_grid(gmmrrt_occupancy_grid_t *m)
 {
     if (m == NULL)
         return;

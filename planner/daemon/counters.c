@@ -33,11 +33,14 @@ const char *gmmrrtd_stop_str(int code)
     case GMMRRTD_STOP_PLANNING_BOX: return "stopped: planning box exceeds the clearance grid";
     case GMMRRTD_STOP_GOAL_REACHED: return "stopped: goal reached";
     case GMMRRTD_STOP_GOAL_CANCELLED: return "stopped: goal cancelled";
+    case GMMRRTD_STOP_SCAN_STALE: return "stopped: laser scans are stale";
+    case GMMRRTD_STOP_GRID_STALE: return "stopped: occupancy grid is stale";
     default: return gmmrrt_status_str((gmmrrt_status_t)code);
     }
 }
 
-static const char *const k_rows[GMMRRTD_RL_ROWS] = {"pose", "people", "goal", "obstacles", "planner", "stop"};
+static const char *const k_rows[GMMRRTD_RL_ROWS] = {"pose", "people", "goal", "obstacles", "scan", "grid",
+                                                           "planner", "stop"};
 
 void gmmrrtd_reject(gmmrrtd_t *d, int row, int reason, const char *fmt, ...)
 {

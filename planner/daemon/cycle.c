@@ -7,8 +7,9 @@
  * drivable path, drivable.h) and PLANNER_STATUS. A start in collision is not a stop: it plans
  * an escape, published with status GMMRRT_ESCAPE and counted; only GMMRRT_ERR_FROZEN (no
  * motion increases the clearance) stops, with the core's reason logged. A stale pose or
- * obstacle list, a missing model or target, an unusable goal or no path publishes a stop (an
- * empty plan whose status says why), never an old plan; every stop is counted by reason
+ * obstacle list, stale scans or a stale grid (docs/world.md), a missing model or target, an
+ * unusable goal or no path publishes a stop (an empty plan whose status says why), never an
+ * old plan; every stop is counted by reason
  * (planner_status_t.stops) and logged rate-limited. A stale people list is dropped: the plan
  * no longer avoids people who may have left.
  */
@@ -113,6 +114,8 @@ static int stop_slot(int why)
     case GMMRRTD_STOP_UNKNOWN_TARGET: return ST(STOP_UNKNOWN_TARGET);
     case GMMRRTD_STOP_OBSTACLES_STALE: return ST(STOP_OBSTACLES_STALE);
     case GMMRRTD_STOP_PLANNING_BOX: return ST(STOP_PLANNING_BOX);
+    case GMMRRTD_STOP_SCAN_STALE: return ST(STOP_SCAN_STALE);
+    case GMMRRTD_STOP_GRID_STALE: return ST(STOP_GRID_STALE);
     case GMMRRT_ERR_START_IN_COLLISION:
     case GMMRRT_ERR_START_OUT_OF_BOUNDS: return ST(STOP_START_BLOCKED);
     case GMMRRT_ERR_GOAL_IN_COLLISION:
@@ -124,7 +127,7 @@ static int stop_slot(int why)
 }
 
 /* The goal's failure a stop code stands for; FAILURE_NONE for stops that are not the goal's
- * (a stale pose or obstacle list, a blocked start: the goal may be fine once they pass). */
+ * (a stale pose, obstacle list, scan or grid, a blocked start: the goal may be fine once they pass). */
 static int goal_failure_of(int why)
 {
     switch (why) {
@@ -137,6 +140,8 @@ static int goal_failure_of(int why)
     case GMMRRT_NO_PATH_ON_SIDE: return ST(FAILURE_UNREACHABLE);
     case GMMRRTD_STOP_POSE_STALE:
     case GMMRRTD_STOP_OBSTACLES_STALE:
+    case GMMRRTD_STOP_SCAN_STALE:
+    case GMMRRTD_STOP_GRID_STALE:
     case GMMRRT_ERR_START_IN_COLLISION:
     case GMMRRT_ERR_START_OUT_OF_BOUNDS:
     case GMMRRT_ERR_FROZEN: return ST(FAILURE_NONE);
@@ -195,7 +200,7 @@ static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_
      * leave empty bounds, which set_problem refuses (a counted stop). */
     (void)gmmrrt_problem_bounds(p->start_x, p->start_y, p->goal_x, p->goal_y, d->set.bounds_margin_m,
                                 &p->obstacles.bounds);
-    p->obstacles.raster = d->have_map ? &d->map : NULL; /* read only inside the bounds */
+    p->obstacles.raster = gmmrrtd_world_raster(d); /* the grid's or the map's; read only inside the bounds */
     if (d->have[GMMRRTD_IN_OBSTACLES]) {
         const gmmrrt_obstacles_t *o = &d->obstacles;
         p->obstacles.num_circles = o->num_circles;
@@ -236,7 +241,7 @@ static int32_t warm_start_seed(gmmrrtd_t *d)
     if (!s->valid || s->task != d->goal.task || s->target_id != d->goal.target_person_id ||
         s->side != d->goal.preferred_side ||
         hypot(s->goal_x - d->goal.x, s->goal_y - d->goal.y) >= set->warm_goal_shift_m ||
-        s->obstacles_version != d->obstacles_version)
+        s->obstacles_version != d->obstacles_version || s->grid_version != d->grid_version)
         return 0;
     const int32_t np = people_usable(d) ? d->people.num_people : 0;
     if (np != s->num_people)
@@ -287,6 +292,7 @@ static void remember_situation(gmmrrtd_t *d)
     s->target_id = d->goal.target_person_id;
     s->side = d->goal.preferred_side;
     s->obstacles_version = d->obstacles_version;
+    s->grid_version = d->grid_version;
     s->num_people = people_usable(d) ? d->people.num_people : 0;
     for (int32_t i = 0; i < s->num_people; ++i) {
         s->people_id[i] = d->people.people[i].id;
@@ -325,8 +331,12 @@ static void judge_staleness(gmmrrtd_t *d, int64_t now_us, int count)
         {GMMRRTD_IN_POSE, ST(STALE_POSE), ST(REJECT_POSE_STALE)},
         {GMMRRTD_IN_PEOPLE, ST(STALE_PEOPLE), ST(REJECT_PEOPLE_STALE)},
         {GMMRRTD_IN_OBSTACLES, ST(STALE_OBSTACLES), ST(REJECT_OBSTACLES_STALE)},
+        {GMMRRTD_IN_SCAN, ST(STALE_SCAN), ST(REJECT_SCAN_STALE)},
+        {GMMRRTD_IN_GRID, ST(STALE_GRID), ST(REJECT_GRID_STALE)},
     };
-    const double timeout_ms[] = {d->set.pose_timeout_ms, d->set.people_timeout_ms, d->set.obstacles_timeout_ms};
+    static const char *const k_what[] = {"robot pose", "people list", "obstacle list", "laser scan", "occupancy grid"};
+    const double timeout_ms[] = {d->set.pose_timeout_ms, d->set.people_timeout_ms, d->set.obstacles_timeout_ms,
+                                 d->set.scan_timeout_ms, d->set.grid_timeout_ms};
     d->stale_mask = 0;
     for (int i = 0; i < (int)(sizeof k_ch / sizeof k_ch[0]); ++i) {
         const int in = k_ch[i].input;
@@ -338,10 +348,12 @@ static void judge_staleness(gmmrrtd_t *d, int64_t now_us, int count)
         d->stale_mask |= k_ch[i].bit;
         if (count && !d->stale_counted[in]) {
             d->stale_counted[in] = 1;
-            gmmrrtd_reject(d, GMMRRTD_RL_PLANNER, k_ch[i].reason, "no %s for %.3f s (limit %.3f s)%s",
-                           in == GMMRRTD_IN_POSE ? "robot pose" : in == GMMRRTD_IN_PEOPLE ? "people list" : "obstacle list",
-                           (double)age_us * 1e-6, timeout_ms[i] * 1e-3,
-                           in == GMMRRTD_IN_PEOPLE ? ": planning without people until the tracker is back" : "");
+            const char *consequence = in == GMMRRTD_IN_PEOPLE ? ": planning without people until the tracker is back"
+                                      : in == GMMRRTD_IN_SCAN && !d->set.scan_stale_stop
+                                          ? ": planning without scan marks until scans are back"
+                                          : "";
+            gmmrrtd_reject(d, GMMRRTD_RL_PLANNER, k_ch[i].reason, "no %s for %.3f s (limit %.3f s)%s", k_what[i],
+                           (double)age_us * 1e-6, timeout_ms[i] * 1e-3, consequence);
         }
     }
 }
@@ -569,6 +581,16 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
         publish_stop(d, now_us, GMMRRTD_STOP_OBSTACLES_STALE, ST(STATE_STOPPED));
         return;
     }
+    /* A stale grid (the raster planned in) or stale scans: the world may have changed. Stale
+     * scans with scan_stale_stop = 0 plan on without their marks (gmmrrtd_world_prepare). */
+    if (d->have_grid && (d->stale_mask & ST(STALE_GRID))) {
+        publish_stop(d, now_us, GMMRRTD_STOP_GRID_STALE, ST(STATE_STOPPED));
+        return;
+    }
+    if ((d->stale_mask & ST(STALE_SCAN)) && d->set.scan_stale_stop) {
+        publish_stop(d, now_us, GMMRRTD_STOP_SCAN_STALE, ST(STATE_STOPPED));
+        return;
+    }
 
     const gmmrrt_model_t *model = NULL;
     int target = -1;
@@ -611,7 +633,9 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
     /* The world's set-up (a clearance-grid build after an obstacle change) may take long: the
      * watchdog gets long_step_ms for it (watchdog.c). */
     gmmrrtd_watchdog_long_step(d, 1);
-    gmmrrt_status_t st = gmmrrt_planner_set_problem(d->planner, &d->problem);
+    gmmrrt_status_t st = gmmrrtd_world_prepare(d, now_us);
+    if (st == GMMRRT_OK)
+        st = gmmrrt_planner_set_problem(d->planner, &d->problem);
     gmmrrtd_watchdog_long_step(d, 0);
     d->status.setup_time_ms = (double)(gmmrrtd_mono_us() - setup_start_us) * 1e-3;
     /* A start inside a person's disc or an inflated obstacle plans an escape (planner.h): the

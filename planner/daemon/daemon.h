@@ -29,9 +29,25 @@
 #include "clock.h"
 #include "stop.h"
 
-enum { GMMRRTD_IN_POSE = 0, GMMRRTD_IN_PEOPLE = 1, GMMRRTD_IN_GOAL = 2, GMMRRTD_IN_OBSTACLES = 3, GMMRRTD_NUM_INPUTS = 4 };
+enum {
+    GMMRRTD_IN_POSE = 0,
+    GMMRRTD_IN_PEOPLE = 1,
+    GMMRRTD_IN_GOAL = 2,
+    GMMRRTD_IN_OBSTACLES = 3,
+    GMMRRTD_IN_SCAN = 4,
+    GMMRRTD_IN_GRID = 5,
+    GMMRRTD_NUM_INPUTS = 6
+};
+/* Robot poses kept to place scans (scan.c): at 100 Hz, 0.64 s of history. */
+#define GMMRRTD_POSE_RING 64
 /* Rate-limiter rows: one per input, then the daemon's own (planner, reload, stops). */
 enum { GMMRRTD_RL_PLANNER = GMMRRTD_NUM_INPUTS, GMMRRTD_RL_STOP = GMMRRTD_NUM_INPUTS + 1, GMMRRTD_RL_ROWS = GMMRRTD_NUM_INPUTS + 2 };
+
+/* One robot pose of the ring that places scans (scan.c), on the pose source's own stamps. */
+typedef struct {
+    int64_t utime;
+    double x, y, yaw;
+} gmmrrtd_pose_sample_t;
 
 /* What the last published plan was made in: the warm start compares against it. */
 typedef struct {
@@ -42,6 +58,7 @@ typedef struct {
     int32_t people_id[GMMRRT_MAX_PEOPLE];
     double people_x[GMMRRT_MAX_PEOPLE], people_y[GMMRRT_MAX_PEOPLE];
     int64_t obstacles_version;
+    int64_t grid_version;
 } gmmrrtd_snapshot_t;
 
 /* Finished goals remembered, so that a late re-send of one is not taken as a new goal. */
@@ -69,7 +86,10 @@ typedef struct {
         gmmrrt_people_t people;
         gmmrrt_nav_goal_t goal;
         gmmrrt_obstacles_t obstacles;
+        gmmrrt_planar_scan_t scan;
+        gmmrrt_occupancy_grid_t grid;
     } m;
+    double sensor_x, sensor_y, sensor_yaw; /* a scan: the sensor's world pose at its utime (scan.c) */
 } gmmrrtd_staged_t;
 
 typedef struct {
@@ -116,6 +136,21 @@ typedef struct {
     int32_t map_capacity_cells, map_capacity_side;
     int have_map;
 
+    /* Scans (scan.c): the robot poses that place them, and what became of them. They mark the
+     * raster planned in (gmmrrtd_world_raster): the grid's while one is in use, else the map's. */
+    gmmrrtd_pose_sample_t pose_ring[GMMRRTD_POSE_RING];
+    int32_t pose_ring_n, pose_ring_next;
+    int64_t scan_last_utime;     /* the newest applied scan's stamp (the marks' clock) */
+    int32_t scans_this_cycle;    /* applied since the last cycle (scan_max_per_cycle) */
+    int64_t scans_applied, scans_dropped, scans_blind, scan_cells_marked, scan_cells_cleared;
+
+    /* The local grid (grid.c): a raster of the wire's capacity, allocated at start-up, that
+     * replaces the map while grids arrive; a malformed grid leaves the last good one. */
+    gmmrrt_raster_t grid;
+    void *grid_mem;
+    int have_grid;
+    int64_t grid_version;        /* +1 with every accepted grid */
+
     /* The planner: one block, allocated once. */
     void *mem;
     size_t mem_size;
@@ -156,7 +191,7 @@ int64_t gmmrrtd_mono_us(void);
 /* The local time now: CLOCK_MONOTONIC live, the log time in log mode. */
 int64_t gmmrrtd_now_us(const gmmrrtd_t *d);
 
-/* dispatch.c: subscribes the four input channels. 0 or -1 (logged). */
+/* dispatch.c: subscribes the six input channels. 0 or -1 (logged). */
 int gmmrrtd_subscribe(gmmrrtd_t *d);
 
 /* dispatch.c: one message of `input` (GMMRRTD_IN_*; other values are ignored), len raw bytes
@@ -223,6 +258,29 @@ int gmmrrtd_models_load(gmmrrtd_t *d, int reload);
  * keeps the old map, counts REJECT_MODEL_RELOAD and logs every time. An empty path removes
  * the map. */
 int gmmrrtd_world_load(gmmrrtd_t *d, int reload);
+
+/* scan.c: the pose ring (every accepted pose is added) and a scan's placement. place: 1 with
+ * the sensor's world pose in d->staged when a pose brackets the scan's utime (interpolated) or
+ * the newest pose is at most scan_pose_gap_ms older (held); 0 when refused (counted, logged).
+ * apply: marks and clears the raster planned in, at most scan_max_per_cycle scans a cycle. */
+void gmmrrtd_scan_add_pose(gmmrrtd_t *d, const gmmrrt_pose2d_t *pose);
+int gmmrrtd_scan_place(gmmrrtd_t *d, const gmmrrt_planar_scan_t *scan);
+void gmmrrtd_scan_apply(gmmrrtd_t *d);
+
+/* scan.c: the raster a cycle plans in: the grid's while one is in use, else the map's, else NULL. */
+gmmrrt_raster_t *gmmrrtd_world_raster(gmmrrtd_t *d);
+
+/* scan.c: before a cycle's set_problem: the raster's field made ready over the problem's
+ * bounds (the window only, when scan marks exist: bounded work per cycle; marks count while
+ * younger than scan_decay_ms, and not at all while the scans are stale and scan_stale_stop
+ * is 0). GMMRRT_OK or the raster's status. */
+gmmrrt_status_t gmmrrtd_world_prepare(gmmrrtd_t *d, int64_t now_us);
+
+/* grid.c: allocates the grid raster at start-up (0, or -1 logged); a decoded grid's check
+ * against the raster (1 to stage, 0 refused and counted) and its application. */
+int gmmrrtd_grid_setup(gmmrrtd_t *d);
+int gmmrrtd_grid_check(gmmrrtd_t *d, const gmmrrt_occupancy_grid_t *grid);
+void gmmrrtd_grid_apply(gmmrrtd_t *d);
 
 /* main.c / watchdog.c: tells systemd's watchdog the daemon is alive; before a step that may
  * take long, gmmrrtd_watchdog_long_step(d, 1) stretches the interval to long_step_ms, and

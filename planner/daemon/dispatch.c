@@ -75,6 +75,8 @@ ON_INPUT(pose, GMMRRTD_IN_POSE)
 ON_INPUT(people, GMMRRTD_IN_PEOPLE)
 ON_INPUT(goal, GMMRRTD_IN_GOAL)
 ON_INPUT(obstacles, GMMRRTD_IN_OBSTACLES)
+ON_INPUT(scan, GMMRRTD_IN_SCAN)
+ON_INPUT(grid, GMMRRTD_IN_GRID)
 
 int gmmrrtd_subscribe(gmmrrtd_t *d)
 {
@@ -82,7 +84,9 @@ int gmmrrtd_subscribe(gmmrrtd_t *d)
     if (lcm_subscribe(d->lcm_in, s->ch_pose, on_pose, d) == NULL ||
         lcm_subscribe(d->lcm_in, s->ch_people, on_people, d) == NULL ||
         lcm_subscribe(d->lcm_in, s->ch_goal, on_goal, d) == NULL ||
-        lcm_subscribe(d->lcm_in, s->ch_obstacles, on_obstacles, d) == NULL) {
+        lcm_subscribe(d->lcm_in, s->ch_obstacles, on_obstacles, d) == NULL ||
+        lcm_subscribe(d->lcm_in, s->ch_scan, on_scan, d) == NULL ||
+        lcm_subscribe(d->lcm_in, s->ch_grid, on_grid, d) == NULL) {
         LOG_ERROR("cannot subscribe the input channels");
         return -1;
     }
@@ -116,7 +120,8 @@ int gmmrrtd_replay_open(gmmrrtd_t *d)
         LOG_ERROR("%s: not a file:// URL with a path", d->set.lcm_url);
         return -1;
     }
-    const char *names[GMMRRTD_NUM_INPUTS] = {d->set.ch_pose, d->set.ch_people, d->set.ch_goal, d->set.ch_obstacles};
+    const char *names[GMMRRTD_NUM_INPUTS] = {d->set.ch_pose,      d->set.ch_people, d->set.ch_goal,
+                                             d->set.ch_obstacles, d->set.ch_scan,   d->set.ch_grid};
     for (int i = 0; i < GMMRRTD_NUM_INPUTS; ++i) {
         char re[128];
         snprintf(re, sizeof re, "^(%s)$", names[i]);

@@ -13,7 +13,8 @@
 
 #include "daemon.h"
 
-static const char *const k_input_names[] = {"pose", "people", "goal", "obstacles"};
+static const char *const k_input_names[] = {"pose", "people", "goal", "obstacles", "scan", "grid"};
+_Static_assert(sizeof k_input_names / sizeof k_input_names[0] == GMMRRTD_NUM_INPUTS, "a name per input");
 
 static int reason_of(gmmrrt_msg_result_t r)
 {
@@ -104,6 +105,19 @@ static int accept_time(gmmrrtd_t *d, int input, int64_t utime, int64_t local_us)
         }                                                                                           \
     } while (0)
 
+/* A planar_scan_t has no frame of its own: its beams are in the sensor's frame, the sensor is
+ * placed on the robot, and the scan in the planning frame through the robot's pose at its stamp
+ * (scan.c), a pose already held to [world] frame. */
+#define DECODE_UNFRAMED_INPUT(d, input, short_name, buf, len, out)                                  \
+    do {                                                                                            \
+        char err_[256];                                                                             \
+        const gmmrrt_msg_result_t r_ = gmmrrt_msg_decode_##short_name((buf), (len), (out), err_, sizeof err_); \
+        if (r_ != GMMRRT_MSG_OK) {                                                                  \
+            gmmrrtd_reject((d), (input), reason_of(r_), "%s", err_);                                \
+            return 0;                                                                               \
+        }                                                                                           \
+    } while (0)
+
 /* Walking people are predicted from their velocity (planner.h): a speed above
  * GMMRRT_MAX_PERSON_SPEED_M_S (the core's bound; faster than a running person is a tracking
  * error) refuses the whole list, counted as REJECT_PERSON_SPEED, and the last good list stays.
@@ -147,9 +161,23 @@ int gmmrrtd_inputs_decode(gmmrrtd_t *d, int input, int64_t local_us, const void 
         DECODE_INPUT(d, input, obstacles_t, obstacles, buf, len, &st->m.obstacles);
         utime = st->m.obstacles.utime;
         break;
+    case GMMRRTD_IN_SCAN:
+        DECODE_UNFRAMED_INPUT(d, input, planar_scan, buf, len, &st->m.scan);
+        utime = st->m.scan.utime;
+        break;
+    case GMMRRTD_IN_GRID:
+        DECODE_INPUT(d, input, occupancy_grid_t, occupancy_grid, buf, len, &st->m.grid);
+        if (!gmmrrtd_grid_check(d, &st->m.grid))
+            return 0;
+        utime = st->m.grid.utime;
+        break;
     default: return 0;
     }
     if (!accept_time(d, input, utime, local_us))
+        return 0;
+    /* A scan is placed with the robot's pose at its stamp (pose ring, scan.c) now, while the
+     * poses it needs are known; a scan no pose places is refused. */
+    if (input == GMMRRTD_IN_SCAN && !gmmrrtd_scan_place(d, &st->m.scan))
         return 0;
     st->input = input;
     return 1;
@@ -182,7 +210,12 @@ void gmmrrtd_inputs_apply(gmmrrtd_t *d)
     const int64_t obstacles_version = d->obstacles_version;
     int goal_changed = 0;
     switch (input) {
-    case GMMRRTD_IN_POSE: d->pose = st->m.pose; break;
+    case GMMRRTD_IN_POSE:
+        d->pose = st->m.pose;
+        gmmrrtd_scan_add_pose(d, &st->m.pose);
+        break;
+    case GMMRRTD_IN_SCAN: gmmrrtd_scan_apply(d); break;
+    case GMMRRTD_IN_GRID: gmmrrtd_grid_apply(d); break;
     case GMMRRTD_IN_PEOPLE: d->people = st->m.people; break;
     case GMMRRTD_IN_GOAL:
         /* The goal's life (goal.c): a new id, an update, a cancel; a reused id is refused there. */
@@ -196,7 +229,8 @@ void gmmrrtd_inputs_apply(gmmrrtd_t *d)
         break;
     default: break;
     }
-    if (input == GMMRRTD_IN_POSE || input == GMMRRTD_IN_PEOPLE || goal_changed ||
+    /* Scans do not start a cycle (they come at the lidar's rate; the next pose does). */
+    if (input == GMMRRTD_IN_POSE || input == GMMRRTD_IN_PEOPLE || input == GMMRRTD_IN_GRID || goal_changed ||
         obstacles_version != d->obstacles_version)
         d->event_pending = 1;
     st->input = -1;

@@ -96,6 +96,7 @@ static void reload(gmmrrtd_t *d, int argc, char **argv)
         settings_differ_str(s.ch_pose, d->set.ch_pose) || settings_differ_str(s.ch_people, d->set.ch_people) ||
         settings_differ_str(s.ch_goal, d->set.ch_goal) || settings_differ_str(s.ch_obstacles, d->set.ch_obstacles) ||
         settings_differ_str(s.ch_plan, d->set.ch_plan) || settings_differ_str(s.ch_status, d->set.ch_status) ||
+        settings_differ_str(s.ch_scan, d->set.ch_scan) || settings_differ_str(s.ch_grid, d->set.ch_grid) ||
         settings_differ_str(s.clock, d->set.clock)) {
         LOG_WARN("reload: LCM URLs, channels and clock apply at the next restart");
         memcpy(s.lcm_url, d->set.lcm_url, sizeof s.lcm_url);
@@ -106,6 +107,8 @@ static void reload(gmmrrtd_t *d, int argc, char **argv)
         memcpy(s.ch_obstacles, d->set.ch_obstacles, sizeof s.ch_obstacles);
         memcpy(s.ch_plan, d->set.ch_plan, sizeof s.ch_plan);
         memcpy(s.ch_status, d->set.ch_status, sizeof s.ch_status);
+        memcpy(s.ch_scan, d->set.ch_scan, sizeof s.ch_scan);
+        memcpy(s.ch_grid, d->set.ch_grid, sizeof s.ch_grid);
         memcpy(s.clock, d->set.clock, sizeof s.clock);
     }
     if (memcmp(&s.cfg, &d->set.cfg, sizeof s.cfg) != 0) {
@@ -309,6 +312,8 @@ int main(int argc, char **argv)
         return 1;
     if (gmmrrtd_world_load(d, 0) != 0)
         return 1;
+    if (gmmrrtd_grid_setup(d) != 0)
+        return 1;
     if (planner_setup(d) != 0)
         return 1;
 #ifdef GMMRRT_HAVE_SYSTEMD
@@ -358,6 +363,10 @@ int main(int argc, char **argv)
              (long long)d->status.missed_deadlines, (long long)d->status.escapes, summary, stops);
     LOG_INFO("clearance grid: %lld built, %lld shifted, %lld kept", (long long)d->grid_updates[GMMRRT_GRID_BUILT],
              (long long)d->grid_updates[GMMRRT_GRID_SHIFTED], (long long)d->grid_updates[GMMRRT_GRID_KEPT]);
+    LOG_INFO("scans: %lld integrated (%lld cells marked, %lld cleared; %lld without a return), %lld dropped in "
+             "floods; grids: %lld accepted",
+             (long long)d->scans_applied, (long long)d->scan_cells_marked, (long long)d->scan_cells_cleared,
+             (long long)d->scans_blind, (long long)d->scans_dropped, (long long)d->grid_version);
     if (d->lcm_out != d->lcm_in)
         lcm_destroy(d->lcm_out);
     if (d->lcm_in != NULL)
@@ -365,5 +374,6 @@ int main(int argc, char **argv)
     gmmrrtd_replay_close(d);
     free(d->mem);
     free(d->map_mem);
+    free(d->grid_mem);
     return result == 0 ? 0 : 1;
 }

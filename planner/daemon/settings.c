@@ -53,6 +53,8 @@ static const key_t_ k_keys[] = {
     STR("channels", "people", "channel-people", ch_people, "people channel (people_t)"),
     STR("channels", "goal", "channel-goal", ch_goal, "goal channel (nav_goal_t)"),
     STR("channels", "obstacles", "channel-obstacles", ch_obstacles, "obstacles channel (obstacles_t)"),
+    STR("channels", "scan", "channel-scan", ch_scan, "laser scan channel (planar_scan_t; docs/world.md)"),
+    STR("channels", "grid", "channel-grid", ch_grid, "local occupancy grid channel (occupancy_grid_t; replaces the map)"),
     STR("channels", "plan", "channel-plan", ch_plan, "plan output channel (waypoints_t)"),
     STR("channels", "status", "channel-status", ch_status, "status output channel (planner_status_t)"),
     STR("models", "avoid", "model-avoid", model_avoid, "model file for TASK_AVOID"),
@@ -80,9 +82,9 @@ static const key_t_ k_keys[] = {
     NUM("timing", "obstacles_timeout_ms", "obstacles-timeout-ms", K_F64, obstacles_timeout_ms, 0, 1e7,
         "stop when the obstacle list is older, ms (0: never; static obstacles)"),
     NUM("timing", "scan_timeout_ms", "scan-timeout-ms", K_F64, scan_timeout_ms, 0, 1e7,
-        "reserved for a laser-scan input: stop when the scan is older, ms"),
+        "scans seen and none newer, ms: STALE_SCAN (stop, or forget their marks: scan_stale_stop) (0: never)"),
     NUM("timing", "grid_timeout_ms", "grid-timeout-ms", K_F64, grid_timeout_ms, 0, 1e7,
-        "reserved for a local-grid input: stop when the grid is older, ms"),
+        "a grid in use and none newer, ms: STALE_GRID, stop (0: never)"),
     NUM("timing", "max_future_ms", "max-future-ms", K_F64, max_future_ms, 1, 1e9,
         "reject a message stamped further than this from its own source's clock, ms"),
     NUM("timing", "time_resync_count", "time-resync-count", K_I32, time_resync_count, 1, 1e6,
@@ -102,7 +104,19 @@ static const key_t_ k_keys[] = {
     NUM("world", "map_max_side", "map-max-side", K_I32, map_max_side, 1, GMMRRT_MAX_RASTER_SIDE,
         "map raster capacity, cells a side"),
     NUM("world", "map_unknown_blocked", "map-unknown-blocked", K_I32, map_unknown_blocked, 0, 1,
-        "1: unknown map cells and everything outside the map block; 0: they are free"),
+        "1: unknown map (and grid) cells and everything outside block; 0: they are free"),
+    NUM("world", "scan_decay_ms", "scan-decay-ms", K_F64, scan_decay_ms, 0, 1e7,
+        "a scan's obstacle mark blocks this long unless a later beam clears it, ms"),
+    NUM("world", "scan_pose_gap_ms", "scan-pose-gap-ms", K_F64, scan_pose_gap_ms, 0, 1e4,
+        "a scan stamped after the newest pose by at most this is placed at it; later ones are refused, ms"),
+    NUM("world", "scan_max_per_cycle", "scan-max-per-cycle", K_I32, scan_max_per_cycle, 1, 1000,
+        "scans integrated between two cycles at most (a flood's rest is dropped and counted)"),
+    NUM("world", "scan_stale_stop", "scan-stale-stop", K_I32, scan_stale_stop, 0, 1,
+        "1: stale scans stop the robot; 0: plan without their marks (map only)"),
+    NUM("world", "scan_reach_m", "scan-reach", K_F64, scan_reach_m, 0.05, 100,
+        "with scan marks, the field is computed each cycle over the bounds from blocked cells this near, m"),
+    NUM("world", "grid_occupied", "grid-occupied", K_I32, grid_occupied, 1, 100,
+        "occupancy_grid_t cells at or above this value block (0..100)"),
     NUM("warm_start", "goal_shift_m", "warm-goal-shift", K_F64, warm_goal_shift_m, 0, 1e4, "warm start: goal moved less, m"),
     NUM("warm_start", "people_shift_m", "warm-people-shift", K_F64, warm_people_shift_m, 0, 1e4,
         "warm start: each person moved less, m"),
@@ -159,6 +173,8 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     snprintf(s->ch_people, sizeof s->ch_people, "PEOPLE");
     snprintf(s->ch_goal, sizeof s->ch_goal, "NAV_GOAL");
     snprintf(s->ch_obstacles, sizeof s->ch_obstacles, "OBSTACLES");
+    snprintf(s->ch_scan, sizeof s->ch_scan, "SCAN");
+    snprintf(s->ch_grid, sizeof s->ch_grid, "GRID");
     snprintf(s->ch_plan, sizeof s->ch_plan, "PLAN");
     snprintf(s->ch_status, sizeof s->ch_status, "PLANNER_STATUS");
     s->rate_hz = 10.0;
@@ -186,6 +202,12 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->map_max_cells = 2048 * 2048; /* 36 MiB of raster; 102 x 102 m at 5 cm */
     s->map_max_side = 4096;
     s->map_unknown_blocked = 1;
+    s->scan_decay_ms = 2000.0;
+    s->scan_pose_gap_ms = 100.0;
+    s->scan_max_per_cycle = 4;
+    s->scan_stale_stop = 1;
+    s->scan_reach_m = 1.5;
+    s->grid_occupied = 65;
     s->warm_goal_shift_m = 0.25;
     s->warm_people_shift_m = 0.3;
     s->warm_robot_offset_m = 0.5;
@@ -461,9 +483,10 @@ int gmmrrtd_settings_validate(const gmmrrtd_settings_t *s, char *err, size_t err
     /* lcm_subscribe takes a channel as a POSIX regular expression: "ROBOT.POSE" would also take
      * "ROBOTXPOSE", and "PEOPLE|NAV_GOAL" two channels into one handler. A name is therefore a
      * literal, and the characters that would make it a pattern are refused. */
-    const char *chans[] = {s->ch_pose, s->ch_people, s->ch_goal, s->ch_obstacles, s->ch_plan, s->ch_status};
-    const char *chan_keys[] = {"pose", "people", "goal", "obstacles", "plan", "status"};
-    for (int i = 0; i < 6; ++i) {
+    const char *chans[] = {s->ch_pose, s->ch_people, s->ch_goal,   s->ch_obstacles,
+                           s->ch_scan, s->ch_grid,   s->ch_plan, s->ch_status};
+    const char *chan_keys[] = {"pose", "people", "goal", "obstacles", "scan", "grid", "plan", "status"};
+    for (int i = 0; i < (int)(sizeof chans / sizeof chans[0]); ++i) {
         if (chans[i][0] == '\0')
             return fail(err, errcap, "[channels] %s: the channel name is empty", chan_keys[i]);
         const size_t bad = strcspn(chans[i], ".[]()*+?{}|^$\\ ");
@@ -493,5 +516,10 @@ int gmmrrtd_settings_validate(const gmmrrtd_settings_t *s, char *err, size_t err
     if (s->cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND)
         return fail(err, errcap, "[planner] task_cost = background needs a background model, which gmmrrtd does not "
                                  "load (paper or inward)");
+    /* The per-cycle field is capped at about scan_reach_m (raster.h): below the robot's radius
+     * every point would be called blocked once scans arrive. */
+    if (!(s->scan_reach_m > s->cfg.robot_radius_m))
+        return fail(err, errcap, "[world] scan_reach_m = %g must exceed [planner] robot_radius_m = %g", s->scan_reach_m,
+                    s->cfg.robot_radius_m);
     return 0;
 }

@@ -27,6 +27,7 @@ typedef struct {
     char clock[16];                      /* "auto" (log for file://, else live), "live", "log" */
     /* [channels] */
     char ch_pose[64], ch_people[64], ch_goal[64], ch_obstacles[64], ch_plan[64], ch_status[64];
+    char ch_scan[64], ch_grid[64]; /* planar_scan_t, occupancy_grid_t inputs (docs/world.md) */
     /* [models] paths; "" = none (tasks that need it publish a stop) */
     char model_avoid[GMMRRTD_PATH_MAX];
     char model_approach[GMMRRTD_PATH_MAX];
@@ -44,8 +45,8 @@ typedef struct {
     double goal_fail_after_ms;   /* a goal that could not be planned for this long fails (docs/daemon.md) */
     double people_timeout_ms;    /* >= 0: a people list older than this is dropped (0: never) */
     double obstacles_timeout_ms; /* >= 0: an obstacle list older than this stops the robot (0: never) */
-    double scan_timeout_ms;      /* reserved for a laser-scan input (stop when older) */
-    double grid_timeout_ms;      /* reserved for a local occupancy-grid input (stop when older) */
+    double scan_timeout_ms;      /* >= 0: scans seen, none newer: STALE_SCAN (stop, or forget the marks) (0: never) */
+    double grid_timeout_ms;      /* >= 0: a grid in use, none newer: STALE_GRID, stop (0: never) */
     double max_future_ms;        /* a message stamped further than this from its own source's clock (ahead:
                                     REJECT_TIME_FUTURE, behind: REJECT_TIME_BACKWARDS) is refused (clock.h) */
     int32_t time_resync_count;   /* a consistent off-clock run of one source this long ...            */
@@ -58,7 +59,13 @@ typedef struct {
     char map[GMMRRTD_PATH_MAX];  /* map_server YAML (docs/world.md); "" = no map */
     int32_t map_max_cells;       /* raster capacity, fixed at start-up: cells ... */
     int32_t map_max_side;        /* ... and cells a side; a larger map is refused */
-    int32_t map_unknown_blocked; /* 1: unknown cells and the outside of the map block */
+    int32_t map_unknown_blocked; /* 1: unknown cells and the outside of the map (or grid) block */
+    double scan_decay_ms;        /* a scan's mark blocks this long after the scan that made it */
+    double scan_pose_gap_ms;     /* a scan newer than the newest pose by at most this is placed at it */
+    int32_t scan_max_per_cycle;  /* scans integrated between two cycles at most; the rest dropped */
+    int32_t scan_stale_stop;     /* 1: stale scans stop the robot; 0: their marks stop counting */
+    double scan_reach_m;         /* per-cycle field around the bounds: how far blocked cells are looked for */
+    int32_t grid_occupied;       /* grid cells >= this (0..100) block, as map_server's occupied_thresh */
     /* [warm_start]: the situation "has not changed much" when all hold */
     double warm_goal_shift_m;    /* goal moved less than this, same task and target */
     double warm_people_shift_m;  /* same tracked ids, each moved less than this */

@@ -14,7 +14,9 @@ typedef enum {
     GMMRRTD_STOP_OBSTACLES_STALE = 53, /* no obstacle list newer than obstacles_timeout_ms */
     GMMRRTD_STOP_PLANNING_BOX = 54,    /* the planning box needs more cells than grid_max_cells */
     GMMRRTD_STOP_GOAL_REACHED = 55,    /* the goal was reached (published once) */
-    GMMRRTD_STOP_GOAL_CANCELLED = 56   /* the goal was cancelled (published once) */
+    GMMRRTD_STOP_GOAL_CANCELLED = 56,  /* the goal was cancelled (published once) */
+    GMMRRTD_STOP_SCAN_STALE = 57,      /* scans seen, none newer than scan_timeout_ms (scan_stale_stop) */
+    GMMRRTD_STOP_GRID_STALE = 58       /* a grid in use, none newer than grid_timeout_ms */
 } gmmrrtd_stop_code_t;
 
 /* A short static description of `code`: the daemon's own codes, else gmmrrt_status_str(). */

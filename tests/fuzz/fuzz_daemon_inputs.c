@@ -8,7 +8,7 @@
  * plan and status it publishes (into a file:///dev/null LCM).
  *
  * Input format (tools/fuzz_corpus.py writes seeds from the scenario logs): records of
- *   [channel: 1 byte, low 2 bits = GMMRRTD_IN_*][length: 2 bytes LE][payload: length bytes]
+ *   [channel: 1 byte, value mod GMMRRTD_NUM_INPUTS = GMMRRTD_IN_*][length: 2 bytes LE][payload: length bytes]
  * (a length past the end takes what is left), then one more cycle after the last record.
  * Each record is received at the log time of its own utime (bytes 8..15, big-endian, as in
  * a recorded log, where the recorder stamps a message as it arrives); a record too short for
@@ -67,6 +67,20 @@ static void make_model(gmmrrt_model_t *m, int32_t task, double theta0, double th
     }
 }
 
+/* A 20 m x 20 m free map at 10 cm around the origin, so scans mark and the planner reads a raster.
+ * Laid out again for every input: the struct copy resets its header, not the cells and marks. */
+enum { k_map_side = 200 };
+static void reset_map(gmmrrtd_t *d)
+{
+    if (gmmrrt_raster_set_geometry(&d->map, k_map_side, k_map_side, 0.1, -10.0, -10.0, 0.0, 1) != GMMRRT_OK) {
+        fprintf(stderr, "fuzz_daemon_inputs: map geometry refused\n");
+        abort();
+    }
+    memset(d->map.cells, GMMRRT_RASTER_FREE, (size_t)k_map_side * k_map_side);
+    (void)gmmrrt_raster_update_distance(&d->map, 0, 0.0);
+    d->have_map = 1;
+}
+
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
@@ -103,6 +117,14 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
         fprintf(stderr, "fuzz_daemon_inputs: cannot open file:///dev/null?mode=w\n");
         abort();
     }
+    const size_t map_size = gmmrrt_raster_mem_size(k_map_side * k_map_side, k_map_side);
+    d->map_mem = aligned_alloc(64, (map_size + 63u) / 64u * 64u);
+    if (d->map_mem == NULL ||
+        gmmrrt_raster_init(&d->map, d->map_mem, map_size, k_map_side * k_map_side, k_map_side) != GMMRRT_OK ||
+        gmmrrtd_grid_setup(d) != 0) {
+        fprintf(stderr, "fuzz_daemon_inputs: raster set-up failed\n");
+        abort();
+    }
     g_initial = *d;
     return 0;
 }
@@ -130,11 +152,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     gmmrrtd_t *d = &g_d;
     *d = g_initial;
+    reset_map(d);
     int64_t before[GMMRRT_PLANNER_STATUS_T_NUM_REJECT_REASONS];
     size_t off = 0;
     int64_t recv = 0;
     while (size - off >= 3) {
-        const int input = data[off] & 3;
+        const int input = data[off] % GMMRRTD_NUM_INPUTS;
         size_t len = (size_t)data[off + 1] | (size_t)data[off + 2] << 8;
         off += 3;
         if (len > size - off)

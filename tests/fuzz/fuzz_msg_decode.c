@@ -1,7 +1,7 @@
 /*
  * fuzz_msg_decode.c - libFuzzer target for every decoder of lcmtypes/include/gmmrrt/msg_decode.h:
  * the first line of defence of the daemon and of the
- * learner's log reader. Each input goes to all eight decoders; the LCM fingerprint in the
+ * learner's log reader. Each input goes to all nine decoders; the LCM fingerprint in the
  * first 8 bytes decides which one gets past the wire format, so the seed corpus (real
  * encoded messages of each type, tools/fuzz_corpus.py) keeps every decoder busy.
  *
@@ -47,6 +47,7 @@ static gmmrrt_waypoints_t g_wp;
 static gmmrrt_planner_status_t g_status;
 static gmmrrt_demo_info_t g_info;
 static gmmrrt_planar_scan_t g_scan;
+static gmmrrt_occupancy_grid_t g_grid;
 
 /* An accepted frame: the promised name (1..64 printable bytes, no space), then released (a leak
  * or a double free is the sanitizer's to catch). */
@@ -144,5 +145,23 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 isfinite(g_scan.sensor_y) && isfinite(g_scan.sensor_yaw));
         REQUIRE(g_scan.range_min_m >= 0.0 && g_scan.range_max_m > g_scan.range_min_m && isfinite(g_scan.range_max_m));
     }
+
+    /* A grid: sides and count agree within MAX_CELLS, finite geometry, cells -1..100, and its
+     * frame as every framed type's (a rejected grid holds none). */
+    err[0] = '\0';
+    r = gmmrrt_msg_decode_occupancy_grid(data, size, &g_grid, err, sizeof err);
+    require_message(r, err);
+    if (r == GMMRRT_MSG_OK) {
+        REQUIRE(g_grid.width >= 1 && g_grid.height >= 1 &&
+                (int64_t)g_grid.width * g_grid.height == g_grid.num_cells &&
+                g_grid.num_cells <= GMMRRT_OCCUPANCY_GRID_T_MAX_CELLS);
+        REQUIRE(isfinite(g_grid.resolution_m) && g_grid.resolution_m > 0.0 && isfinite(g_grid.origin_x) &&
+                isfinite(g_grid.origin_y) && isfinite(g_grid.origin_yaw));
+        for (int32_t k = 0; k < g_grid.num_cells; ++k)
+            REQUIRE(g_grid.data[k] >= -1 && g_grid.data[k] <= 100);
+        require_frame(&g_grid.frame);
+        gmmrrt_msg_release_occupancy_grid(&g_grid);
+    } else
+        REQUIRE(g_grid.frame == NULL);
     return 0;
 }

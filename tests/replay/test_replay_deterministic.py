@@ -24,9 +24,11 @@ with open(os.path.join(SCENARIOS, "scenarios.json")) as f:
 
 
 def run_log_clock(gmmrrtd, models, scenario, out_path, extra=()):
-    """One scenario through gmmrrtd (daemon_fixture.run_log_clock: clean exit, no sanitizer report)."""
+    """One scenario through gmmrrtd (daemon_fixture.run_log_clock: clean exit, no sanitizer report),
+    with the flags its index entry asks for (paths in them relative to the checkout)."""
+    args = [os.path.join(ROOT, a) if a.startswith("logs/") else a for a in INDEX[scenario].get("daemon_args", [])]
     daemon_fixture.run_log_clock(gmmrrtd, models, os.path.join(SCENARIOS, INDEX[scenario]["log"]), out_path,
-                                 iterations=ITERATIONS, extra=extra)
+                                 iterations=ITERATIONS, extra=(*args, *extra))
     assert os.path.getsize(out_path) > 0, "gmmrrtd wrote nothing to %s" % out_path
 
 

@@ -307,14 +307,15 @@ def person_to_world(person: Tuple[float, float, float], xp: float, yp: float) ->
 # ------------------------------------------------------------------ messages (msg_decode.h)
 
 # The message types of lcmtypes/ that msg_decode.h validates, by their gmmrrt_msg_decode_<name>.
-MESSAGE_TYPES = ("pose2d", "people", "nav_goal", "obstacles", "waypoints", "planner_status", "demo_info", "planar_scan")
+MESSAGE_TYPES = ("pose2d", "people", "nav_goal", "obstacles", "waypoints", "planner_status", "demo_info", "planar_scan",
+                 "occupancy_grid")
 # A decoded message is written here; larger than any generated gmmrrt_*_t struct (fixed-capacity
 # arrays of a few hundred doubles), so Python does not mirror the structs' layouts.
 _MSG_SCRATCH_BYTES = 1 << 20
 _msg_scratch = None
 # The types with a frame string (msg_decode.h): the decoder allocates it, the binding releases it.
 # In the generated struct it follows the int64_t utime: a char * at offset 8.
-FRAMED_TYPES = ("pose2d", "people", "nav_goal", "obstacles", "waypoints")
+FRAMED_TYPES = ("pose2d", "people", "nav_goal", "obstacles", "waypoints", "occupancy_grid")
 MSG_WRONG_FRAME = 6  # GMMRRT_MSG_WRONG_FRAME
 
 

@@ -2,7 +2,8 @@
 
 Each scenario is a small LCM log (lcm.EventLog) of the daemon's inputs: ROBOT_POSE at 10 Hz,
 PEOPLE at 5 Hz, OBSTACLES and NAV_GOAL re-sent at 1 Hz, event timestamps equal to the messages'
-utime. scenarios.json (written next to the logs) lists each scenario with what it shows and
+utime (scan_box: SCAN at 5 Hz, each arriving 50 ms after it was taken, in the floor plan of
+logs/maps/, which its index entry's daemon_args give the daemon). scenarios.json (written next to the logs) lists each scenario with what it shows and
 the planner_status_t.rejected counters its planted faults must produce, which the replay
 checker (tools/gmmrrt_tools/replay_check.py) compares with the daemon's last status.
 
@@ -39,9 +40,14 @@ class Scenario:
         self.name, self.what, self.duration_s = name, what, duration_s
         self.events = []  # (utime, order, channel, bytes)
         self.expected = {}
+        self.daemon_args = []  # gmmrrtd flags the replay needs (paths relative to the checkout)
 
     def add(self, t_s, channel, data, utime=None):
         self.events.append((us(t_s), len(self.events), channel, data if isinstance(data, bytes) else data.encode()))
+
+    def add_at(self, utime, channel, data):
+        """An event at an exact utime (us), for inputs whose arrival is not on the 1 ms grid."""
+        self.events.append((int(utime), len(self.events), channel, data if isinstance(data, bytes) else data.encode()))
 
     def expect(self, reason, n):
         self.expected[reason] = self.expected.get(reason, 0) + n
@@ -192,6 +198,7 @@ def build_all():
 
     out.append(build_faults())
     out.append(build_goal_life())
+    out.append(build_scan_box())
     return out
 
 
@@ -228,6 +235,49 @@ def build_goal_life():
     # goal 3 is reached at about 4.2 s (within 0.3 m, heading 0 within 0.3 rad): one empty plan
     sc.add(5.0, "NAV_GOAL", goal(5.0, circle[0], circle[1], AVOID, goal_id=4))  # inside the circle
     sc.expect(R.REJECT_GOAL_IN_COLLISION, 1)                             # and failed 3 s later
+    return sc
+
+
+# scan_box: in the corridor of logs/maps/floor.yaml (y -0.9 .. 0.9 inside its walls) a box that
+# is in no map and on no OBSTACLES message appears at BOX_APPEARS_S; only the scans show it.
+SCAN_MAP = os.path.join("logs", "maps", "floor.yaml")
+SCAN_BOX = (-0.25, 0.25, 0.25, 0.8)    # xmin, ymin, xmax, ymax (m): 0.1 m from the upper wall
+SCAN_BOX_APPEARS_S = 2.0
+SCAN_ROBOT_PATH = [(-4.0, 0.0), (-1.5, 0.0), (-0.7, -0.4), (0.7, -0.4), (1.5, 0.0), (6.0, 0.0)]
+SCAN_GOAL = (6.0, 0.0)
+
+
+def pose_between_samples(robot_path, speed, t_s):
+    """The robot's pose at t_s as the interpolation of its two 10 Hz pose samples around t_s (position
+    linearly, heading along the shorter arc): the trajectory the poses describe, which is how the
+    daemon places a scan. (The polyline itself turns on the spot at its corners, which no pose shows.)"""
+    k = math.floor(t_s / (PERIOD_US * 1e-6) + 1e-9)
+    ta, tb = k * PERIOD_US * 1e-6, (k + 1) * PERIOD_US * 1e-6
+    (xa, ya, wa), (xb, yb, wb) = along(robot_path, speed, ta), along(robot_path, speed, tb)
+    f = (t_s - ta) / (tb - ta)
+    dw = math.remainder(wb - wa, 2 * math.pi)
+    return xa + f * (xb - xa), ya + f * (yb - ya), wa + f * dw
+
+
+def scan_traffic(sc, caster, robot_path, speed, box_at, first_scan_s=0.2, period_s=0.2, latency_s=0.05):
+    """SCAN every period_s from first_scan_s: each taken latency_s before it arrives (so the poses
+    that bracket its stamp have arrived), ray-cast from the robot's pose at its stamp."""
+    t = first_scan_s
+    while t <= sc.duration_s + 1e-9:
+        taken = t - latency_s
+        x, y, yaw = pose_between_samples(robot_path, speed, taken)
+        sc.add(t, "SCAN", caster.message(us(taken), caster.ranges(x, y, yaw, box_at(taken))))
+        t = round(t + period_s, 6)
+
+
+def build_scan_box():
+    from gmmrrt_tools.scan_sim import Caster  # numpy: only the scan scenario needs it
+    sc = Scenario("scan_box", "avoid in the floor plan's corridor (--map): a box that only the laser scans "
+                  "show appears at 2 s in the robot's way; the plans go round it", 8.0)
+    sc.daemon_args = ["--map", SCAN_MAP, "--bounds-margin", "2"]
+    caster = Caster(os.path.join(ROOT, SCAN_MAP))
+    fill(sc, SCAN_ROBOT_PATH, 0.8, lambda t: [], lambda t: goal(t, SCAN_GOAL[0], SCAN_GOAL[1], AVOID))
+    scan_traffic(sc, caster, SCAN_ROBOT_PATH, 0.8, lambda t: [SCAN_BOX] if t >= SCAN_BOX_APPEARS_S else [])
     return sc
 
 
@@ -299,6 +349,8 @@ def write_all(out_dir):
             "duration_s": sc.duration_s,
             "expected_rejected": {REASON_NAMES[k]: v for k, v in sorted(sc.expected.items())},
         }
+        if sc.daemon_args:
+            index[sc.name]["daemon_args"] = sc.daemon_args
     with open(os.path.join(out_dir, "scenarios.json.tmp"), "w") as f:
         json.dump(index, f, indent=2, sort_keys=True)
         f.write("\n")

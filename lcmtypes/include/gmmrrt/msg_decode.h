@@ -11,13 +11,15 @@
  * GMMRRT_MSG_OK or the reason for rejection, and on rejection writes a one-line
  * message naming the type and field into err[errcap] (may be NULL).
  *
- * Frames: pose2d_t, people_t, nav_goal_t, obstacles_t and waypoints_t carry a `frame`
- * string (the frame of their coordinates). LCM's generated decoder allocates it; here its
- * length is judged on the wire first (1..GMMRRT_MSG_FRAME_MAX bytes of printable ASCII
- * without spaces, NUL-terminated), so the allocation is at most GMMRRT_MSG_FRAME_MAX + 1
- * bytes. On GMMRRT_MSG_OK out->frame is that heap string, owned by the caller: release it
- * with gmmrrt_msg_release_<type>(out). On rejection nothing is held (out->frame is NULL).
- * Which frame is right is the receiver's to say: gmmrrt_msg_check_frame.
+ * Frames: pose2d_t, people_t, nav_goal_t, obstacles_t, waypoints_t and occupancy_grid_t
+ * carry a `frame` string (the frame of their coordinates), second on the wire after utime.
+ * LCM's generated decoder allocates it; here its length is judged on the wire first
+ * (1..GMMRRT_MSG_FRAME_MAX bytes of printable ASCII without spaces, NUL-terminated), so the
+ * allocation is at most GMMRRT_MSG_FRAME_MAX + 1 bytes. On GMMRRT_MSG_OK out->frame is that
+ * heap string, owned by the caller: release it with gmmrrt_msg_release_<type>(out). On
+ * rejection nothing is held (out->frame is NULL). Which frame is right is the receiver's to
+ * say: gmmrrt_msg_check_frame. planar_scan_t has no frame: its coordinates are the sensor's
+ * and the robot's own, placed in a world frame only through the robot's pose at its stamp.
  */
 #ifndef GMMRRT_MSG_DECODE_H
 #define GMMRRT_MSG_DECODE_H
@@ -27,6 +29,7 @@
 #include "gmmrrt/gmmrrt_demo_info_t.h"
 #include "gmmrrt/gmmrrt_nav_goal_t.h"
 #include "gmmrrt/gmmrrt_obstacles_t.h"
+#include "gmmrrt/gmmrrt_occupancy_grid_t.h"
 #include "gmmrrt/gmmrrt_people_t.h"
 #include "gmmrrt/gmmrrt_planar_scan_t.h"
 #include "gmmrrt/gmmrrt_planner_status_t.h"
@@ -74,6 +77,12 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_planner_status(const void *buf, size_t len
  * judged: NaN, +-inf and out-of-range values are "no return" and kept as they are. */
 gmmrrt_msg_result_t gmmrrt_msg_decode_planar_scan(const void *buf, size_t len, gmmrrt_planar_scan_t *out,
                                                   char *err, size_t errcap);
+/* occupancy_grid_t: frame judged as for every framed type (above); width and height >= 1
+ * (BAD_VALUE) with width x height <= MAX_CELLS (COUNT_OVER_BOUND) and num_cells equal to it
+ * (BAD_VALUE); resolution and origin finite (NOT_FINITE), resolution > 0 (BAD_VALUE); every used
+ * cell -1 or 0..100 (BAD_VALUE, naming the first bad cell). */
+gmmrrt_msg_result_t gmmrrt_msg_decode_occupancy_grid(const void *buf, size_t len, gmmrrt_occupancy_grid_t *out,
+                                                     char *err, size_t errcap);
 /* The receiver's rule for frames: GMMRRT_MSG_OK when `frame` is `expected` (byte for byte),
  * else GMMRRT_MSG_WRONG_FRAME with both named in err (type names the message, may be NULL). */
 gmmrrt_msg_result_t gmmrrt_msg_check_frame(const char *type, const char *frame, const char *expected, char *err,
@@ -90,6 +99,7 @@ void gmmrrt_msg_release_people(gmmrrt_people_t *m);
 void gmmrrt_msg_release_nav_goal(gmmrrt_nav_goal_t *m);
 void gmmrrt_msg_release_obstacles(gmmrrt_obstacles_t *m);
 void gmmrrt_msg_release_waypoints(gmmrrt_waypoints_t *m);
+void gmmrrt_msg_release_occupancy_grid(gmmrrt_occupancy_grid_t *m);
 
 gmmrrt_msg_result_t gmmrrt_msg_decode_demo_info(const void *buf, size_t len, gmmrrt_demo_info_t *out,
                                                 char *err, size_t errcap);

@@ -13,7 +13,7 @@ import pytest
 from gmmrrt_tools import core, replay_check
 
 try:
-    from gmmrrt import nav_goal_t, obstacles_t, people_t, person_t, planar_scan_t, pose2d_t
+    from gmmrrt import nav_goal_t, obstacles_t, occupancy_grid_t, people_t, person_t, planar_scan_t, pose2d_t
 except ImportError as exc:  # the generated types come with the build
     pytest.fail(f"generated Python message types missing ({exc}): build first (tools/run build)",
                 pytrace=False)
@@ -88,6 +88,33 @@ def test_scan_no_returns_are_kept_and_the_geometry_is_judged():
     assert code == NOT_FINITE and "planar_scan_t.radstep" in why
     code, why = core.validate_message("planar_scan", scan(4, range_max_m=0.05))
     assert code == BAD_VALUE and "range_max_m" in why
+
+
+def grid(w=3, h=2, cells=None, **kw):
+    m = occupancy_grid_t()
+    m.utime, m.frame, m.resolution_m, m.width, m.height, m.num_cells = 1_000_000, "map", 0.05, w, h, w * h
+    c = list(cells) if cells is not None else [0] * (w * h)
+    m.data = c + [0] * (occupancy_grid_t.MAX_CELLS - len(c))
+    for k, v in kw.items():
+        setattr(m, k, v)
+    return m.encode()
+
+
+def test_grid_is_judged_by_the_c_decoder():
+    """The daemon's rules for a local grid, through the binding: cells -1..100, sizes that agree,
+    a frame by the one rule of every framed type (the receiver's frame only)."""
+    assert core.validate_message("occupancy_grid", grid(3, 2, [-1, 0, 50, 65, 100, 0])) == (OK, "")
+    code, why = core.validate_message("occupancy_grid", grid(3, 2, [0, 0, 0, 0, 0, 101]))
+    assert code == BAD_VALUE and "data[5]" in why
+    code, why = core.validate_message("occupancy_grid", grid(3, 2, num_cells=5))
+    assert code == BAD_VALUE and "num_cells" in why
+    code, why = core.validate_message("occupancy_grid", grid(300, 300, num_cells=90000))
+    assert code == COUNT_OVER_BOUND and "MAX_CELLS" in why
+    code, why = core.validate_message("occupancy_grid", grid(frame="odom"), frame="map")
+    assert code == core.MSG_WRONG_FRAME and "occupancy_grid_t.frame \"odom\"" in why
+    assert core.validate_message("occupancy_grid", grid(frame="odom"), frame="odom") == (OK, "")
+    code, why = core.validate_message("occupancy_grid", grid(frame=""))
+    assert code == BAD_VALUE and "occupancy_grid_t.frame" in why
 
 
 def test_valid_messages_pass():

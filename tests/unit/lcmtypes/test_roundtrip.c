@@ -23,7 +23,7 @@
 
 #include "gmmrrt/msg_decode.h"
 
-#define BUF_CAP 65536
+#define BUF_CAP (2 * 65536) /* an occupancy grid at capacity is 64 KiB and its header */
 static uint8_t g_buf[BUF_CAP];
 static uint8_t g_buf2[BUF_CAP];
 static char g_err[256];
@@ -34,7 +34,8 @@ static void release_nothing(const void *m) { (void)m; }
 #define RELEASE(m)                                                                                  \
     _Generic((m), gmmrrt_pose2d_t *: gmmrrt_msg_release_pose2d, gmmrrt_people_t *: gmmrrt_msg_release_people, \
              gmmrrt_nav_goal_t *: gmmrrt_msg_release_nav_goal, gmmrrt_obstacles_t *: gmmrrt_msg_release_obstacles, \
-             gmmrrt_waypoints_t *: gmmrrt_msg_release_waypoints, default: release_nothing)(m)
+             gmmrrt_waypoints_t *: gmmrrt_msg_release_waypoints,                                   \
+             gmmrrt_occupancy_grid_t *: gmmrrt_msg_release_occupancy_grid, default: release_nothing)(m)
 
 /* ------------------------------------------------------------------ valid messages */
 
@@ -175,6 +176,22 @@ static void fill_scan(gmmrrt_planar_scan_t *m, int32_t n)
     m->num_ranges = n;
     for (int i = 0; i < GMMRRT_PLANAR_SCAN_T_MAX_RANGES; ++i)
         m->ranges[i] = 0.5f + 0.001f * (float)i;
+}
+
+static void fill_grid(gmmrrt_occupancy_grid_t *m, int32_t w, int32_t h)
+{
+    memset(m, 0, sizeof *m);
+    m->utime = 1700000000900000LL;
+    m->frame = k_map;
+    m->resolution_m = 0.05;
+    m->origin_x = -3.0;
+    m->origin_y = 2.5;
+    m->origin_yaw = 0.1;
+    m->width = w;
+    m->height = h;
+    m->num_cells = w * h;
+    for (int i = 0; i < GMMRRT_OCCUPANCY_GRID_T_MAX_CELLS; ++i)
+        m->data[i] = (int8_t)(i % 102 - 1); /* -1, 0 .. 100 */
 }
 
 /* ------------------------------------------------------------------ round trips */
@@ -410,6 +427,70 @@ static void test_planar_scan_rules(void **state)
     fill_scan(&m, 0);
     m.rad0 = 1e308; m.radstep = 1e308; /* no beam: no last angle */
     EXPECT_OK(planar_scan_t, gmmrrt_msg_decode_planar_scan, &m);
+}
+
+static void test_occupancy_grid_round_trips_at_capacity(void **state)
+{
+    (void)state;
+    static gmmrrt_occupancy_grid_t a, b;
+    fill_grid(&a, 256, 256);
+    ROUNDTRIP(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &a, &b);
+    assert_true(b.utime == a.utime && b.resolution_m == a.resolution_m && b.origin_x == a.origin_x &&
+                b.origin_y == a.origin_y && b.origin_yaw == a.origin_yaw);
+    assert_int_equal(b.width, 256);
+    assert_int_equal(b.height, 256);
+    assert_int_equal(b.num_cells, GMMRRT_OCCUPANCY_GRID_T_MAX_CELLS);
+    assert_memory_equal(a.data, b.data, sizeof a.data);
+    assert_null(b.frame); /* released by ROUNDTRIP, as for every framed type */
+}
+
+static void test_occupancy_grid_rules(void **state)
+{
+    (void)state;
+    static gmmrrt_occupancy_grid_t m;
+    fill_grid(&m, 300, 300);
+    m.num_cells = GMMRRT_OCCUPANCY_GRID_T_MAX_CELLS;
+    EXPECT_REJECT(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &m, GMMRRT_MSG_COUNT_OVER_BOUND,
+                  "occupancy_grid_t", "MAX_CELLS");
+    fill_grid(&m, 65536, 65536); /* the product overflows 32 bits */
+    EXPECT_REJECT(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &m, GMMRRT_MSG_COUNT_OVER_BOUND,
+                  "occupancy_grid_t", "MAX_CELLS");
+    const int32_t bad_sides[][2] = {{0, 5}, {5, 0}, {-1, 5}, {5, INT32_MIN}};
+    for (size_t i = 0; i < sizeof bad_sides / sizeof bad_sides[0]; ++i) {
+        fill_grid(&m, bad_sides[i][0], bad_sides[i][1]);
+        EXPECT_REJECT(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &m, GMMRRT_MSG_BAD_VALUE,
+                      "occupancy_grid_t", "width");
+    }
+    fill_grid(&m, 10, 10); m.num_cells = 99;
+    EXPECT_REJECT(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &m, GMMRRT_MSG_BAD_VALUE, "occupancy_grid_t",
+                  "num_cells");
+    for (size_t b = 0; b < N_BAD; ++b) {
+        fill_grid(&m, 10, 10); m.resolution_m = k_bad_numbers[b];
+        EXPECT_REJECT(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &m, GMMRRT_MSG_NOT_FINITE,
+                      "occupancy_grid_t", "resolution_m");
+        fill_grid(&m, 10, 10); m.origin_x = k_bad_numbers[b];
+        EXPECT_REJECT(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &m, GMMRRT_MSG_NOT_FINITE,
+                      "occupancy_grid_t", "origin_x");
+        fill_grid(&m, 10, 10); m.origin_y = k_bad_numbers[b];
+        EXPECT_REJECT(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &m, GMMRRT_MSG_NOT_FINITE,
+                      "occupancy_grid_t", "origin_y");
+        fill_grid(&m, 10, 10); m.origin_yaw = k_bad_numbers[b];
+        EXPECT_REJECT(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &m, GMMRRT_MSG_NOT_FINITE,
+                      "occupancy_grid_t", "origin_yaw");
+    }
+    fill_grid(&m, 10, 10); m.resolution_m = 0.0;
+    EXPECT_REJECT(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &m, GMMRRT_MSG_BAD_VALUE, "occupancy_grid_t",
+                  "resolution_m");
+    fill_grid(&m, 10, 10); m.data[57] = 101;
+    EXPECT_REJECT(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &m, GMMRRT_MSG_BAD_VALUE, "occupancy_grid_t",
+                  "data[57]");
+    fill_grid(&m, 10, 10); m.data[3] = -2;
+    EXPECT_REJECT(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &m, GMMRRT_MSG_BAD_VALUE, "occupancy_grid_t",
+                  "cell 3, 0");
+    /* Cells beyond the count are not looked at. Which frame is right is the receiver's to say
+     * (any valid name decodes; gmmrrtd compares it with its [world] frame). */
+    fill_grid(&m, 10, 10); m.frame = (char *)"odom"; m.data[100] = 127;
+    EXPECT_OK(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &m);
 }
 
 static void test_pose2d_non_finite_fields_are_rejected(void **state)
@@ -740,6 +821,8 @@ static void test_frames_are_bounded_printable_and_judged_before_allocation(void 
     EXPECT_FRAME_RULES(obstacles_t, gmmrrt_msg_decode_obstacles, &obs);
     gmmrrt_waypoints_t wp; fill_waypoints(&wp, 2);
     EXPECT_FRAME_RULES(waypoints_t, gmmrrt_msg_decode_waypoints, &wp);
+    static gmmrrt_occupancy_grid_t grid; fill_grid(&grid, 3, 2);
+    EXPECT_FRAME_RULES(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &grid);
 
     /* A rejection after the frame was allocated holds nothing (ASan's leak check). */
     fill_pose(&pose); pose.x = NAN;
@@ -811,6 +894,19 @@ static void test_every_truncation_is_rejected(void **state)
     EXPECT_EVERY_TRUNCATION_FAILS(demo_info_t, gmmrrt_msg_decode_demo_info, &demo);
     gmmrrt_planar_scan_t scan; fill_scan(&scan, 3);
     EXPECT_EVERY_TRUNCATION_FAILS(planar_scan_t, gmmrrt_msg_decode_planar_scan, &scan);
+    /* A grid is 64 KiB on the wire: every cut in its header (the frame string included), the end, and
+     * every 97th inside the cells. */
+    static gmmrrt_occupancy_grid_t grid, grid_out;
+    fill_grid(&grid, 4, 4);
+    const int n = gmmrrt_occupancy_grid_t_encode(g_buf, 0, BUF_CAP, &grid);
+    assert_true(n > 0);
+    for (int len = 0; len < n; len += (len < 128 || len > n - 128) ? 1 : 97) {
+        memcpy(g_buf2, g_buf, (size_t)len);
+        g_err[0] = '\0';
+        const gmmrrt_msg_result_t r = gmmrrt_msg_decode_occupancy_grid(g_buf2, (size_t)len, &grid_out, g_err, sizeof g_err);
+        if (r != GMMRRT_MSG_DECODE_FAILED || strstr(g_err, "occupancy_grid_t") == NULL)
+            fail_msg("occupancy_grid_t truncated to %d of %d bytes: got %s (%s)", len, n, gmmrrt_msg_result_str(r), g_err);
+    }
 }
 
 static void test_wrong_fingerprint_is_rejected(void **state)
@@ -832,6 +928,7 @@ static void test_wrong_fingerprint_is_rejected(void **state)
     gmmrrt_planner_status_t st; fill_status(&st);
     gmmrrt_demo_info_t demo; fill_demo(&demo);
     gmmrrt_planar_scan_t scan; fill_scan(&scan, 3);
+    static gmmrrt_occupancy_grid_t grid; fill_grid(&grid, 4, 4);
     fill_goal(&goal);
     for (int bit = 0; bit < 64; ++bit) {
         const int byte = bit / 8, mask = 1 << (bit % 8);
@@ -850,6 +947,7 @@ static void test_wrong_fingerprint_is_rejected(void **state)
         FLIP_AND_EXPECT(planner_status_t, gmmrrt_msg_decode_planner_status, &st);
         FLIP_AND_EXPECT(demo_info_t, gmmrrt_msg_decode_demo_info, &demo);
         FLIP_AND_EXPECT(planar_scan_t, gmmrrt_msg_decode_planar_scan, &scan);
+        FLIP_AND_EXPECT(occupancy_grid_t, gmmrrt_msg_decode_occupancy_grid, &grid);
 #undef FLIP_AND_EXPECT
     }
 }
@@ -899,6 +997,8 @@ int main(void)
         cmocka_unit_test(test_demo_info_round_trips),
         cmocka_unit_test(test_planar_scan_round_trips_at_capacity_keeping_no_returns),
         cmocka_unit_test(test_planar_scan_rules),
+        cmocka_unit_test(test_occupancy_grid_round_trips_at_capacity),
+        cmocka_unit_test(test_occupancy_grid_rules),
         cmocka_unit_test(test_pose2d_non_finite_fields_are_rejected),
         cmocka_unit_test(test_pose2d_velocity_is_ignored_when_not_valid),
         cmocka_unit_test(test_people_count_out_of_bounds_is_rejected),

@@ -7,17 +7,29 @@ their people, obstacles and goal once a second and their robot poses at --pose-h
 with the wall clock, and records every PLAN. waypoints_t.utime names the pose a plan started
 from, so latency = time the plan arrived - time that pose was sent. It includes the wait for the
 next tick (up to one period), the planning budget and LCM transport. Prints p50/p90/p99/max,
-the plans per second, the daemon's missed deadlines and the machine's load (1-minute load
-average before and after each run, and the CPUs), for each scenario, trigger and --rate-hz.
+the plans per second, the daemon's missed deadlines, the median set-up time per cycle
+(planner_status_t.setup_time_ms: world update, field, warm start) and the machine's load
+(1-minute load average before and after each run, and the CPUs), for each scenario, trigger and
+--rate-hz.
 
 Two triggers (--trigger, both by default): "tick", cycles at rate_hz with poses at --pose-hz and one
 plan at the end of each budget; "event", poses at rate_hz each starting a cycle at once
 (min_period_ms 5) with anytime plans (the first path at once, up to 3 per cycle on a 5 %
 improvement). Latency is to the first plan made from a pose.
 
+Two worlds (--world, both by default): "plain", the scenarios above, in open space with their
+obstacle messages; "map_scan", an avoid task in the corridor of logs/maps/floor.yaml (--map)
+with a 541-beam laser scan (ray-cast by gmmrrt_tools.scan_sim, a box in the way that only the
+scans show) sent at 10 Hz, so every cycle integrates scans and computes the field over its bounds
+(docs/world.md, "Scans in gmmrrtd"). Each map_scan run comes right after the plain runs of the
+same trigger and rate, and is also given as ratios to the first scenario's plain row (its peer,
+measured under the same machine load). map_scan runs log at info (the exit line with the scan
+counts); plain runs at warn.
+
     python -m gmmrrt_tools.bench.daemon                       # 10 Hz and 20 Hz, 20 s each
     python -m gmmrrt_tools.bench.daemon --rate-hz 10 --seconds 60 --json out.json
-    python -m gmmrrt_tools.bench.daemon --scenario logs/scenarios/avoid_crowd.lcmlog
+    python -m gmmrrt_tools.bench.daemon --scenario logs/scenarios/avoid_crowd.lcmlog --world plain
+    python -m gmmrrt_tools.bench.daemon --world map_scan --trigger event
 """
 import argparse
 import json
@@ -34,6 +46,7 @@ import lcm
 from gmmrrt import nav_goal_t, obstacles_t, people_t, planner_status_t, pose2d_t, waypoints_t  # generated
 
 from gmmrrt_tools import runner
+from gmmrrt_tools.scenario_logs import SCAN_BOX, SCAN_MAP, goal, people, pose
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 DEMO_SCENARIOS = ("avoid_obstacles", "approach_obstacles")  # tools/demo.py's DEFAULT_SCENARIOS
@@ -68,6 +81,22 @@ def scenario_inputs(path):
     return world, poses
 
 
+# map_scan: the robot in the floor plan's corridor, the goal 10 m along it, the box 2 m ahead.
+SCAN_ROBOT, SCAN_GOAL_XY, SCAN_HZ = (-4.0, 0.0), (6.0, 0.0), 10.0
+
+
+def map_scan_inputs():
+    """(world, poses, caster, ranges) of the map_scan world: a person and the goal re-sent, the robot
+    standing at SCAN_ROBOT, and the one scan it sees (the box 2 m ahead of it)."""
+    from gmmrrt_tools.scan_sim import Caster  # numpy: only this world needs it
+    caster = Caster(os.path.join(ROOT, SCAN_MAP))
+    box = (SCAN_BOX[0] - 2.0, SCAN_BOX[1], SCAN_BOX[2] - 2.0, SCAN_BOX[3])
+    ranges = caster.ranges(SCAN_ROBOT[0], SCAN_ROBOT[1], 0.0, [box])
+    world = {"PEOPLE": people(0, [(1, 3.0, 0.3, 3.1416, 0.0, 0.0)]),
+             "NAV_GOAL": goal(0, SCAN_GOAL_XY[0], SCAN_GOAL_XY[1], nav_goal_t.TASK_AVOID)}
+    return world, [pose(0, SCAN_ROBOT[0], SCAN_ROBOT[1], 0.0)], caster, ranges
+
+
 def percentile(values, q):
     s = sorted(values)
     return s[min(len(s) - 1, int(round(q / 100.0 * (len(s) - 1))))]
@@ -77,16 +106,25 @@ EVENT_FLAGS = ["--trigger", "event", "--min-period-ms", "5", "--anytime-max-plan
                "--anytime-improvement", "0.05"]
 
 
-def bench(gmmrrtd, rate_hz, budget_ms, seconds, pose_hz, port, models, scenario, trigger="tick"):
+def bench(gmmrrtd, rate_hz, budget_ms, seconds, pose_hz, port, models, scenario, trigger="tick", world="plain"):
+    """One run. `scenario` is the log played in the plain world (None for map_scan)."""
     url = "udpm://239.255.76.67:%d?ttl=0" % port
     err = tempfile.TemporaryFile(mode="w+")
+    if world == "map_scan":
+        world_flags, log_level = ["--map", os.path.join(ROOT, SCAN_MAP), "--bounds-margin", "2"], "info"
+        inputs, poses, caster, ranges = map_scan_inputs()
+    else:
+        world_flags, log_level = [], "warn"
+        (inputs, poses), caster, ranges = scenario_inputs(scenario), None, None
     daemon = subprocess.Popen([gmmrrtd, "--lcm-url", url, "--rate-hz", str(rate_hz), "--budget-ms", str(budget_ms),
                                "--model-avoid", models["avoid"], "--model-approach", models["approach"],
-                               "--log-level", "warn", *(EVENT_FLAGS if trigger == "event" else [])], stderr=err)
+                               "--log-level", log_level, *world_flags, *(EVENT_FLAGS if trigger == "event" else [])],
+                              stderr=err)
     lc = lcm.LCM(url)
     sent = {}      # pose utime -> monotonic send time
     arrivals = []  # (pose utime, monotonic arrival)
     status = [None]
+    setup_ms = []
     plans = [0, 0]
     first_plan = set()
 
@@ -100,26 +138,35 @@ def bench(gmmrrtd, rate_hz, budget_ms, seconds, pose_hz, port, models, scenario,
                 first_plan.add(m.utime)
                 arrivals.append((m.utime, now))
 
+    def on_status(channel, data):
+        st = planner_status_t.decode(data)
+        status[0] = st
+        if st.state == planner_status_t.STATE_PLANNING:
+            setup_ms.append(st.setup_time_ms)
+
     lc.subscribe("PLAN", on_plan)
-    lc.subscribe("PLANNER_STATUS", lambda c, d: status.__setitem__(0, planner_status_t.decode(d)))
-    world, poses = scenario_inputs(scenario)
+    lc.subscribe("PLANNER_STATUS", on_status)
     load_before = os.getloadavg()[0]
     try:
         time.sleep(0.5)
         t_start = time.monotonic()
         next_pose = t_start
         next_world = t_start
+        next_scan = t_start + 0.01 if caster is not None else float("inf")
         while time.monotonic() - t_start < seconds:
             now = time.monotonic()
             wall_us = int(time.time() * 1e6)
             if now >= next_world:  # the world once a second, as a tracker and a map would send it
-                for ch, m in sorted(world.items()):
+                for ch, m in sorted(inputs.items()):
                     m.utime = wall_us
                     if ch == "PEOPLE":
                         for i in range(m.num_people):
                             m.people[i].utime = wall_us
                     lc.publish(ch, m.encode())
                 next_world += 1.0
+            if now >= next_scan:  # stamped now: placed at the newest pose (within scan_pose_gap_ms)
+                lc.publish("SCAN", caster.message(wall_us, ranges).encode())
+                next_scan += 1.0 / SCAN_HZ
             if now >= next_pose:
                 # The scenario's robot path at its own pace (10 Hz poses), looped.
                 p = poses[int((now - t_start) * 10.0) % len(poses)]
@@ -127,7 +174,7 @@ def bench(gmmrrtd, rate_hz, budget_ms, seconds, pose_hz, port, models, scenario,
                 sent[wall_us] = time.monotonic()
                 lc.publish("ROBOT_POSE", p.encode())
                 next_pose += 1.0 / pose_hz
-            timeout = max(0.0, min(next_pose, next_world) - time.monotonic())
+            timeout = max(0.0, min(next_pose, next_world, next_scan) - time.monotonic())
             r, _, _ = select.select([lc.fileno()], [], [], timeout)
             if r:
                 lc.handle()
@@ -140,22 +187,35 @@ def bench(gmmrrtd, rate_hz, budget_ms, seconds, pose_hz, port, models, scenario,
         daemon.send_signal(signal.SIGTERM)
         daemon.wait(timeout=10)
     lat_ms = [(t - sent[u]) * 1e3 for u, t in arrivals if u in sent]
+    err.seek(0)
+    said = err.read()
     if not lat_ms or status[0] is None:
-        err.seek(0)
-        raise SystemExit("no plans at %g Hz; gmmrrtd said:\n%s" % (rate_hz, err.read()))
+        raise SystemExit("no plans at %g Hz; gmmrrtd said:\n%s" % (rate_hz, said))
+    scans_line = [ln for ln in said.splitlines() if "scans:" in ln]
     st = status[0]
-    return {
-        "scenario": os.path.splitext(os.path.basename(scenario))[0],
+    row = {"world": world}
+    if scenario is not None:  # judged against the reaction-time targets (bench/report.py)
+        row["scenario"] = os.path.splitext(os.path.basename(scenario))[0]
+    row.update({
         "load_1min": [round(load_before, 2), round(os.getloadavg()[0], 2)], "cpus": os.cpu_count(),
         "trigger": trigger, "rate_hz": rate_hz, "budget_ms": budget_ms, "seconds": seconds, "pose_hz": pose_hz,
         "plans": plans[0], "plans_nonempty": plans[1], "plans_per_s": round(plans[0] / seconds, 2),
         "latency_ms": {"p50": round(percentile(lat_ms, 50), 1), "p90": round(percentile(lat_ms, 90), 1),
                        "p99": round(percentile(lat_ms, 99), 1), "max": round(max(lat_ms), 1),
                        "mean": round(statistics.mean(lat_ms), 1), "n": len(lat_ms)},
+        "setup_ms_p50": round(percentile(setup_ms, 50), 3) if setup_ms else None,
+        "setup_ms_p99": round(percentile(setup_ms, 99), 3) if setup_ms else None,
         "missed_deadlines": int(st.missed_deadlines),
         "cycles_by_status": int(st.plans_published),
         "last_plan_time_ms": round(st.plan_time_ms, 1), "last_iterations": int(st.iterations),
-    }
+        "rejected_total": int(sum(st.rejected)), "stale_inputs": int(st.stale_inputs),
+        "daemon_scans_line": scans_line[-1] if scans_line else None,
+    })
+    return row
+
+
+def _ms(v):
+    return "%.3f ms" % v if v is not None else "-"
 
 
 def main():
@@ -169,27 +229,52 @@ def main():
     ap.add_argument("--trigger", action="append", choices=["tick", "event"],
                     help="tick (poses at --pose-hz) and/or event (poses at the rate); default both")
     ap.add_argument("--scenario", action="append",
-                    help="scenario log(s) to play (default: the demo's, logs/scenarios/%s)" % " and ".join(DEMO_SCENARIOS))
+                    help="scenario log(s) to play in the plain world (default: the demo's, logs/scenarios/%s)"
+                    % " and ".join(DEMO_SCENARIOS))
+    ap.add_argument("--world", action="append", choices=["plain", "map_scan"],
+                    help="plain (the scenarios) and/or map_scan (map + 10 Hz laser scans); default both")
     ap.add_argument("--json", help="also write the results here")
     args = ap.parse_args()
     if not os.access(args.gmmrrtd, os.X_OK):
         sys.exit("gmmrrtd not found at %s (tools/run build)" % args.gmmrrtd)
     scenarios = args.scenario or [os.path.join(ROOT, "logs", "scenarios", n + ".lcmlog") for n in DEMO_SCENARIOS]
+    worlds = args.world or ["plain", "map_scan"]
+    runs = []  # (world, scenario): the plain runs, then map_scan right after them (its peer's load)
+    if "plain" in worlds:
+        runs += [("plain", sc) for sc in scenarios]
+    if "map_scan" in worlds:
+        runs.append(("map_scan", None))
     with tempfile.TemporaryDirectory() as tmp:
         models = learned_models(tmp, bin_dir=os.path.dirname(args.gmmrrtd))
         results = [bench(args.gmmrrtd, r, round(1000.0 / r * args.budget_fraction, 1), args.seconds,
-                         args.pose_hz if trig == "tick" else r, args.port, models, sc, trig)
-                   for sc in scenarios for trig in (args.trigger or ["tick", "event"])
-                   for r in (args.rate_hz or [10.0, 20.0])]
+                         args.pose_hz if trig == "tick" else r, args.port, models, sc, trig, w)
+                   for trig in (args.trigger or ["tick", "event"]) for r in (args.rate_hz or [10.0, 20.0])
+                   for w, sc in runs]
     print("models learned from logs/demos/ (gmmrrt-learn fit, seed %d); %d CPUs" % (DEMO_SEED, os.cpu_count()))
-    print("%-19s %-7s %-5s %-7s %-8s %-7s %-7s %-7s %-7s %-7s %-11s" % (
-        "scenario", "trigger", "rate", "budget", "plans/s", "p50 ms", "p90 ms", "p99 ms", "max ms", "missed",
-        "load 1 min"))
+    print("%-19s %-7s %-5s %-7s %-8s %-7s %-7s %-7s %-7s %-9s %-7s %-11s" % (
+        "scenario / world", "trigger", "rate", "budget", "plans/s", "p50 ms", "p90 ms", "p99 ms", "max ms",
+        "setup p50", "missed", "load 1 min"))
     for r in results:
         lat = r["latency_ms"]
-        print("%-19s %-7s %-5g %-7s %-8g %-7g %-7g %-7g %-7g %-7d %-11s" % (
-            r["scenario"], r["trigger"], r["rate_hz"], "%g ms" % r["budget_ms"], r["plans_per_s"], lat["p50"],
-            lat["p90"], lat["p99"], lat["max"], r["missed_deadlines"], "%.2f -> %.2f" % tuple(r["load_1min"])))
+        print("%-19s %-7s %-5g %-7s %-8g %-7g %-7g %-7g %-7g %-9s %-7d %-11s" % (
+            r.get("scenario", r["world"]), r["trigger"], r["rate_hz"], "%g ms" % r["budget_ms"], r["plans_per_s"],
+            lat["p50"], lat["p90"], lat["p99"], lat["max"], _ms(r["setup_ms_p50"]), r["missed_deadlines"],
+            "%.2f -> %.2f" % tuple(r["load_1min"])))
+    peers = {}
+    for r in results:  # the first plain scenario of each trigger and rate
+        if r["world"] == "plain":
+            peers.setdefault((r["trigger"], r["rate_hz"]), r)
+    for r in results:
+        p = peers.get((r["trigger"], r["rate_hz"]))
+        if r["world"] != "map_scan" or p is None:
+            continue
+        ratio = {q: r["latency_ms"][q] / p["latency_ms"][q] if p["latency_ms"][q] > 0 else float("nan")
+                 for q in ("p50", "p99")}
+        r["vs_plain"] = {"peer": p["scenario"], "p50_ratio": round(ratio["p50"], 3),
+                         "p99_ratio": round(ratio["p99"], 3)}
+        print("map_scan / %s, %s %g Hz (same run): p50 x%.2f, p99 x%.2f; set-up p50 %s vs %s" % (
+            p["scenario"], r["trigger"], r["rate_hz"], ratio["p50"], ratio["p99"], _ms(r["setup_ms_p50"]),
+            _ms(p["setup_ms_p50"])))
     if args.json:
         with open(args.json, "w") as f:
             json.dump(results, f, indent=2)
