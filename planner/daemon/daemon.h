@@ -228,6 +228,12 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us);
  * REJECT_MODEL_RELOAD and logs every time. */
 int gmmrrtd_models_load(gmmrrtd_t *d, int reload);
 
+/* models.c: 1 when every model in use can drive a planner configured by cfg (its feature space,
+ * gmmrrt_planner_model_fits, and a background of its own when cfg->task_cost = background);
+ * else 0 with the first misfit in why[cap]. A reload whose new planner settings the models in
+ * use do not fit (their new files were refused) keeps the old settings (main.c). */
+int gmmrrtd_models_fit_config(const gmmrrtd_t *d, const gmmrrt_planner_config_t *cfg, char *why, size_t cap);
+
 /* world.c: loads [world] map into the map raster (allocated at the first load, at start-up).
  * At start-up (`reload` 0) a failure is fatal (-1, logged); on reload a bad or missing file
  * keeps the old map, counts REJECT_MODEL_RELOAD and logs every time. An empty path removes

@@ -151,3 +151,35 @@ int gmmrrtd_models_load(gmmrrtd_t *d, int reload)
     const int c = load_set(d, reload);
     return (a == 0 && b == 0 && c == 0) ? 0 : -1;
 }
+
+/* One model in use against cfg: the planner's rule (gmmrrt_planner_model_fits) and, for the
+ * background cost, a background of its own. */
+static int fits(const gmmrrt_planner_config_t *cfg, const gmmrrt_model_t *m, int has_bg, const char *name, char *why,
+                size_t cap)
+{
+    const gmmrrt_status_t st = gmmrrt_planner_model_fits(cfg, m);
+    if (st != GMMRRT_OK) {
+        snprintf(why, cap, "the %s model does not fit the %s planner (%s)", name, gmmrrtd_planner_name(cfg->planner),
+                 gmmrrt_status_str(st));
+        return 0;
+    }
+    if (cfg->task_cost == GMMRRT_TASK_COST_BACKGROUND && !has_bg) {
+        snprintf(why, cap, "the %s model has no background model, which task_cost = background needs", name);
+        return 0;
+    }
+    return 1;
+}
+
+int gmmrrtd_models_fit_config(const gmmrrtd_t *d, const gmmrrt_planner_config_t *cfg, char *why, size_t cap)
+{
+    if (d->have_avoid && !fits(cfg, &d->model_avoid, d->has_bg_avoid, "avoid", why, cap))
+        return 0;
+    if (d->have_approach && !fits(cfg, &d->model_approach, d->has_bg_approach, "approach", why, cap))
+        return 0;
+    if (d->have_approach_set)
+        for (int32_t k = 0; k < GMMRRT_APPROACH_DIRECTIONS; ++k)
+            if (!fits(cfg, &d->approach_set[k], d->approach_set_has_bg[k], gmmrrt_approach_direction_name(k), why,
+                      cap))
+                return 0;
+    return 1;
+}

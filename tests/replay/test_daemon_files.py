@@ -10,7 +10,8 @@
     at start-up and on SIGHUP (the good model stays and still plans);
   * [planner] task_cost = background: an avoid model file without a background model is refused
     at start-up, naming the file and the command that fits one; the same model with a background
-    (the file's background section) plans a replay;
+    (the file's background section) plans a replay; a SIGHUP to the background cost with that
+    file refuses the file and the new planner settings, and the old settings go on planning;
   * whole-number settings take digits only: --seed 1e3 and --seed 2.5e1 are errors, not 1 and 2;
   * gmmrrt-plan: --model naming a FIFO fails at once; --w-task 1e308 is refused (it overflowed
     every cost to inf and reported "no path yet").
@@ -194,3 +195,42 @@ def test_background_cost_needs_the_model_files_background(gmmrrtd, models, tmp_p
     assert "background K = 2" in res.stderr, res.stderr
     plans = [plan for _, _, plan in read_outputs(str(out)) if plan is not None and plan.num_waypoints > 1]
     assert plans, res.stderr
+
+
+def test_sighup_to_the_background_cost_without_backgrounds_keeps_the_old_settings(gmmrrtd, models, tmp_path):
+    """A reload that switches to task_cost = background while the model file has no background:
+    the file is refused (old model kept), and so are the new planner settings, which that model
+    cannot plan with: the daemon goes on planning with the paper's cost instead of stopping every
+    avoid goal with a set-up error."""
+    url = private_url()
+    ini = tmp_path / "d.ini"
+    base = "[lcm]\nurl = %s\n[models]\navoid = %s\n[timing]\nbudget_ms = 50\n" % (url, models["avoid"])
+    ini.write_text(base)
+    err_path = tmp_path / "stderr"
+    listener = StatusListener(url)
+    with open(err_path, "w") as err:
+        daemon = subprocess.Popen([gmmrrtd, "--config", str(ini)], stderr=err)
+    try:
+        assert wait_for_line(str(err_path), "running:"), err_path.read_text()
+        listener.pump(0.5)
+        assert listener.status is not None
+        ini.write_text(base + "[planner]\ntask_cost = background\n")
+        daemon.send_signal(signal.SIGHUP)
+        listener.pump(0.8)
+        # The model file (no background) and the planner settings: two rejections.
+        assert listener.status.rejected[R.REJECT_MODEL_RELOAD] == 2, err_path.read_text()
+        player = subprocess.Popen([venv_bin("lcm-logplayer"), "--lcm-url", url,
+                                   os.path.join(SCENARIOS, "avoid_one_person.lcmlog")])
+        listener.plans.clear()
+        listener.pump(3.0)
+        player.wait(timeout=30)
+        assert any(p.num_waypoints > 0 for p in listener.plans), [(p.num_waypoints, p.status) for p in listener.plans]
+        assert listener.status.rejected[R.REJECT_SETUP] == 0, err_path.read_text()
+        daemon.send_signal(signal.SIGTERM)
+        assert daemon.wait(timeout=10) == 0
+    finally:
+        if daemon.poll() is None:
+            daemon.kill()
+            daemon.wait()
+    text = err_path.read_text()
+    assert "has no background model" in text and "keeping the old planner settings" in text, text

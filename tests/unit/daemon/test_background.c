@@ -6,7 +6,8 @@
  * would refuse the same problem without the background, so the plan did use it); a file
  * without a background is refused at start-up, and loads under task_cost = paper; on reload a
  * file without one is refused (REJECT_MODEL_RELOAD) and the old model and background both stay,
- * while a good file replaces both; the approach model set brings each direction's own
+ * while a good file replaces both; the models in use are checked against new planner settings
+ * (what a reload does before taking them); the approach model set brings each direction's own
  * background and refuses the set when one direction has none. Real files (written by the core's
  * gmmrrt_model_save_file_background) in a scratch directory, a real GMM-RRT* planner with an
  * iteration budget and a fixed seed.
@@ -241,6 +242,32 @@ static void test_reload_replaces_model_and_background_together_or_not_at_all(voi
     assert_true(d->bg_avoid.mean[0][0] == 3.5);
 }
 
+/* What a reload checks before it takes new planner settings (main.c): the models in use must fit
+ * them, a background included for the background cost. */
+static void test_the_models_in_use_are_checked_against_new_planner_settings(void **state)
+{
+    gmmrrtd_t *d = *state;
+    char path[GMMRRTD_PATH_MAX], why[256] = "";
+    use_planner(d, GMMRRT_TASK_COST_PAPER);
+    write_model("plain.gmm", GMMRRT_TASK_AVOID, 3, 1.5, 0, 0.0, path, sizeof path);
+    strcpy(d->set.model_avoid, path);
+    assert_int_equal(gmmrrtd_models_load(d, 0), 0);
+    gmmrrt_planner_config_t cfg = d->set.cfg;
+    assert_int_equal(gmmrrtd_models_fit_config(d, &cfg, why, sizeof why), 1);
+    cfg.task_cost = GMMRRT_TASK_COST_BACKGROUND;
+    assert_int_equal(gmmrrtd_models_fit_config(d, &cfg, why, sizeof why), 0);
+    assert_non_null(strstr(why, "avoid model has no background"));
+    cfg = d->set.cfg;
+    cfg.planner = GMMRRT_PLANNER_GMM_RRT; /* wants an x-y model */
+    assert_int_equal(gmmrrtd_models_fit_config(d, &cfg, why, sizeof why), 0);
+    assert_non_null(strstr(why, "does not fit the gmm-rrt planner"));
+    /* With its background the model fits the background cost. */
+    use_planner(d, GMMRRT_TASK_COST_BACKGROUND);
+    write_model("plain.gmm", GMMRRT_TASK_AVOID, 3, 1.5, 1, 2.0, path, sizeof path);
+    assert_int_equal(gmmrrtd_models_load(d, 1), 0);
+    assert_int_equal(gmmrrtd_models_fit_config(d, &d->set.cfg, why, sizeof why), 1);
+}
+
 static void test_the_approach_set_brings_each_directions_background(void **state)
 {
     gmmrrtd_t *d = *state;
@@ -284,6 +311,8 @@ int main(void)
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(test_a_file_without_background_is_refused_at_start_up, setup, teardown),
         cmocka_unit_test_setup_teardown(test_reload_replaces_model_and_background_together_or_not_at_all, setup,
+                                        teardown),
+        cmocka_unit_test_setup_teardown(test_the_models_in_use_are_checked_against_new_planner_settings, setup,
                                         teardown),
         cmocka_unit_test_setup_teardown(test_the_approach_set_brings_each_directions_background, setup, teardown),
     };
