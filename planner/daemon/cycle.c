@@ -1,10 +1,11 @@
 /*
  * cycle.c - one gmmrrtd planning cycle: from the latest inputs to a plan. Picks the model by
  * the goal's task (avoid / approach, paper Sect. 4-5; for approach, the model set's direction
- * the robot comes from when a set is configured), plans from the latest robot pose (walking
- * people with their velocities) with gmmrrt_planner_set_problem + run, warm-starts from the
- * last published path when the situation has not changed much, and publishes PLAN (the
- * drivable path, drivable.h) and PLANNER_STATUS. A start in collision is not a stop: it plans
+ * the robot comes from when a set is configured) and passes that model file's background model
+ * as problem.background_model (read by [planner] task_cost = background), plans from the
+ * latest robot pose (walking people with their velocities) with gmmrrt_planner_set_problem +
+ * run, warm-starts from the last published path when the situation has not changed much, and
+ * publishes PLAN (the drivable path, drivable.h) and PLANNER_STATUS. A start in collision is not a stop: it plans
  * an escape, published with status GMMRRT_ESCAPE and counted; only GMMRRT_ERR_FROZEN (no
  * motion increases the clearance) stops, with the core's reason logged. A stale pose or
  * obstacle list, stale scans or a stale grid (docs/world.md), a missing model or target, an
@@ -184,7 +185,8 @@ static int find_person(const gmmrrt_people_t *people, int32_t id)
 
 /* The planning problem from the latest inputs. Bounds: the core's rule (problem_bounds.h), the
  * box around robot and goal grown by bounds_margin_m, as gmmrrt-plan and the Python tools. */
-static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_index)
+static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, const gmmrrt_model_t *background,
+                          int target_index)
 {
     gmmrrt_problem_t *p = &d->problem;
     memset(p, 0, sizeof *p);
@@ -196,6 +198,7 @@ static void build_problem(gmmrrtd_t *d, const gmmrrt_model_t *model, int target_
     p->task = d->goal.task;
     p->target_person = target_index;
     p->model = model;
+    p->background_model = background; /* read by task_cost = background only */
     /* Inputs and the margin are checked finite and positive where they enter; a failure would
      * leave empty bounds, which set_problem refuses (a counted stop). */
     (void)gmmrrt_problem_bounds(p->start_x, p->start_y, p->goal_x, p->goal_y, d->set.bounds_margin_m,
@@ -592,7 +595,7 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
         return;
     }
 
-    const gmmrrt_model_t *model = NULL;
+    const gmmrrt_model_t *model = NULL, *background = NULL; /* the chosen model and its file's background */
     int target = -1;
     if (d->goal.task == GMMRRT_NAV_GOAL_T_TASK_AVOID || d->goal.task == GMMRRT_NAV_GOAL_T_TASK_APPROACH) {
         const int avoid = d->goal.task == GMMRRT_NAV_GOAL_T_TASK_AVOID;
@@ -603,6 +606,8 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
             return;
         }
         model = avoid ? &d->model_avoid : &d->model_approach;
+        if (avoid ? d->has_bg_avoid : d->has_bg_approach)
+            background = avoid ? &d->bg_avoid : &d->bg_approach;
     }
     if (d->goal.task == GMMRRT_NAV_GOAL_T_TASK_APPROACH) {
         target = people_usable(d) ? find_person(&d->people, d->goal.target_person_id) : -1;
@@ -621,15 +626,21 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
         const gmmrrt_pose_t person = {q->x, q->y, q->yaw};
         int32_t direction = -1;
         model = gmmrrt_model_set_select(&set, &person, d->pose.x, d->pose.y, &direction);
+        /* That direction's own background (index = direction, model_set.h). */
+        background = (model && direction >= 0 && direction < GMMRRT_APPROACH_DIRECTIONS &&
+                      d->approach_set_has_bg[direction])
+                         ? &d->approach_set_bg[direction]
+                         : NULL;
         d->status.approach_model = (int8_t)direction;
     }
     if (d->set.cfg.planner == GMMRRT_PLANNER_RRT_STAR) {
         model = NULL;
+        background = NULL;
         d->status.approach_model = -1;
     }
 
     const int64_t setup_start_us = gmmrrtd_mono_us();
-    build_problem(d, model, target);
+    build_problem(d, model, background, target);
     /* The world's set-up (a clearance-grid build after an obstacle change) may take long: the
      * watchdog gets long_step_ms for it (watchdog.c). */
     gmmrrtd_watchdog_long_step(d, 1);

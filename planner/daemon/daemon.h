@@ -128,6 +128,14 @@ typedef struct {
      * directions or none (a reload loads into the scratch set and swaps only when all are good). */
     gmmrrt_model_t approach_set[GMMRRT_APPROACH_DIRECTIONS], approach_set_scratch[GMMRRT_APPROACH_DIRECTIONS];
     int have_approach_set;
+    /* Each model file's background model (model.h, its background section; the density
+     * [planner] task_cost = background divides by): loaded with its model into the scratch
+     * slots and replaced together with it. has_bg_*: the model in use came with one (required
+     * when task_cost = background, models.c). */
+    gmmrrt_model_t bg_avoid, bg_approach, bg_scratch;
+    int has_bg_avoid, has_bg_approach;
+    gmmrrt_model_t approach_set_bg[GMMRRT_APPROACH_DIRECTIONS], approach_set_bg_scratch[GMMRRT_APPROACH_DIRECTIONS];
+    int approach_set_has_bg[GMMRRT_APPROACH_DIRECTIONS], approach_set_has_bg_scratch[GMMRRT_APPROACH_DIRECTIONS];
 
     /* The static map (world.c): a raster allocated once at start-up when a map is configured,
      * sized by map_max_cells / map_max_side; replaced on SIGHUP only by a good file. */
@@ -247,11 +255,19 @@ void gmmrrtd_count_stop(gmmrrtd_t *d, int stop, const char *fmt, ...) __attribut
  * PLANNER_STATUS. */
 void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us);
 
-/* models.c: loads both model files and checks each against its use (task, and the feature
- * space the configured planner needs: gmmrrt_planner_model_fits). At start-up (`reload` 0)
+/* models.c: loads both model files (and the approach set) with their background models and
+ * checks each against its use (task, the feature space the configured planner needs:
+ * gmmrrt_planner_model_fits, and a background when [planner] task_cost = background). A model
+ * and its background replace the ones in use together or not at all. At start-up (`reload` 0)
  * a failure is fatal (-1); on reload a failure keeps the old model, counts
  * REJECT_MODEL_RELOAD and logs every time. */
 int gmmrrtd_models_load(gmmrrtd_t *d, int reload);
+
+/* models.c: 1 when every model in use can drive a planner configured by cfg (its feature space,
+ * gmmrrt_planner_model_fits, and a background of its own when cfg->task_cost = background);
+ * else 0 with the first misfit in why[cap]. A reload whose new planner settings the models in
+ * use do not fit (their new files were refused) keeps the old settings (main.c). */
+int gmmrrtd_models_fit_config(const gmmrrtd_t *d, const gmmrrt_planner_config_t *cfg, char *why, size_t cap);
 
 /* world.c: loads [world] map into the map raster (allocated at the first load, at start-up).
  * At start-up (`reload` 0) a failure is fatal (-1, logged); on reload a bad or missing file

@@ -111,6 +111,7 @@ static void reload(gmmrrtd_t *d, int argc, char **argv)
         memcpy(s.ch_grid, d->set.ch_grid, sizeof s.ch_grid);
         memcpy(s.clock, d->set.clock, sizeof s.clock);
     }
+    const gmmrrt_planner_config_t old_cfg = d->set.cfg;
     if (memcmp(&s.cfg, &d->set.cfg, sizeof s.cfg) != 0) {
         if (gmmrrt_planner_mem_size(&s.cfg) > d->mem_size) {
             LOG_ERROR("reload: the new planner settings need %zu bytes, the block has %zu; keeping the old ones "
@@ -130,6 +131,21 @@ static void reload(gmmrrtd_t *d, int argc, char **argv)
     memcpy(d->set.model_approach, s.model_approach, sizeof s.model_approach);
     memcpy(d->set.approach_set, s.approach_set, sizeof s.approach_set);
     (void)gmmrrtd_models_load(d, 1);
+    /* New planner settings that the models in use do not fit (a new file was refused, so an old
+     * model stays: e.g. task_cost = background with files that have no background) would stop
+     * every goal of that task; the old settings stay instead, when the models fit them. */
+    char why[256], why_old[256];
+    if (memcmp(&d->set.cfg, &old_cfg, sizeof old_cfg) != 0 &&
+        !gmmrrtd_models_fit_config(d, &d->set.cfg, why, sizeof why) &&
+        gmmrrtd_models_fit_config(d, &old_cfg, why_old, sizeof why_old)) {
+        d->status.rejected[GMMRRT_PLANNER_STATUS_T_REJECT_MODEL_RELOAD]++;
+        LOG_ERROR("reload rejected (total %lld): the new planner settings do not fit the models in use: %s; keeping "
+                  "the old planner settings",
+                  (long long)d->status.rejected[GMMRRT_PLANNER_STATUS_T_REJECT_MODEL_RELOAD], why);
+        s.cfg = old_cfg;
+        d->set.cfg = old_cfg;
+        (void)gmmrrt_planner_init(&d->planner, d->mem, d->mem_size, &d->set.cfg);
+    }
     memcpy(s.model_avoid, d->set.model_avoid, sizeof s.model_avoid);
     memcpy(s.model_approach, d->set.model_approach, sizeof s.model_approach);
     memcpy(s.approach_set, d->set.approach_set, sizeof s.approach_set);

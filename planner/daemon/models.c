@@ -9,6 +9,13 @@
  * good; on SIGHUP a bad file keeps the old model running, is counted in
  * planner_status_t.rejected[REJECT_MODEL_RELOAD] and logged every time (error level, not
  * rate-limited: a reload is an operator's act and each failure deserves its line).
+ * A model file may carry a background model (model.h, the background section: where walkers
+ * would have been without the person), which [planner] task_cost = background divides by
+ * (config.h, GMMRRT_TASK_COST_BACKGROUND; docs/planner.md, "The background cost"). It is loaded
+ * with its model (gmmrrt_model_load_file_background checks that it matches the model) into
+ * scratch storage and replaces the one in use together with its model: never a new model with
+ * an old background. With task_cost = background a file without one is refused like a bad file,
+ * as gmmrrt-plan refuses it.
  */
 #include <stdio.h>
 #include <string.h>
@@ -40,17 +47,24 @@ static int refuse(gmmrrtd_t *d, int reload, int have, gmmrrt_status_t st, const 
     return -1;
 }
 
-static int load_one(gmmrrtd_t *d, const char *path, int32_t want_task, gmmrrt_model_t *slot, int *have, int reload)
+/* Loads the model file `path` for want_task into *slot (*have = 1) and its background into
+ * *bg_slot (*has_bg = 1 when the file has one, else 0), all four written only when the file is
+ * good for its use; otherwise none is touched. */
+static int load_one(gmmrrtd_t *d, const char *path, int32_t want_task, gmmrrt_model_t *slot, int *have,
+                    gmmrrt_model_t *bg_slot, int *has_bg, int reload)
 {
     const char *task_name = want_task == GMMRRT_TASK_AVOID ? "avoid" : "approach";
     if (path[0] == '\0') {
         if (*have)
             LOG_INFO("%s model removed by the new configuration", task_name);
         *have = 0;
+        *has_bg = 0;
         return 0;
     }
     char err[512], what[768];
-    const gmmrrt_status_t st = gmmrrt_model_load_file(path, &d->model_scratch, err, sizeof err);
+    int file_has_bg = 0;
+    const gmmrrt_status_t st = gmmrrt_model_load_file_background(path, &d->model_scratch, &d->bg_scratch,
+                                                                 &file_has_bg, NULL, 0, NULL, err, sizeof err);
     if (st != GMMRRT_OK) {
         snprintf(what, sizeof what, "%s model: %s (%s)", task_name, err, gmmrrt_status_str(st));
         return refuse(d, reload, *have, st, what);
@@ -67,9 +81,24 @@ static int load_one(gmmrrtd_t *d, const char *path, int32_t want_task, gmmrrt_mo
                  path, kind_name(m->kind), (int)m->dim, gmmrrtd_planner_name(d->set.cfg.planner), gmmrrt_status_str(fit));
         return refuse(d, reload, *have, fit, what);
     }
+    if (d->set.cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND && !file_has_bg) {
+        snprintf(what, sizeof what,
+                 "%s model %s has no background model, which [planner] task_cost = background needs (fit the "
+                 "model with gmmrrt-learn fit --background straight, or set task_cost = paper or inward)",
+                 task_name, path);
+        return refuse(d, reload, *have, GMMRRT_ERR_MODEL_MISMATCH, what);
+    }
     *slot = *m;
     *have = 1;
-    LOG_INFO("%s model %s: %s, K = %d, D = %d", task_name, path, kind_name(slot->kind), (int)slot->k, (int)slot->dim);
+    if (file_has_bg)
+        *bg_slot = d->bg_scratch;
+    *has_bg = file_has_bg;
+    if (file_has_bg)
+        LOG_INFO("%s model %s: %s, K = %d, D = %d, background K = %d", task_name, path, kind_name(slot->kind),
+                 (int)slot->k, (int)slot->dim, (int)bg_slot->k);
+    else
+        LOG_INFO("%s model %s: %s, K = %d, D = %d, no background", task_name, path, kind_name(slot->kind),
+                 (int)slot->k, (int)slot->dim);
     return 0;
 }
 
@@ -91,7 +120,8 @@ static int load_set(gmmrrtd_t *d, int reload)
         char file[GMMRRTD_PATH_MAX + 32];
         snprintf(file, sizeof file, "%s/%s.gmm", dir, gmmrrt_approach_direction_name(k));
         int have = 0;
-        if (load_one(d, file, GMMRRT_TASK_APPROACH, &d->approach_set_scratch[k], &have, reload) != 0) {
+        if (load_one(d, file, GMMRRT_TASK_APPROACH, &d->approach_set_scratch[k], &have, &d->approach_set_bg_scratch[k],
+                     &d->approach_set_has_bg_scratch[k], reload) != 0) {
             LOG_ERROR("approach model set %s refused: direction %s (%s) did not load%s", dir,
                       gmmrrt_approach_direction_name(k), file, d->have_approach_set ? " (old set kept)" : "");
             return -1;
@@ -105,6 +135,8 @@ static int load_set(gmmrrtd_t *d, int reload)
         return refuse(d, reload, d->have_approach_set, st, what);
     }
     memcpy(d->approach_set, d->approach_set_scratch, sizeof d->approach_set);
+    memcpy(d->approach_set_bg, d->approach_set_bg_scratch, sizeof d->approach_set_bg);
+    memcpy(d->approach_set_has_bg, d->approach_set_has_bg_scratch, sizeof d->approach_set_has_bg);
     d->have_approach_set = 1;
     LOG_INFO("approach model set %s: %d directions", dir, GMMRRT_APPROACH_DIRECTIONS);
     return 0;
@@ -112,8 +144,42 @@ static int load_set(gmmrrtd_t *d, int reload)
 
 int gmmrrtd_models_load(gmmrrtd_t *d, int reload)
 {
-    const int a = load_one(d, d->set.model_avoid, GMMRRT_TASK_AVOID, &d->model_avoid, &d->have_avoid, reload);
-    const int b = load_one(d, d->set.model_approach, GMMRRT_TASK_APPROACH, &d->model_approach, &d->have_approach, reload);
+    const int a = load_one(d, d->set.model_avoid, GMMRRT_TASK_AVOID, &d->model_avoid, &d->have_avoid, &d->bg_avoid,
+                           &d->has_bg_avoid, reload);
+    const int b = load_one(d, d->set.model_approach, GMMRRT_TASK_APPROACH, &d->model_approach, &d->have_approach,
+                           &d->bg_approach, &d->has_bg_approach, reload);
     const int c = load_set(d, reload);
     return (a == 0 && b == 0 && c == 0) ? 0 : -1;
+}
+
+/* One model in use against cfg: the planner's rule (gmmrrt_planner_model_fits) and, for the
+ * background cost, a background of its own. */
+static int fits(const gmmrrt_planner_config_t *cfg, const gmmrrt_model_t *m, int has_bg, const char *name, char *why,
+                size_t cap)
+{
+    const gmmrrt_status_t st = gmmrrt_planner_model_fits(cfg, m);
+    if (st != GMMRRT_OK) {
+        snprintf(why, cap, "the %s model does not fit the %s planner (%s)", name, gmmrrtd_planner_name(cfg->planner),
+                 gmmrrt_status_str(st));
+        return 0;
+    }
+    if (cfg->task_cost == GMMRRT_TASK_COST_BACKGROUND && !has_bg) {
+        snprintf(why, cap, "the %s model has no background model, which task_cost = background needs", name);
+        return 0;
+    }
+    return 1;
+}
+
+int gmmrrtd_models_fit_config(const gmmrrtd_t *d, const gmmrrt_planner_config_t *cfg, char *why, size_t cap)
+{
+    if (d->have_avoid && !fits(cfg, &d->model_avoid, d->has_bg_avoid, "avoid", why, cap))
+        return 0;
+    if (d->have_approach && !fits(cfg, &d->model_approach, d->has_bg_approach, "approach", why, cap))
+        return 0;
+    if (d->have_approach_set)
+        for (int32_t k = 0; k < GMMRRT_APPROACH_DIRECTIONS; ++k)
+            if (!fits(cfg, &d->approach_set[k], d->approach_set_has_bg[k], gmmrrt_approach_direction_name(k), why,
+                      cap))
+                return 0;
+    return 1;
 }

@@ -513,9 +513,6 @@ int gmmrrtd_settings_validate(const gmmrrtd_settings_t *s, char *err, size_t err
     char why[200];
     if (gmmrrt_planner_config_validate(&s->cfg, why, sizeof why) != GMMRRT_OK)
         return fail(err, errcap, "planner settings: %s", why);
-    if (s->cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND)
-        return fail(err, errcap, "[planner] task_cost = background needs a background model, which gmmrrtd does not "
-                                 "load (paper or inward)");
     /* The per-cycle field is capped at about scan_reach_m (raster.h): below the robot's radius
      * every point would be called blocked once scans arrive. */
     if (!(s->scan_reach_m > s->cfg.robot_radius_m))

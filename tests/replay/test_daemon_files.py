@@ -8,6 +8,10 @@
     also for two failures within log_interval_ms);
   * a model of the wrong feature space (an x-y model with task "avoid" for GMM-RRT*) is refused
     at start-up and on SIGHUP (the good model stays and still plans);
+  * [planner] task_cost = background: an avoid model file without a background model is refused
+    at start-up, naming the file and the command that fits one; the same model with a background
+    (the file's background section) plans a replay; a SIGHUP to the background cost with that
+    file refuses the file and the new planner settings, and the old settings go on planning;
   * whole-number settings take digits only: --seed 1e3 and --seed 2.5e1 are errors, not 1 and 2;
   * gmmrrt-plan: --model naming a FIFO fails at once; --w-task 1e308 is refused (it overflowed
     every cost to inf and reported "no path yet").
@@ -23,6 +27,8 @@ from test_replay_udpm import private_url, wait_for_line
 from gmmrrt import planner_status_t
 
 from gmmrrt_tools import core
+from gmmrrt_tools.replay_check import read_outputs
+from gmmrrt_tools.scenario_models import KIND_FEATURES, TASK_AVOID, THETA_IS_ANGLE
 
 R = planner_status_t
 
@@ -168,3 +174,63 @@ def test_goal_flood_writes_a_few_lines_not_one_per_goal(gmmrrtd, models, tmp_pat
     assert res.returncode == 0, res.stderr
     lines = [l for l in res.stderr.splitlines() if "new goal" in l]
     assert 1 <= len(lines) <= 3, lines[:5]
+
+
+def test_background_cost_needs_the_model_files_background(gmmrrtd, models, tmp_path):
+    res = run(gmmrrtd, "--lcm-url", private_url(), "--task-cost", "background", "--model-avoid", models["avoid"])
+    assert res.returncode == 1, res.stderr
+    assert models["avoid"] in res.stderr and "gmmrrt-learn fit --background straight" in res.stderr, res.stderr
+    # The same task model with a background (walkers on the straight line: theta near 0 and pi).
+    model = core.decode_model(open(models["avoid"], "rb").read())
+    background = core.model_from_arrays(KIND_FEATURES, TASK_AVOID, 0, [0.5, 0.5], [(1.5, 0.0), (1.5, 3.0)],
+                                        [(0.6, 0.0, 0.5), (0.6, 0.0, 0.5)], THETA_IS_ANGLE, 0.001)
+    with_bg = tmp_path / "avoid_bg.gmm"
+    with_bg.write_bytes(core.encode_model(model, background=background))
+    out = tmp_path / "out.lcmlog"
+    res = run(gmmrrtd, "--lcm-url", "file://%s?speed=0" % os.path.join(SCENARIOS, "avoid_one_person.lcmlog"),
+              "--lcm-out-url", "file://%s?mode=w" % out, "--exit-at-eof", "--task-cost", "background",
+              "--model-avoid", str(with_bg), "--budget-ms", "0", "--budget-iterations", "200", "--log-level", "info",
+              timeout=120)
+    assert res.returncode == 0, res.stderr
+    assert "background K = 2" in res.stderr, res.stderr
+    plans = [plan for _, _, plan in read_outputs(str(out)) if plan is not None and plan.num_waypoints > 1]
+    assert plans, res.stderr
+
+
+def test_sighup_to_the_background_cost_without_backgrounds_keeps_the_old_settings(gmmrrtd, models, tmp_path):
+    """A reload that switches to task_cost = background while the model file has no background:
+    the file is refused (old model kept), and so are the new planner settings, which that model
+    cannot plan with: the daemon goes on planning with the paper's cost instead of stopping every
+    avoid goal with a set-up error."""
+    url = private_url()
+    ini = tmp_path / "d.ini"
+    base = "[lcm]\nurl = %s\n[models]\navoid = %s\n[timing]\nbudget_ms = 50\n" % (url, models["avoid"])
+    ini.write_text(base)
+    err_path = tmp_path / "stderr"
+    listener = StatusListener(url)
+    with open(err_path, "w") as err:
+        daemon = subprocess.Popen([gmmrrtd, "--config", str(ini)], stderr=err)
+    try:
+        assert wait_for_line(str(err_path), "running:"), err_path.read_text()
+        listener.pump(0.5)
+        assert listener.status is not None
+        ini.write_text(base + "[planner]\ntask_cost = background\n")
+        daemon.send_signal(signal.SIGHUP)
+        listener.pump(0.8)
+        # The model file (no background) and the planner settings: two rejections.
+        assert listener.status.rejected[R.REJECT_MODEL_RELOAD] == 2, err_path.read_text()
+        player = subprocess.Popen([venv_bin("lcm-logplayer"), "--lcm-url", url,
+                                   os.path.join(SCENARIOS, "avoid_one_person.lcmlog")])
+        listener.plans.clear()
+        listener.pump(3.0)
+        player.wait(timeout=30)
+        assert any(p.num_waypoints > 0 for p in listener.plans), [(p.num_waypoints, p.status) for p in listener.plans]
+        assert listener.status.rejected[R.REJECT_SETUP] == 0, err_path.read_text()
+        daemon.send_signal(signal.SIGTERM)
+        assert daemon.wait(timeout=10) == 0
+    finally:
+        if daemon.poll() is None:
+            daemon.kill()
+            daemon.wait()
+    text = err_path.read_text()
+    assert "has no background model" in text and "keeping the old planner settings" in text, text
