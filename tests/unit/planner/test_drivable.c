@@ -310,8 +310,9 @@ static void test_a_corner_without_a_free_arc_is_flagged(void **state)
     }
 }
 
-/* A right-angle corner rounded by the arc of R = 0.6 m round a disc concentric with the arc and
- * c = 2.3 mm clear of it. The arc's own chords of at most 5 cm cut inside it by at most
+/* A right-angle corner rounded by the arc of R = 0.6 m round a disc c = 2.3 mm inside it: a
+ * circle obstacle concentric with the arc, one nearest the arc's middle, and a person at the
+ * arc's centre. The arc's own chords of at most 5 cm cut inside it by at most
  * (0.05)^2 / 8R = 0.52 mm and stay outside the 1 mm edge margin; chords 0.1 m apart (the default
  * waypoint spacing) cut inside by up to 2.1 mm and come within 0.2 mm of the disc. The published
  * chords are what the robot drives: every one must pass the collision world's segment test, and
@@ -322,17 +323,25 @@ static void test_published_chords_of_an_arc_close_to_its_inside_are_free(void **
     (void)state;
     const double R = 0.6, c = 0.0023;
     const double tree_x[] = {-2.0, 0.0, 0.0}, tree_y[] = {0.0, 0.0, -2.0};
-    /* the disc's centre: the arc's centre, or 0.3 m from it towards the corner (nearest the arc's middle) */
-    const double inside[2][2] = {{-R, -R}, {-R + 0.3 * M_SQRT1_2, -R + 0.3 * M_SQRT1_2}};
-    for (int d = 0; d < 2; ++d) {
+    /* the disc's centre: the arc's centre, or 0.3 m from it towards the corner (nearest the
+     * arc's middle); the third disc is a person */
+    const double inside[3][2] = {{-R, -R}, {-R + 0.3 * M_SQRT1_2, -R + 0.3 * M_SQRT1_2}, {-R, -R}};
+    for (int d = 0; d < 3; ++d) {
+        const double cx = inside[d][0], cy = inside[d][1];
+        /* radius: the arc's nearest point to the disc's centre is c clear of it */
+        const double radius = R - hypot(cx + R, cy + R) - c;
         gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+        cfg.person_radius_m = radius;
         test_planner_t t;
         assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
         gmmrrt_problem_t pr = empty_problem(tree_x[0], tree_y[0], tree_x[2], tree_y[2]);
-        pr.obstacles.num_circles = 1;
-        const double cx = inside[d][0], cy = inside[d][1];
-        /* radius: the arc's nearest point to the disc's centre is c clear of it */
-        pr.obstacles.circles[0] = (gmmrrt_circle_t){cx, cy, R - hypot(cx + R, cy + R) - c};
+        if (d < 2) {
+            pr.obstacles.num_circles = 1;
+            pr.obstacles.circles[0] = (gmmrrt_circle_t){cx, cy, radius};
+        } else {
+            pr.obstacles.num_people = 1;
+            pr.obstacles.people[0] = (gmmrrt_pose_t){cx, cy, 0.0};
+        }
         assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
         assert_int_equal(gmmrrt_planner_seed_path(t.p, tree_x + 1, tree_y + 1, 2), GMMRRT_OK);
         gmmrrt_drive_options_t opt;
@@ -348,7 +357,7 @@ static void test_published_chords_of_an_arc_close_to_its_inside_are_free(void **
             const double l2 = (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
             double u = l2 > 0.0 ? ((cx - ax) * (bx - ax) + (cy - ay) * (by - ay)) / l2 : 0.0;
             u = u < 0.0 ? 0.0 : u > 1.0 ? 1.0 : u;
-            const double dist = hypot(ax + u * (bx - ax) - cx, ay + u * (by - ay) - cy) - pr.obstacles.circles[0].radius_m;
+            const double dist = hypot(ax + u * (bx - ax) - cx, ay + u * (by - ay) - cy) - radius;
             if (dist < nearest)
                 nearest = dist;
         }
