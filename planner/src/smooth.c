@@ -477,7 +477,7 @@ static int chords_free(const struct gmmrrt_planner *p, const gmmrrt_path_t *out,
 /* Waypoints at every piece's ends: a straight piece in equal parts of at most `spacing` (parts of
  * a segment the planner's test passed, so free), an arc at exactly its own chords, the ones
  * arc_free checked (arc_vertex). Every chord is then one the planner's test passed, and the corner
- * keeps its radius: chords of at most GMMRRT_ARC_CHORD_M turn by at most their own length / r.
+ * keeps its radius: consecutive chords of the arc turn by the arc length of one of them / r.
  * Returns the number of waypoints for `spacing`. */
 static int32_t count_by_pieces(const struct gmmrrt_planner *p, const piece_t *pieces, int32_t np, double spacing)
 {
