@@ -24,9 +24,15 @@
  *     tangent to both segments (tangent length R tan(phi / 2)); when the segments are too short
  *     for it, or a chord of the arc is not free, the arc is made smaller and the corner counted
  *     as tight (reported, never hidden). R = 0: the robot turns in place at the corner. The arc
- *     is checked by chords of at most GMMRRT_ARC_CHORD_M with the planner's segment test; the
- *     straight pieces are parts of checked segments.
- *  5. Resampled by arc length at the planner's waypoint spacing; yaw = the tangent.
+ *     is checked by its own chords of at most GMMRRT_ARC_CHORD_M with the planner's segment test;
+ *     the straight pieces are parts of checked segments.
+ *  5. Published: waypoints at equal arc length (the planner's waypoint spacing), yaw = the
+ *     tangent. The robot drives the chords between them, and a chord of an arc cuts inside it by
+ *     up to spacing^2 / 8r (2 mm at 0.1 m and r = 0.6 m), deeper than the arc's own chords: so
+ *     every published chord is checked with the planner's segment test, and when one fails the
+ *     waypoints are placed at the pieces' ends instead, each arc at exactly its own checked
+ *     chords (and the straight pieces in equal parts). The corner keeps its radius; what is
+ *     published is what was checked.
  *  6. Walking people: every waypoint is tested against where each walker is at the waypoint's
  *     time (arc length / nominal speed), the exact version of the search's time window.
  * All arrays are bounded (GMMRRT_DRIVE_MAX_VERTICES) and on the stack: no allocation.
@@ -369,15 +375,33 @@ static void relax_tight_corners(const struct gmmrrt_planner *p, polyline_t *v, d
     }
 }
 
-/* 1 when every chord (at most GMMRRT_ARC_CHORD_M) of the arc is free. */
+/* The arc's own chords: n of equal sweep, each at most GMMRRT_ARC_CHORD_M of arc (or the
+ * waypoint spacing, when that is finer). */
+static int32_t arc_chords(const struct gmmrrt_planner *p, const piece_t *a)
+{
+    const int32_t n = (int32_t)ceil(a->len / fmin(GMMRRT_ARC_CHORD_M, p->cfg.waypoint_spacing_m));
+    return n < 1 ? 1 : n;
+}
+
+/* Vertex k (0 .. n) of the arc's own chords and the tangent there. arc_free and the published
+ * waypoints both take them from here, so a published chord of the arc is bit for bit one that
+ * arc_free checked. */
+static void arc_vertex(const piece_t *a, int32_t k, int32_t n, double *x, double *y, double *yaw)
+{
+    const double ang = a->a0 + a->dir * (a->len / a->r) * (double)k / (double)n;
+    *x = a->cx + a->r * cos(ang);
+    *y = a->cy + a->r * sin(ang);
+    *yaw = gmmrrt_wrap_angle(ang + a->dir * 0.5 * M_PI);
+}
+
+/* 1 when every one of the arc's own chords is free. */
 static int arc_free(const struct gmmrrt_planner *p, const piece_t *a)
 {
-    const double sweep = a->len / a->r;
-    const int32_t n = (int32_t)ceil(a->len / GMMRRT_ARC_CHORD_M);
-    double px = a->cx + a->r * cos(a->a0), py = a->cy + a->r * sin(a->a0);
-    for (int32_t k = 1; k <= (n < 1 ? 1 : n); ++k) {
-        const double ang = a->a0 + a->dir * sweep * (double)k / (double)(n < 1 ? 1 : n);
-        const double qx = a->cx + a->r * cos(ang), qy = a->cy + a->r * sin(ang);
+    const int32_t n = arc_chords(p, a);
+    double px, py, qx, qy, yaw;
+    arc_vertex(a, 0, n, &px, &py, &yaw);
+    for (int32_t k = 1; k <= n; ++k) {
+        arc_vertex(a, k, n, &qx, &qy, &yaw);
         if (!seg_free(p, px, py, qx, qy))
             return 0;
         px = qx;
@@ -398,6 +422,136 @@ static void point_on(const piece_t *pc, double s, double *x, double *y, double *
         *y = pc->y0 + s * sin(pc->yaw);
         *yaw = pc->yaw;
     }
+}
+
+/* Waypoints at equal arc length along the pieces (at the planner's waypoint spacing, widened to
+ * fit GMMRRT_MAX_WAYPOINTS), the first at the start, the last at the goal; s_at[j]: waypoint j's
+ * arc length. Smooth, but a chord between two of them on an arc cuts inside it by up to
+ * spacing^2 / 8r, deeper than the arc's own chords that arc_free checked. Returns the final yaw. */
+static double publish_by_arc_length(const struct gmmrrt_planner *p, const piece_t *pieces, int32_t np,
+                                    double total, const polyline_t *v, gmmrrt_path_t *out, double *s_at)
+{
+    double spacing = p->cfg.waypoint_spacing_m;
+    const int32_t m = gmmrrt_waypoint_count(total, &spacing);
+    double s0 = 0.0, yaw = np > 0 ? pieces[0].yaw : 0.0;
+    int32_t k = 0;
+    for (int32_t j = 0; j < m - 1; ++j) {
+        const double s = (double)j * spacing;
+        while (k < np - 1 && s > s0 + pieces[k].len) {
+            s0 += pieces[k].len;
+            ++k;
+        }
+        if (np > 0)
+            point_on(&pieces[k], fmin(s - s0, pieces[k].len), &out->x[j], &out->y[j], &yaw);
+        else {
+            out->x[j] = v->x[0];
+            out->y[j] = v->y[0];
+        }
+        out->yaw[j] = yaw;
+        s_at[j] = s;
+    }
+    double gx_, gy_;
+    if (np > 0)
+        point_on(&pieces[np - 1], pieces[np - 1].len, &gx_, &gy_, &yaw);
+    out->x[m - 1] = v->x[v->n - 1];
+    out->y[m - 1] = v->y[v->n - 1];
+    out->yaw[m - 1] = yaw;
+    s_at[m - 1] = total;
+    out->x[0] = v->x[0];
+    out->y[0] = v->y[0];
+    out->num_points = m;
+    return yaw;
+}
+
+/* 1 when every published chord that ends past the escape (esc_len: its length, 0 without one)
+ * passes the planner's segment test: what the robot drives is what must be free. The escape's own
+ * chords leave a contact by design. */
+static int chords_free(const struct gmmrrt_planner *p, const gmmrrt_path_t *out, const double *s_at, double esc_len)
+{
+    for (int32_t j = 0; j + 1 < out->num_points; ++j)
+        if (s_at[j + 1] > esc_len && !seg_free(p, out->x[j], out->y[j], out->x[j + 1], out->y[j + 1]))
+            return 0;
+    return 1;
+}
+
+/* Waypoints at every piece's ends: a straight piece in equal parts of at most `spacing` (parts of
+ * a segment the planner's test passed, so free), an arc at exactly its own chords, the ones
+ * arc_free checked (arc_vertex). Every chord is then one the planner's test passed, and the corner
+ * keeps its radius: consecutive chords of the arc turn by the arc length of one of them / r.
+ * Returns the number of waypoints for `spacing`. */
+static int32_t count_by_pieces(const struct gmmrrt_planner *p, const piece_t *pieces, int32_t np, double spacing)
+{
+    int32_t m = 1;
+    for (int32_t k = 0; k < np; ++k)
+        m += pieces[k].r > 0.0 ? arc_chords(p, &pieces[k]) : (int32_t)fmax(1.0, ceil(pieces[k].len / spacing));
+    return m;
+}
+
+/* The waypoints of count_by_pieces, at the planner's spacing or the smallest wider one that fits
+ * GMMRRT_MAX_WAYPOINTS (bisection, as gmmrrt_planner_best_path); out->num_points = 0 when the arcs'
+ * chords alone do not fit. Returns the final yaw. */
+static double publish_by_pieces(const struct gmmrrt_planner *p, const piece_t *pieces, int32_t np,
+                                const polyline_t *v, gmmrrt_path_t *out, double *s_at)
+{
+    double spacing = p->cfg.waypoint_spacing_m;
+    if (count_by_pieces(p, pieces, np, spacing) > GMMRRT_MAX_WAYPOINTS) {
+        double total = 0.0;
+        for (int32_t k = 0; k < np; ++k)
+            total += pieces[k].len;
+        if (count_by_pieces(p, pieces, np, 2.0 * total + 1.0) > GMMRRT_MAX_WAYPOINTS) {
+            out->num_points = 0;
+            return 0.0;
+        }
+        double lo = spacing, hi = 2.0 * total + 1.0;
+        for (int it = 0; it < 60 && hi > lo * (1.0 + 1e-12); ++it) {
+            const double mid = 0.5 * (lo + hi);
+            if (count_by_pieces(p, pieces, np, mid) > GMMRRT_MAX_WAYPOINTS)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        spacing = hi;
+    }
+    int32_t m = 1;
+    double s0 = 0.0, yaw = np > 0 ? pieces[0].yaw : 0.0;
+    out->x[0] = v->x[0];
+    out->y[0] = v->y[0];
+    out->yaw[0] = yaw;
+    s_at[0] = 0.0;
+    for (int32_t k = 0; k < np; ++k) {
+        const piece_t *pc = &pieces[k];
+        if (pc->r > 0.0) {
+            const int32_t n = arc_chords(p, pc);
+            /* the arc's first vertex replaces the piece's start (equal to rounding) */
+            arc_vertex(pc, 0, n, &out->x[m - 1], &out->y[m - 1], &out->yaw[m - 1]);
+            for (int32_t i = 1; i <= n; ++i, ++m) {
+                arc_vertex(pc, i, n, &out->x[m], &out->y[m], &out->yaw[m]);
+                s_at[m] = s0 + pc->len * (double)i / (double)n;
+            }
+        } else {
+            const int32_t n = (int32_t)fmax(1.0, ceil(pc->len / spacing));
+            out->yaw[m - 1] = pc->yaw;
+            for (int32_t i = 1; i <= n; ++i, ++m) {
+                point_on(pc, pc->len * (double)i / (double)n, &out->x[m], &out->y[m], &out->yaw[m]);
+                s_at[m] = s0 + pc->len * (double)i / (double)n;
+            }
+        }
+        s0 += pc->len;
+        yaw = out->yaw[m - 1];
+    }
+    if (m < 2) { /* no piece: start at the goal, published as two points */
+        out->x[1] = v->x[0];
+        out->y[1] = v->y[0];
+        out->yaw[1] = yaw;
+        s_at[1] = 0.0;
+        m = 2;
+    }
+    out->x[m - 1] = v->x[v->n - 1];
+    out->y[m - 1] = v->y[v->n - 1];
+    out->x[0] = v->x[0];
+    out->y[0] = v->y[0];
+    out->num_points = m;
+    return yaw;
 }
 
 /* The escape's end (vertex e, the exit E, reached along the ray u): rather than turning on the
@@ -600,37 +754,20 @@ gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gm
         }
     }
 
-    /* Resample. */
+    /* Waypoints: at equal arc length; when a chord of those is not free, at the pieces' own
+     * chords (publish_by_pieces). */
+    double s_at[GMMRRT_MAX_WAYPOINTS];
     double total = 0.0;
     for (int32_t k = 0; k < np; ++k)
         total += pieces[k].len;
-    double spacing = p->cfg.waypoint_spacing_m;
-    const int32_t m = gmmrrt_waypoint_count(total, &spacing);
-    double s0 = 0.0, yaw = np > 0 ? pieces[0].yaw : 0.0;
-    int32_t k = 0;
-    for (int32_t j = 0; j < m - 1; ++j) {
-        const double s = (double)j * spacing;
-        while (k < np - 1 && s > s0 + pieces[k].len) {
-            s0 += pieces[k].len;
-            ++k;
-        }
-        if (np > 0)
-            point_on(&pieces[k], fmin(s - s0, pieces[k].len), &out->x[j], &out->y[j], &yaw);
-        else {
-            out->x[j] = v.x[0];
-            out->y[j] = v.y[0];
-        }
-        out->yaw[j] = yaw;
+    const double esc_len = p->escape.active ? p->escape.length_m : 0.0;
+    double yaw = publish_by_arc_length(p, pieces, np, total, &v, out, s_at);
+    if (!chords_free(p, out, s_at, esc_len)) {
+        yaw = publish_by_pieces(p, pieces, np, &v, out, s_at);
+        if (out->num_points == 0)
+            return GMMRRT_ERR_BUFFER_TOO_SMALL;
     }
-    double gx_, gy_;
-    if (np > 0)
-        point_on(&pieces[np - 1], pieces[np - 1].len, &gx_, &gy_, &yaw);
-    out->x[m - 1] = v.x[v.n - 1];
-    out->y[m - 1] = v.y[v.n - 1];
-    out->yaw[m - 1] = yaw;
-    out->x[0] = v.x[0];
-    out->y[0] = v.y[0];
-    out->num_points = m;
+    const int32_t m = out->num_points;
     out->length_m = total;
     out->cost = rep.cost;
 
@@ -646,12 +783,11 @@ gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gm
     }
     /* Walkers at each waypoint's own time (the escape's part is leaving a contact by design). */
     if (p->walkers.count > 0) {
-        const double esc_len = p->escape.active ? p->escape.length_m : 0.0;
         for (int32_t j = 0; j < m; ++j) {
-            const double s = j == m - 1 ? total : (double)j * spacing;
-            if (s < esc_len)
+            if (s_at[j] < esc_len)
                 continue;
-            const double c = gmmrrt_walkers_clearance_at(&p->walkers, out->x[j], out->y[j], s / p->walkers.speed_m_s);
+            const double c =
+                gmmrrt_walkers_clearance_at(&p->walkers, out->x[j], out->y[j], s_at[j] / p->walkers.speed_m_s);
             if (c < rep.min_walker_clearance_m)
                 rep.min_walker_clearance_m = c;
         }

@@ -5,7 +5,7 @@
  * arrival on the requested heading, and the escape from a start in collision in front. Every
  * new chord is checked with the planner's own free tests (the same clearance rule as the tree's
  * edges, walking people included). Fixed memory (the caller's gmmrrt_path_t and a bounded stack
- * frame of about 95 KB), no allocation. docs/planner.md, "Drivable paths".
+ * frame of about 97 KB), no allocation. docs/planner.md, "Drivable paths".
  */
 #ifndef GMMRRT_DRIVABLE_H
 #define GMMRRT_DRIVABLE_H
@@ -60,13 +60,15 @@ typedef struct {
 } gmmrrt_drive_report_t;
 
 /* Fills *out with the drivable version of the planner's best path, resampled like
- * gmmrrt_planner_best_path (waypoint spacing, at most GMMRRT_MAX_WAYPOINTS), yaw = tangent.
+ * gmmrrt_planner_best_path (waypoint spacing, at most GMMRRT_MAX_WAYPOINTS), yaw = tangent. Every
+ * chord between consecutive waypoints after the escape passes the planner's segment test: where
+ * equally spaced ones would not, the arcs are published at their own checked chords (smooth.c).
  * report may be NULL. Statuses: GMMRRT_OK / GMMRRT_ESCAPE / GMMRRT_TIGHT_TURNS (path made; see
  * report: a path that turns tighter than min_turn_radius_m is flagged, not withheld, because a
  * stop would freeze the robot while a differential drive can slow down and turn on the spot);
  * GMMRRT_NO_PATH_YET (no path); GMMRRT_ERR_INVALID_ARGUMENT (NULL, an option out of range,
  * FACE_TARGET without an approach target); GMMRRT_ERR_BUFFER_TOO_SMALL (the tree path has more
- * than GMMRRT_DRIVE_MAX_VERTICES vertices). */
+ * than GMMRRT_DRIVE_MAX_VERTICES vertices, or the arcs' own chords exceed GMMRRT_MAX_WAYPOINTS). */
 gmmrrt_status_t gmmrrt_planner_drivable_path(const gmmrrt_planner_t *p, const gmmrrt_drive_options_t *opt,
                                              gmmrrt_path_t *out, gmmrrt_drive_report_t *report);
 

@@ -74,13 +74,6 @@ static void test_no_output_turn_exceeds_the_bound(void **state)
             gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
             cfg.robot_radius_m = 0.3;
             cfg.seed = seed;
-            /* RRT* alone: the drivable construction checks each arc by 5 cm chords, but the
-             * published waypoints (0.1 m apart) are joined by chords that cut inside an arc by up
-             * to s^2 / 8R (2 mm at R = 0.6 m); the path the connect phase leads to for seed 1
-             * rounds a corner with the person on its inside by less than that, and one published
-             * chord then comes within the 1 mm edge margin of the person (a limit of smooth.c,
-             * not of the tree; docs/planner.md, "Drivable paths"). */
-            cfg.connect_first = 0;
             test_planner_t t;
             assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
             gmmrrt_problem_t pr = clutter_problem();
@@ -315,6 +308,125 @@ static void test_a_corner_without_a_free_arc_is_flagged(void **state)
         }
         test_planner_free(&t);
     }
+}
+
+/* A right-angle corner rounded by the arc of R = 0.6 m round a disc c = 2.3 mm inside it: a
+ * circle obstacle concentric with the arc, one nearest the arc's middle, and a person at the
+ * arc's centre. The arc's own chords of at most 5 cm cut inside it by at most
+ * (0.05)^2 / 8R = 0.52 mm and stay outside the 1 mm edge margin; chords 0.1 m apart (the default
+ * waypoint spacing) cut inside by up to 2.1 mm and come within 0.2 mm of the disc. The published
+ * chords are what the robot drives: every one must pass the collision world's segment test, and
+ * the corner stays round (no tight turn, the turn bound kept). Failed before: a 0.1 m chord of
+ * the arc was published unchecked. */
+static void test_published_chords_of_an_arc_close_to_its_inside_are_free(void **state)
+{
+    (void)state;
+    const double R = 0.6, c = 0.0023;
+    const double tree_x[] = {-2.0, 0.0, 0.0}, tree_y[] = {0.0, 0.0, -2.0};
+    /* the disc's centre: the arc's centre, or 0.3 m from it towards the corner (nearest the
+     * arc's middle); the third disc is a person */
+    const double inside[3][2] = {{-R, -R}, {-R + 0.3 * M_SQRT1_2, -R + 0.3 * M_SQRT1_2}, {-R, -R}};
+    for (int d = 0; d < 3; ++d) {
+        const double cx = inside[d][0], cy = inside[d][1];
+        /* radius: the arc's nearest point to the disc's centre is c clear of it */
+        const double radius = R - hypot(cx + R, cy + R) - c;
+        gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+        cfg.person_radius_m = radius;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = empty_problem(tree_x[0], tree_y[0], tree_x[2], tree_y[2]);
+        if (d < 2) {
+            pr.obstacles.num_circles = 1;
+            pr.obstacles.circles[0] = (gmmrrt_circle_t){cx, cy, radius};
+        } else {
+            pr.obstacles.num_people = 1;
+            pr.obstacles.people[0] = (gmmrrt_pose_t){cx, cy, 0.0};
+        }
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        assert_int_equal(gmmrrt_planner_seed_path(t.p, tree_x + 1, tree_y + 1, 2), GMMRRT_OK);
+        gmmrrt_drive_options_t opt;
+        gmmrrt_drive_options_default(&opt);
+        opt.min_turn_radius_m = R;
+        opt.shortcut = 0; /* the corner as given (the small disc leaves the chord over it free) */
+        gmmrrt_path_t path;
+        gmmrrt_drive_report_t rep;
+        const gmmrrt_status_t st = gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep);
+        double nearest = INFINITY; /* the published polyline's clearance to the disc */
+        for (int32_t i = 0; i + 1 < path.num_points; ++i) {
+            const double ax = path.x[i], ay = path.y[i], bx = path.x[i + 1], by = path.y[i + 1];
+            const double l2 = (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
+            double u = l2 > 0.0 ? ((cx - ax) * (bx - ax) + (cy - ay) * (by - ay)) / l2 : 0.0;
+            u = u < 0.0 ? 0.0 : u > 1.0 ? 1.0 : u;
+            const double dist = hypot(ax + u * (bx - ax) - cx, ay + u * (by - ay) - cy) - radius;
+            if (dist < nearest)
+                nearest = dist;
+        }
+        printf("disc %d: status %d, %d waypoints, tight %d, nearest chord %.2f mm from the disc\n", d, st,
+               (int)path.num_points, rep.tight_turns, 1e3 * nearest);
+        assert_int_equal(st, GMMRRT_OK);
+        assert_int_equal(rep.tight_turns, 0);
+        assert_int_equal(rep.turns_in_place, 0);
+        assert_chords_free(t.p, &path, 0);
+        assert_true(nearest > GMMRRT_EDGE_MIN_CLEARANCE_M);
+        assert_true(nearest < c); /* the corner is rounded on the arc, not cut wider */
+        assert_true(max_turn_per_m(&path) <= 1.02 / R);
+        assert_true(path.x[path.num_points - 1] == pr.goal_x && path.y[path.num_points - 1] == pr.goal_y);
+        test_planner_free(&t);
+    }
+}
+
+/* The same corner on a path too long for GMMRRT_MAX_WAYPOINTS at a 5 cm spacing: the equally
+ * spaced waypoints are widened to fit (7.7 cm apart, cutting 1.25 mm inside the arc) and come
+ * within the edge margin of a disc 1.9 mm inside the arc; the arc is then published at its own
+ * 5 cm chords and the straight parts are widened instead, within the capacity. */
+static void test_published_chords_of_a_long_path_fit_the_capacity(void **state)
+{
+    (void)state;
+    const double R = 0.6, c = 0.0019;
+    const double tree_x[] = {-6.0, 6.0, 6.0}, tree_y[] = {4.0, 4.0, -4.0};
+    const double cx = 6.0 - R, cy = 4.0 - R, radius = R - c; /* concentric with the arc */
+    gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    cfg.waypoint_spacing_m = 0.05;
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    gmmrrt_problem_t pr = empty_problem(tree_x[0], tree_y[0], tree_x[2], tree_y[2]);
+    pr.obstacles.num_circles = 1;
+    pr.obstacles.circles[0] = (gmmrrt_circle_t){cx, cy, radius};
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    assert_int_equal(gmmrrt_planner_seed_path(t.p, tree_x + 1, tree_y + 1, 2), GMMRRT_OK);
+    gmmrrt_drive_options_t opt;
+    gmmrrt_drive_options_default(&opt);
+    opt.min_turn_radius_m = R;
+    opt.shortcut = 0;
+    gmmrrt_path_t path;
+    gmmrrt_drive_report_t rep;
+    const gmmrrt_status_t st = gmmrrt_planner_drivable_path(t.p, &opt, &path, &rep);
+    double nearest = INFINITY, longest = 0.0;
+    int32_t on_arc = 0; /* waypoints on the arc (within 0.1 mm of its circle, inside its quarter) */
+    for (int32_t i = 0; i < path.num_points; ++i) {
+        if (path.x[i] > cx - 1e-9 && path.y[i] > cy - 1e-9 && fabs(hypot(path.x[i] - cx, path.y[i] - cy) - R) < 1e-4)
+            ++on_arc;
+        if (i + 1 == path.num_points)
+            break;
+        const double ax = path.x[i], ay = path.y[i], bx = path.x[i + 1], by = path.y[i + 1];
+        const double l2 = (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
+        double u = l2 > 0.0 ? ((cx - ax) * (bx - ax) + (cy - ay) * (by - ay)) / l2 : 0.0;
+        u = u < 0.0 ? 0.0 : u > 1.0 ? 1.0 : u;
+        nearest = fmin(nearest, hypot(ax + u * (bx - ax) - cx, ay + u * (by - ay) - cy) - radius);
+        longest = fmax(longest, sqrt(l2));
+    }
+    printf("status %d, %d waypoints (%d on the arc), longest chord %.1f cm, nearest chord %.2f mm from the disc\n",
+           st, (int)path.num_points, (int)on_arc, 1e2 * longest, 1e3 * nearest);
+    assert_int_equal(st, GMMRRT_OK);
+    assert_int_equal(rep.tight_turns, 0);
+    assert_true(path.num_points <= GMMRRT_MAX_WAYPOINTS);
+    assert_true(longest > cfg.waypoint_spacing_m); /* the straight parts were widened to fit */
+    assert_true(on_arc >= (int32_t)ceil(0.5 * M_PI * R / 0.05) + 1); /* the arc at its own 5 cm chords */
+    assert_chords_free(t.p, &path, 0);
+    assert_true(nearest > GMMRRT_EDGE_MIN_CLEARANCE_M && nearest < c);
+    assert_true(max_turn_per_m(&path) <= 1.02 / R);
+    assert_true(path.x[path.num_points - 1] == pr.goal_x && path.y[path.num_points - 1] == pr.goal_y);
+    test_planner_free(&t);
 }
 
 static void test_arrival_yaw_is_honoured_and_options_checked(void **state)
@@ -651,6 +763,8 @@ int main(void)
         cmocka_unit_test(test_approach_from_behind_arrives_facing),
         cmocka_unit_test(test_arrival_leg_keeps_the_tree_path_side_of_the_person),
         cmocka_unit_test(test_a_corner_without_a_free_arc_is_flagged),
+        cmocka_unit_test(test_published_chords_of_an_arc_close_to_its_inside_are_free),
+        cmocka_unit_test(test_published_chords_of_a_long_path_fit_the_capacity),
         cmocka_unit_test(test_arrival_yaw_is_honoured_and_options_checked),
         cmocka_unit_test(test_person_stepping_into_the_disc_is_escaped),
         cmocka_unit_test(test_escape_ends_with_a_drivable_arc_when_one_is_free),
