@@ -345,7 +345,7 @@ class LogReader {
             const size_t len = static_cast<size_t>(ev->datalen);
             char err[160] = "";
             if (channel == kChannelRobotPose) {
-                gmmrrt_pose2d_t pose;
+                gmmrrt_pose2d_t pose{};  // frame NULL until decoded: released below either way
                 if (gmmrrt_msg_decode_pose2d(ev->data, len, &pose, err, sizeof err) != GMMRRT_MSG_OK) {
                     warn_.Add(Where(no, offset, kChannelRobotPose) + ": " + err + "; skipped");
                 } else if (pose.utime <= last_pose) {
@@ -356,8 +356,9 @@ class LogReader {
                     last_pose = pose.utime;
                     rec->robot.push_back({since_t0(pose.utime), pose.x, pose.y});
                 }
+                gmmrrt_msg_release_pose2d(&pose);
             } else if (channel == kChannelPeople) {
-                gmmrrt_people_t people;
+                gmmrrt_people_t people{};  // frame NULL until decoded: released below either way
                 if (gmmrrt_msg_decode_people(ev->data, len, &people, err, sizeof err) != GMMRRT_MSG_OK) {
                     warn_.Add(Where(no, offset, kChannelPeople) + ": " + err + "; skipped");
                 } else if (people.utime <= last_people) {
@@ -372,6 +373,7 @@ class LogReader {
                         rec->people[p.id].push_back({t, p.x, p.y, p.yaw});
                     }
                 }
+                gmmrrt_msg_release_people(&people);
             }
             return true;
         });

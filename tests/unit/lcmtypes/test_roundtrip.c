@@ -189,7 +189,9 @@ static void fill_grid(gmmrrt_occupancy_grid_t *m, int32_t w, int32_t h)
     m->origin_yaw = 0.1;
     m->width = w;
     m->height = h;
-    m->num_cells = w * h;
+    /* Sides whose product overflows 32 bits are a case of their own: the count then wraps
+     * (computed in 64 bits, then narrowed) and the decoder must judge the sides, not it. */
+    m->num_cells = (int32_t)(uint32_t)((uint64_t)(uint32_t)w * (uint64_t)(uint32_t)h);
     for (int i = 0; i < GMMRRT_OCCUPANCY_GRID_T_MAX_CELLS; ++i)
         m->data[i] = (int8_t)(i % 102 - 1); /* -1, 0 .. 100 */
 }
