@@ -799,6 +799,7 @@ static void test_nav_goal_command_id_side_and_yaw_tolerance_rules(void **state)
         int n_ = gmmrrt_##type##_encode(g_buf, 0, BUF_CAP, (msg));                                  \
         g_buf[16] = 0x7f; g_buf[17] = g_buf[18] = g_buf[19] = 0xff; /* length 2^31 - 1 */           \
         __typeof__(*(msg)) o_;                                                                      \
+        memset(&o_, 0, sizeof o_); /* a refused decode must leave no frame allocated */             \
         assert_int_equal(fn(g_buf, 40, &o_, g_err, sizeof g_err), GMMRRT_MSG_DECODE_FAILED);         \
         assert_int_equal(fn(g_buf, (size_t)n_, &o_, g_err, sizeof g_err), GMMRRT_MSG_DECODE_FAILED); \
         assert_null(o_.frame == NULL ? NULL : "held");                                              \
