@@ -8,6 +8,7 @@
 #include "gmmrrt/config.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "error_text.h"
 #include "gmmrrt/config_keys.h"
@@ -20,6 +21,7 @@ void gmmrrt_planner_config_default(gmmrrt_planner_config_t *cfg)
 {
     if (!cfg)
         return;
+    memset(cfg, 0, sizeof *cfg); /* every byte known, padding included: configurations compare bytewise */
     cfg->planner = GMMRRT_PLANNER_GMM_RRT_STAR;
     cfg->seed = 1;
     cfg->max_nodes = GMMRRT_DEFAULT_MAX_NODES;
