@@ -368,95 +368,32 @@ gmmrrt_msg_result_t gmmrrt_msg_decode_planar_scan(const void *buf, size_t len, g
     return GMMRRT_MSG_OK;
 }
 
-gmmrrt_msg_result_t gmmrrt_msg_decode_pose2d(const void *buf, size_t len, gmmrrt_pose2d_t *out, char *err,
-                                             size_t errcap)
-{
-    DECODE_WITH_FRAME_OR_REJECT(pose2d_t, buf, len, out, err, errcap);
-    const gmmrrt_msg_result_t r = validate_pose2d(out, err, errcap);
-    if (r != GMMRRT_MSG_OK)
-        gmmrrt_msg_release_pose2d(out);
-    return r;
-}
+/* A framed type's decoder and release (msg_decode.h): the frame judged on the wire, the type's
+ * validate_<name>, and the frame string freed again when the message is refused or released. */
+#define FRAMED_DECODER(name)                                                                            \
+    gmmrrt_msg_result_t gmmrrt_msg_decode_##name(const void *buf, size_t len, gmmrrt_##name##_t *out, char *err, \
+                                                 size_t errcap)                                         \
+    {                                                                                                   \
+        DECODE_WITH_FRAME_OR_REJECT(name##_t, buf, len, out, err, errcap);                              \
+        const gmmrrt_msg_result_t r = validate_##name(out, err, errcap);                                \
+        if (r != GMMRRT_MSG_OK)                                                                         \
+            gmmrrt_msg_release_##name(out);                                                             \
+        return r;                                                                                       \
+    }                                                                                                   \
+                                                                                                        \
+    void gmmrrt_msg_release_##name(gmmrrt_##name##_t *m)                                                \
+    {                                                                                                   \
+        if (m == NULL)                                                                                  \
+            return;                                                                                     \
+        free(m->frame);                                                                                 \
+        m->frame = NULL;                                                                                \
+    }
 
-void gmmrrt_msg_release_pose2d(gmmrrt_pose2d_t *m)
-{
-    if (m == NULL)
-        return;
-    free(m->frame);
-    m->frame = NULL;
-}
-
-gmmrrt_msg_result_t gmmrrt_msg_decode_people(const void *buf, size_t len, gmmrrt_people_t *out, char *err,
-                                             size_t errcap)
-{
-    DECODE_WITH_FRAME_OR_REJECT(people_t, buf, len, out, err, errcap);
-    const gmmrrt_msg_result_t r = validate_people(out, err, errcap);
-    if (r != GMMRRT_MSG_OK)
-        gmmrrt_msg_release_people(out);
-    return r;
-}
-
-void gmmrrt_msg_release_people(gmmrrt_people_t *m)
-{
-    if (m == NULL)
-        return;
-    free(m->frame);
-    m->frame = NULL;
-}
-
-gmmrrt_msg_result_t gmmrrt_msg_decode_nav_goal(const void *buf, size_t len, gmmrrt_nav_goal_t *out, char *err,
-                                               size_t errcap)
-{
-    DECODE_WITH_FRAME_OR_REJECT(nav_goal_t, buf, len, out, err, errcap);
-    const gmmrrt_msg_result_t r = validate_nav_goal(out, err, errcap);
-    if (r != GMMRRT_MSG_OK)
-        gmmrrt_msg_release_nav_goal(out);
-    return r;
-}
-
-void gmmrrt_msg_release_nav_goal(gmmrrt_nav_goal_t *m)
-{
-    if (m == NULL)
-        return;
-    free(m->frame);
-    m->frame = NULL;
-}
-
-gmmrrt_msg_result_t gmmrrt_msg_decode_obstacles(const void *buf, size_t len, gmmrrt_obstacles_t *out, char *err,
-                                                size_t errcap)
-{
-    DECODE_WITH_FRAME_OR_REJECT(obstacles_t, buf, len, out, err, errcap);
-    const gmmrrt_msg_result_t r = validate_obstacles(out, err, errcap);
-    if (r != GMMRRT_MSG_OK)
-        gmmrrt_msg_release_obstacles(out);
-    return r;
-}
-
-void gmmrrt_msg_release_obstacles(gmmrrt_obstacles_t *m)
-{
-    if (m == NULL)
-        return;
-    free(m->frame);
-    m->frame = NULL;
-}
-
-gmmrrt_msg_result_t gmmrrt_msg_decode_waypoints(const void *buf, size_t len, gmmrrt_waypoints_t *out, char *err,
-                                                size_t errcap)
-{
-    DECODE_WITH_FRAME_OR_REJECT(waypoints_t, buf, len, out, err, errcap);
-    const gmmrrt_msg_result_t r = validate_waypoints(out, err, errcap);
-    if (r != GMMRRT_MSG_OK)
-        gmmrrt_msg_release_waypoints(out);
-    return r;
-}
-
-void gmmrrt_msg_release_waypoints(gmmrrt_waypoints_t *m)
-{
-    if (m == NULL)
-        return;
-    free(m->frame);
-    m->frame = NULL;
-}
+FRAMED_DECODER(pose2d)
+FRAMED_DECODER(people)
+FRAMED_DECODER(nav_goal)
+FRAMED_DECODER(obstacles)
+FRAMED_DECODER(waypoints)
 
 static gmmrrt_msg_result_t validate_occupancy_grid(const gmmrrt_occupancy_grid_t *out, char *err, size_t errcap)
 {
@@ -486,20 +423,4 @@ static gmmrrt_msg_result_t validate_occupancy_grid(const gmmrrt_occupancy_grid_t
     return GMMRRT_MSG_OK;
 }
 
-gmmrrt_msg_result_t gmmrrt_msg_decode_occupancy_grid(const void *buf, size_t len, gmmrrt_occupancy_grid_t *out,
-                                                     char *err, size_t errcap)
-{
-    DECODE_WITH_FRAME_OR_REJECT(occupancy_grid_t, buf, len, out, err, errcap);
-    const gmmrrt_msg_result_t r = validate_occupancy_grid(out, err, errcap);
-    if (r != GMMRRT_MSG_OK)
-        gmmrrt_msg_release_occupancy_grid(out);
-    return r;
-}
-
-void gmmrrt_msg_release_occupancy_grid(gmmrrt_occupancy_grid_t *m)
-{
-    if (m == NULL)
-        return;
-    free(m->frame);
-    m->frame = NULL;
-}
+FRAMED_DECODER(occupancy_grid)
