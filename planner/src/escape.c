@@ -7,9 +7,11 @@
  *
  * Clearance here is the exact signed distance from the robot disc to each circle, box and
  * person (negative = penetration), written out analytically: FCL's penetration query allocates,
- * and set_problem must not (tests/unit/planner/test_alloc.c). Walking people count where they are
- * now (t = 0). "Free" is the planner's own test (gmmrrt_world_point_free plus the walking people),
- * so the exit is a valid tree root under the same clearance rule as every node.
+ * and set_problem must not (tests/unit/planner/test_alloc.c); and to the map's blocked cells, as
+ * the collision world measures it (gmmrrt_world_map_clearance), so a ray never runs into or
+ * through a wall of the map or of the scans. Walking people count where they are now (t = 0).
+ * "Free" is the planner's own test (gmmrrt_world_point_free plus the walking people), so the exit
+ * is a valid tree root under the same clearance rule as every node.
  *
  * Search: GMMRRT_ESCAPE_DIRECTIONS rays from the start, marched in GMMRRT_ESCAPE_STEP_M steps
  * up to GMMRRT_ESCAPE_MAX_M; a ray is usable while the clearance does not fall (or is already
@@ -27,6 +29,12 @@
 #define GMMRRT_ESCAPE_MAX_M 5.0 /* deeper than this is a map or tracking error, not a step */
 /* Past the first free point, so the root's first edges keep the edge margin of collision.c. */
 #define GMMRRT_ESCAPE_MARGIN_M 0.03
+/* How far past the robot's radius the map's clearance is measured exactly (above it the value is
+ * capped, which decides nothing: a ray only stops on a clearance <= 0, and an exit this far from
+ * the map keeps its margin). Bounds the brute-force cells per probe. */
+#define GMMRRT_ESCAPE_MAP_REACH_M 0.1
+/* The kind code of the map in gmmrrt_escape_signed_clearance's `what`. */
+#define GMMRRT_ESCAPE_MAP 3000
 
 /* Signed distance from point (x, y) to an oriented box (negative inside). */
 static double box_signed_distance(const gmmrrt_box_t *b, double x, double y)
@@ -50,7 +58,7 @@ double gmmrrt_escape_signed_clearance(const struct gmmrrt_planner *p, const gmmr
         const double d = hypot(x - o->circles[k].x, y - o->circles[k].y) - o->circles[k].radius_m - r;
         if (d < best) {
             best = d;
-            kind = k; /* circles 0.., boxes 1000.., people 2000.. */
+            kind = k; /* circles 0.., boxes 1000.., people 2000.., the map 3000 */
         }
     }
     for (int32_t k = 0; k < o->num_boxes; ++k) {
@@ -68,6 +76,11 @@ double gmmrrt_escape_signed_clearance(const struct gmmrrt_planner *p, const gmmr
                 kind = 2000 + k;
             }
         }
+    const double dm = gmmrrt_world_map_clearance(p->world, x, y, r + GMMRRT_ESCAPE_MAP_REACH_M);
+    if (dm < best) { /* +inf without a map: never */
+        best = dm;
+        kind = GMMRRT_ESCAPE_MAP;
+    }
     if (what)
         *what = kind;
     return best;
@@ -75,7 +88,9 @@ double gmmrrt_escape_signed_clearance(const struct gmmrrt_planner *p, const gmmr
 
 static void name_shape(char *buf, size_t cap, int32_t what)
 {
-    if (what >= 2000)
+    if (what == GMMRRT_ESCAPE_MAP)
+        snprintf(buf, cap, "the map");
+    else if (what >= 2000)
         snprintf(buf, cap, "person %d", (int)(what - 2000));
     else if (what >= 1000)
         snprintf(buf, cap, "box obstacle %d", (int)(what - 1000));

@@ -299,7 +299,7 @@ static void test_bad_problems_get_their_status(void **state)
     test_planner_t t;
     assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
     gmmrrt_problem_t pr = disc_problem();
-    pr.start_x = 0.5; /* inside the disc: escapes (test_escape.c has the details) */
+    pr.start_x = 0.5; /* inside the disc: escapes (test_drivable.c and test_escape.c have the details) */
     assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ESCAPE);
     pr = disc_problem();
     pr.obstacles.circles[0].radius_m = 6.0; /* 6.2 m to the nearest free point: frozen */
