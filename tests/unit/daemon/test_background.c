@@ -4,7 +4,8 @@
  * loaded with it (models.c) and passed with the chosen model as problem.background_model
  * (cycle.c). Cases: a daemon with an avoid model and its background plans (and the planner
  * would refuse the same problem without the background, so the plan did use it); a file
- * without a background is refused at start-up, and loads under task_cost = paper; on reload a
+ * without a background is refused at start-up, and loads under task_cost = paper or under RRT*
+ * (which never reads the task cost, so needs no background); on reload a
  * file without one is refused (REJECT_MODEL_RELOAD) and the old model and background both stay,
  * while a good file replaces both; the models in use are checked against new planner settings
  * (what a reload does before taking them); the approach model set brings each direction's own
@@ -73,17 +74,20 @@ static void write_model(const char *name, int32_t task, int32_t k, double mean_d
         fail_msg("cannot write %s: %s", path, err);
 }
 
-/* The planner of the cases: GMM-RRT* with the given task cost, in a block of its own size. */
-static void use_planner(gmmrrtd_t *d, int32_t task_cost)
+/* The planner of the cases: `planner` with the given task cost, in a block of its own size. */
+static void use_planner_of(gmmrrtd_t *d, int32_t planner, int32_t task_cost)
 {
     free(d->mem);
-    d->set.cfg.planner = GMMRRT_PLANNER_GMM_RRT_STAR;
+    d->set.cfg.planner = planner;
     d->set.cfg.task_cost = task_cost;
     d->mem_size = gmmrrt_planner_mem_size(&d->set.cfg);
     d->mem = aligned_alloc(64, (d->mem_size + 63u) / 64u * 64u);
     assert_non_null(d->mem);
     assert_int_equal(gmmrrt_planner_init(&d->planner, d->mem, d->mem_size, &d->set.cfg), GMMRRT_OK);
 }
+
+/* GMM-RRT*, the planner that carries the task cost. */
+static void use_planner(gmmrrtd_t *d, int32_t task_cost) { use_planner_of(d, GMMRRT_PLANNER_GMM_RRT_STAR, task_cost); }
 
 static int setup(void **state)
 {
@@ -212,6 +216,29 @@ static void test_a_file_without_background_is_refused_at_start_up(void **state)
     assert_null(d->problem.background_model);
 }
 
+/* RRT* costs length only and never reads the background: under task_cost = background a file
+ * without one loads and plans (the core's rule, gmmrrt_planner_needs_background); the new
+ * settings GMM-RRT* + background are then refused against it, the background named. */
+static void test_a_file_without_background_serves_a_planner_without_the_task_cost(void **state)
+{
+    gmmrrtd_t *d = *state;
+    use_planner_of(d, GMMRRT_PLANNER_RRT_STAR, GMMRRT_TASK_COST_BACKGROUND);
+    write_model("plain.gmm", GMMRRT_TASK_AVOID, 3, 1.5, 0, 0.0, d->set.model_avoid, sizeof d->set.model_avoid);
+    assert_int_equal(gmmrrtd_models_load(d, 0), 0);
+    assert_true(d->have_avoid);
+    assert_false(d->has_bg_avoid);
+    char why[256] = "";
+    assert_int_equal(gmmrrtd_models_fit_config(d, &d->set.cfg, why, sizeof why), 1);
+    plan_avoid(d);
+    assert_int_equal(d->status.rejected[ST(REJECT_SETUP)], 0);
+    assert_true(d->plan_msg.num_waypoints >= 2);
+    assert_null(d->problem.background_model);
+    gmmrrt_planner_config_t cfg = d->set.cfg;
+    cfg.planner = GMMRRT_PLANNER_GMM_RRT_STAR;
+    assert_int_equal(gmmrrtd_models_fit_config(d, &cfg, why, sizeof why), 0);
+    assert_non_null(strstr(why, "avoid model has no background"));
+}
+
 static void test_reload_replaces_model_and_background_together_or_not_at_all(void **state)
 {
     gmmrrtd_t *d = *state;
@@ -310,6 +337,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_a_daemon_with_the_background_cost_plans_with_the_files_background,
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(test_a_file_without_background_is_refused_at_start_up, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_a_file_without_background_serves_a_planner_without_the_task_cost, setup,
+                                        teardown),
         cmocka_unit_test_setup_teardown(test_reload_replaces_model_and_background_together_or_not_at_all, setup,
                                         teardown),
         cmocka_unit_test_setup_teardown(test_the_models_in_use_are_checked_against_new_planner_settings, setup,
