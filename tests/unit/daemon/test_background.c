@@ -30,11 +30,10 @@
 #include "gmmrrt/model_file.h"
 
 #define MS ((int64_t)1000)
-#define T0 ((int64_t)1700000000000000)
+#define T0 DAEMON_FIXTURE_T0
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
 
 static gmmrrtd_t g_d;
-static char k_map[] = "map";
 static int64_t g_t; /* the log time of the last message, us after T0 */
 static char g_dir[256];
 
@@ -111,16 +110,8 @@ static int teardown(void **state)
 
 static void send_pose(gmmrrtd_t *d, double x, double y)
 {
-    gmmrrt_pose2d_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + g_t;
-    m.frame = k_map;
-    m.x = x;
-    m.y = y;
-    uint8_t buf[256];
-    const int n = gmmrrt_pose2d_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_POSE, g_t, buf, (size_t)n);
+    const gmmrrt_pose2d_t m = daemon_fixture_pose(T0 + g_t, x, y, 0.0);
+    daemon_fixture_send_pose(d, g_t, &m);
 }
 
 /* A pose every 50 ms for `ms`: one cycle per 100 ms of log time (dispatch.c). */
@@ -134,38 +125,13 @@ static void hold_pose(gmmrrtd_t *d, double x, double y, int64_t ms)
 
 static void send_person(gmmrrtd_t *d, double x, double y, double yaw)
 {
-    static gmmrrt_people_t m;
-    static uint8_t buf[16384];
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + g_t;
-    m.frame = k_map;
-    m.num_people = 1;
-    m.people[0].id = 1;
-    m.people[0].x = x;
-    m.people[0].y = y;
-    m.people[0].yaw = yaw;
-    const int n = gmmrrt_people_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_PEOPLE, g_t, buf, (size_t)n);
+    daemon_fixture_send_person(d, g_t, T0 + g_t, x, y, yaw);
 }
 
 static void send_goal(gmmrrtd_t *d, int64_t id, double x, double y, int8_t task, int32_t target)
 {
-    gmmrrt_nav_goal_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + g_t;
-    m.frame = k_map;
-    m.goal_id = id;
-    m.command = GMMRRT_NAV_GOAL_T_COMMAND_NEW;
-    m.x = x;
-    m.y = y;
-    m.tolerance_m = 0.3;
-    m.task = task;
-    m.target_person_id = target;
-    uint8_t buf[256];
-    const int n = gmmrrt_nav_goal_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_GOAL, g_t, buf, (size_t)n);
+    const gmmrrt_nav_goal_t m = daemon_fixture_goal(T0 + g_t, id, x, y, task, target);
+    daemon_fixture_send_goal(d, g_t, &m);
 }
 
 /* Avoid a person standing off the straight line from (0, 0) to (6, 0). */
