@@ -7,6 +7,7 @@
  * through a wall), the exit is free and leavable by the planner's own tests, the clearance to
  * the walls never falls along the straight motion to the exit while the robot is in contact,
  * the exit is on the start's side of every wall, and the search then finds a path to the goal.
+ * The walls are the map's occupied cells, or the cells a range scan marked.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -202,12 +203,52 @@ static void test_start_against_or_inside_a_wall_leaves_on_its_side(void **state)
     free(m.raster_mem);
 }
 
+/* A wall that only a range scan marked (the map itself is free): the sensor at the origin sees a
+ * wall at x = 0.5 across +-0.5 rad (the end cells straddle x = 0.5), and the robot at (0.3, 0)
+ * touches the marked cells. It leaves on the sensor's side, the marks named as the map. The
+ * oracle's walls are the marked cells. */
+static int before_the_marks(double x, double y) { return (void)y, x < 0.5; }
+
+static void test_start_against_a_wall_of_scan_marks_leaves_on_its_side(void **state)
+{
+    (void)state;
+    map_t m;
+    make_map(&m, NULL, 0);
+    static float ranges[401];
+    gmmrrt_scan_t scan = {-0.5, 1.0 / 400.0, 0.05, 8.0, 401, ranges};
+    for (int k = 0; k < 401; ++k)
+        ranges[k] = (float)(0.5 / cos(scan.rad0 + k * scan.radstep));
+    const int64_t utime = 1700000000000000;
+    int32_t marked = 0;
+    assert_int_equal(gmmrrt_raster_apply_scan(&m.raster, &scan, 0.0, 0.0, 0.0, utime, &marked, NULL), GMMRRT_OK);
+    assert_int_equal(gmmrrt_raster_update_distance(&m.raster, utime, 1000.0), GMMRRT_OK);
+    static wall_t cells[64];
+    int32_t n = 0;
+    for (int32_t j = 0; j < HEIGHT; ++j)
+        for (int32_t i = 0; i < WIDTH; ++i)
+            if (m.raster.marks[j * WIDTH + i] != 0) {
+                assert_true(n < 64);
+                const double x0 = ORIGIN_X + i * RES_M, y0 = ORIGIN_Y + j * RES_M;
+                cells[n++] = (wall_t){x0, y0, x0 + RES_M, y0 + RES_M};
+            }
+    assert_true(n >= 10 && n <= marked); /* a wall about 0.55 m long; beams share end cells */
+    m.walls = cells;
+    m.num_walls = n;
+    const gmmrrt_problem_t pr = map_problem(&m, 0.3, 0.0, -2.0, 0.0);
+    assert_true(wall_clearance(&m, 0.3, 0.0) < 0.0);
+    double ex, ey;
+    assert_escapes_on_its_side(&m, &pr, before_the_marks, &ex, &ey);
+    assert_true(ex < 0.3);
+    free(m.raster_mem);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_start_in_a_narrow_corridor_leaves_by_its_open_end),
         cmocka_unit_test(test_start_in_a_closed_pocket_freezes_naming_the_map),
         cmocka_unit_test(test_start_against_or_inside_a_wall_leaves_on_its_side),
+        cmocka_unit_test(test_start_against_a_wall_of_scan_marks_leaves_on_its_side),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
