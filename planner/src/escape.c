@@ -49,7 +49,7 @@ static double box_signed_distance(const gmmrrt_box_t *b, double x, double y)
 }
 
 double gmmrrt_escape_signed_clearance(const struct gmmrrt_planner *p, const gmmrrt_obstacle_set_t *o, double x,
-                                      double y, int32_t *what)
+                                      double y, double bound_m, int32_t *what)
 {
     const double r = p->cfg.robot_radius_m;
     double best = INFINITY;
@@ -76,10 +76,17 @@ double gmmrrt_escape_signed_clearance(const struct gmmrrt_planner *p, const gmmr
                 kind = 2000 + k;
             }
         }
-    const double dm = gmmrrt_world_map_clearance(p->world, x, y, r + GMMRRT_ESCAPE_MAP_REACH_M);
-    if (dm < best) { /* +inf without a map: never */
-        best = dm;
-        kind = GMMRRT_ESCAPE_MAP;
+    /* The map matters only below the shapes' clearance and the caller's bound: its brute-force
+     * search looks no farther (inside a wall, a few cells instead of a disc of them). A map value
+     * at or beyond that reach comes back capped there and cannot be the minimum; a reach <= 0
+     * (deep in a shape: the map is never below -r) skips it. */
+    const double reach = fmin(r + GMMRRT_ESCAPE_MAP_REACH_M, fmin(best, bound_m) + r + 1e-9);
+    if (reach > 0.0) {
+        const double dm = gmmrrt_world_map_clearance(p->world, x, y, reach);
+        if (dm < best) { /* +inf without a map: never */
+            best = dm;
+            kind = GMMRRT_ESCAPE_MAP;
+        }
     }
     if (what)
         *what = kind;
@@ -107,7 +114,7 @@ gmmrrt_status_t gmmrrt_escape_find(struct gmmrrt_planner *p, const gmmrrt_proble
     const gmmrrt_obstacle_set_t *o = &pr->obstacles;
     const double sx = pr->start_x, sy = pr->start_y;
     int32_t what;
-    const double c0 = gmmrrt_escape_signed_clearance(p, o, sx, sy, &what);
+    const double c0 = gmmrrt_escape_signed_clearance(p, o, sx, sy, INFINITY, &what);
     char shape[48];
     name_shape(shape, sizeof shape, what);
     e->start_x = sx;
@@ -123,14 +130,17 @@ gmmrrt_status_t gmmrrt_escape_find(struct gmmrrt_planner *p, const gmmrrt_proble
         for (double s = GMMRRT_ESCAPE_STEP_M; s <= GMMRRT_ESCAPE_MAX_M && s + GMMRRT_ESCAPE_MARGIN_M <= best_len + 1e-9;
              s += GMMRRT_ESCAPE_STEP_M) {
             const double x = sx + s * ux, y = sy + s * uy;
-            const double c = gmmrrt_escape_signed_clearance(p, o, x, y, NULL);
+            /* Clearance is 1-Lipschitz: a probe is at most the last one plus the distance moved. */
+            const double c = gmmrrt_escape_signed_clearance(p, o, x, y, prev + GMMRRT_ESCAPE_STEP_M, NULL);
             if (c < prev - 1e-12 && c <= 0.0)
                 break; /* this way the robot would go deeper into something */
             prev = c;
             const double xm = sx + (s + GMMRRT_ESCAPE_MARGIN_M) * ux, ym = sy + (s + GMMRRT_ESCAPE_MARGIN_M) * uy;
-            const double cm = gmmrrt_escape_signed_clearance(p, o, xm, ym, NULL);
-            if (gmmrrt_planner_point_free(p, x, y) && gmmrrt_planner_point_free(p, xm, ym) &&
-                gmmrrt_world_point_leavable(p->world, xm, ym) && cm >= c) {
+            if (!gmmrrt_planner_point_free(p, x, y) || !gmmrrt_planner_point_free(p, xm, ym) ||
+                !gmmrrt_world_point_leavable(p->world, xm, ym))
+                continue;
+            const double cm = gmmrrt_escape_signed_clearance(p, o, xm, ym, c + GMMRRT_ESCAPE_MARGIN_M, NULL);
+            if (cm >= c) {
                 const double len = s + GMMRRT_ESCAPE_MARGIN_M;
                 if (len < best_len - 1e-9 || cm > best_gain) {
                     best_len = len;
