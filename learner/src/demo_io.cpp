@@ -28,6 +28,7 @@
 
 #include "gmmrrt/model.h"
 #include "gmmrrt/msg_decode.h"
+#include "gmmrrt_learner/labels.hpp"
 
 namespace gmmrrt {
 namespace learn {
@@ -517,38 +518,6 @@ bool ParseFiniteDouble(const std::string& s, double* out) {
     return true;
 }
 
-// The label strings of the episode CSV (../shared/data/real/README.md), read and written here.
-struct Label {
-    const char* text;
-    int value;
-};
-const Label kTaskLabels[] = {{"avoid", GMMRRT_TASK_AVOID}, {"approach", GMMRRT_TASK_APPROACH}};
-const Label kHomotopyLabels[] = {
-    {"left", GMMRRT_HOMOTOPY_LEFT}, {"right", GMMRRT_HOMOTOPY_RIGHT}, {"frontal", GMMRRT_HOMOTOPY_FRONTAL}};
-
-template <size_t N>
-bool ParseLabel(const Label (&labels)[N], const std::string& s, int* out) {
-    for (const Label& l : labels) {
-        if (s == l.text) {
-            *out = l.value;
-            return true;
-        }
-    }
-    return false;
-}
-
-template <size_t N>
-const char* LabelText(const Label (&labels)[N], int value) {
-    for (const Label& l : labels)
-        if (l.value == value)
-            return l.text;
-    return nullptr;
-}
-
-bool ParseTask(const std::string& s, int* out) { return ParseLabel(kTaskLabels, s, out); }
-
-bool ParseHomotopy(const std::string& s, int* out) { return ParseLabel(kHomotopyLabels, s, out); }
-
 void StripCr(std::string* line) {
     if (!line->empty() && line->back() == '\r')
         line->pop_back();
@@ -629,11 +598,13 @@ ReadResult ReadEpisodeCsv(const std::string& path, std::vector<Episode>* out) {
         if (f[0].empty())
             return Fail(where + ": empty episode_id");
         int task = 0, homotopy = 0;
-        if (!ParseTask(f[1], &task))
-            return Fail(where + ": unknown task '" + f[1] + "' (expected avoid or approach)");
+        const Status task_ok = ParseTask(f[1], &task);
+        if (!task_ok.ok())
+            return Fail(where + ": " + task_ok.message);
         // An empty homotopy is an unlabelled episode (homotopy 0, as DEMO_INFO's HOMOTOPY_UNKNOWN):
-        // `fit --homotopy all` learns from it; a fit of one side skips it.
-        if (!f[2].empty() && !ParseHomotopy(f[2], &homotopy))
+        // `fit --homotopy all` learns from it; a fit of one side skips it. "all" is a selection,
+        // not a label: an episode passes on one side.
+        if (!f[2].empty() && (!ParseHomotopy(f[2], &homotopy).ok() || homotopy == GMMRRT_HOMOTOPY_ALL))
             return Fail(where + ": unknown homotopy '" + f[2] + "' (expected left, right, frontal or empty)");
         double v[6];
         for (size_t c = 3; c < kCsvColumns; ++c) {
@@ -702,11 +673,14 @@ ReadResult WriteEpisodeCsv(const std::string& path, const std::vector<Episode>& 
         text << ',' << num;
     };
     for (const Episode& e : episodes) {
-        const char* task = LabelText(kTaskLabels, e.task);
-        const char* homotopy = LabelText(kHomotopyLabels, e.homotopy);
+        // The columns' words are the labels' (labels.hpp): a task, and a side (not "all").
+        const char* task = TaskName(e.task);
+        const char* homotopy = HomotopyName(e.homotopy);
+        int parsed = 0;
         if (e.id.empty() || e.id.find_first_of(",\r\n") != std::string::npos)
             return Fail(path + ": episode id '" + e.id + "' is empty or holds a comma or line break");
-        if (task == nullptr || homotopy == nullptr)
+        if (!ParseTask(task, &parsed).ok() || !ParseHomotopy(homotopy, &parsed).ok() ||
+            e.homotopy == GMMRRT_HOMOTOPY_ALL)
             return Fail(path + ": episode " + e.id + ": task " + std::to_string(e.task) + " / homotopy " +
                         std::to_string(e.homotopy) + " has no label in the episode CSV");
         for (const PoseSample& s : e.samples) {

@@ -11,43 +11,6 @@
 namespace gmmrrt {
 namespace learn {
 
-Status ParseTask(const std::string& name, int* task) {
-  if (name == "avoid") *task = GMMRRT_TASK_AVOID;
-  else if (name == "approach") *task = GMMRRT_TASK_APPROACH;
-  else return Status::Error(StatusCode::kInvalidArgument, "unknown task '" + name + "' (known: avoid, approach)");
-  return Status::Ok();
-}
-
-Status ParseHomotopy(const std::string& name, int* homotopy) {
-  if (name == "all") *homotopy = GMMRRT_HOMOTOPY_ALL;
-  else if (name == "left") *homotopy = GMMRRT_HOMOTOPY_LEFT;
-  else if (name == "right") *homotopy = GMMRRT_HOMOTOPY_RIGHT;
-  else if (name == "frontal") *homotopy = GMMRRT_HOMOTOPY_FRONTAL;
-  else
-    return Status::Error(StatusCode::kInvalidArgument,
-                         "unknown homotopy '" + name + "' (known: all, left, right, frontal)");
-  return Status::Ok();
-}
-
-const char* TaskName(int task) {
-  switch (task) {
-    case GMMRRT_TASK_NONE: return "none";
-    case GMMRRT_TASK_AVOID: return "avoid";
-    case GMMRRT_TASK_APPROACH: return "approach";
-    default: return "unknown";
-  }
-}
-
-const char* HomotopyName(int homotopy) {
-  switch (homotopy) {
-    case GMMRRT_HOMOTOPY_ALL: return "all";
-    case GMMRRT_HOMOTOPY_LEFT: return "left";
-    case GMMRRT_HOMOTOPY_RIGHT: return "right";
-    case GMMRRT_HOMOTOPY_FRONTAL: return "frontal";
-    default: return "unknown";
-  }
-}
-
 const char* KindName(int kind) {
   switch (kind) {
     case GMMRRT_MODEL_KIND_FEATURES: return "features";

@@ -509,14 +509,15 @@ int main(int argc, char **argv)
     } else if (model_has_background && !set_dir) {
         pr.background_model = &background;
     }
-    if (cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND && !pr.background_model)
-        return fail("--task-cost background needs a background model: the --model file has none (fit it with "
-                    "gmmrrt-learn fit --background straight) and no --background-model FILE was given%s%s", "", "");
     if (planner == 0)
         planner = model_path ? GMMRRT_PLANNER_GMM_RRT_STAR : GMMRRT_PLANNER_RRT_STAR;
     if (planner != GMMRRT_PLANNER_RRT_STAR && !model_path)
         return fail("--planner %s needs --model%s", planner == GMMRRT_PLANNER_GMM_RRT ? "gmm-rrt" : "gmm-rrt-star", "");
     cfg.planner = planner;
+    /* Only a planner that carries the task cost reads the background (the core's rule). */
+    if (gmmrrt_planner_needs_background(&cfg) && !pr.background_model)
+        return fail("--task-cost background needs a background model: the --model file has none (fit it with "
+                    "gmmrrt-learn fit --background straight) and no --background-model FILE was given%s%s", "", "");
     if (planner != GMMRRT_PLANNER_RRT_STAR) {
         pr.model = &model;
         if (task == 0)

@@ -15,7 +15,8 @@
  * with its model (gmmrrt_model_load_file_background checks that it matches the model) into
  * scratch storage and replaces the one in use together with its model: never a new model with
  * an old background. With task_cost = background a file without one is refused like a bad file,
- * as gmmrrt-plan refuses it.
+ * as gmmrrt-plan refuses it, when the configured planner uses the task cost
+ * (gmmrrt_planner_needs_background: GMM-RRT*; RRT* and GMM-RRT never read the background).
  */
 #include <stdio.h>
 #include <string.h>
@@ -81,7 +82,7 @@ static int load_one(gmmrrtd_t *d, const char *path, int32_t want_task, gmmrrt_mo
                  path, kind_name(m->kind), (int)m->dim, gmmrrtd_planner_name(d->set.cfg.planner), gmmrrt_status_str(fit));
         return refuse(d, reload, *have, fit, what);
     }
-    if (d->set.cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND && !file_has_bg) {
+    if (gmmrrt_planner_needs_background(&d->set.cfg) && !file_has_bg) {
         snprintf(what, sizeof what,
                  "%s model %s has no background model, which [planner] task_cost = background needs (fit the "
                  "model with gmmrrt-learn fit --background straight, or set task_cost = paper or inward)",
@@ -152,8 +153,8 @@ int gmmrrtd_models_load(gmmrrtd_t *d, int reload)
     return (a == 0 && b == 0 && c == 0) ? 0 : -1;
 }
 
-/* One model in use against cfg: the planner's rule (gmmrrt_planner_model_fits) and, for the
- * background cost, a background of its own. */
+/* One model in use against cfg: the planner's rule (gmmrrt_planner_model_fits) and, when the
+ * planner divides by one (gmmrrt_planner_needs_background), a background of its own. */
 static int fits(const gmmrrt_planner_config_t *cfg, const gmmrrt_model_t *m, int has_bg, const char *name, char *why,
                 size_t cap)
 {
@@ -163,7 +164,7 @@ static int fits(const gmmrrt_planner_config_t *cfg, const gmmrrt_model_t *m, int
                  gmmrrt_status_str(st));
         return 0;
     }
-    if (cfg->task_cost == GMMRRT_TASK_COST_BACKGROUND && !has_bg) {
+    if (gmmrrt_planner_needs_background(cfg) && !has_bg) {
         snprintf(why, cap, "the %s model has no background model, which task_cost = background needs", name);
         return 0;
     }

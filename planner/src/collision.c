@@ -767,11 +767,20 @@ double gmmrrt_world_exact_clearance(const gmmrrt_world_t *world, double x, doubl
         /* Brute force over the blocked cells within reach: an oracle, not for the loop. */
         const double reach = isfinite(best) ? best + r : world->raster->resolution_m * 
             (double)(world->raster->width + world->raster->height) + fabs(x) + fabs(y);
-        const double d = gmmrrt_raster_distance_to_blocked(world->raster, x, y, reach) - r;
+        const double d = gmmrrt_world_map_clearance(world, x, y, reach);
         if (d < best)
             best = d;
     }
     return best;
+}
+
+double gmmrrt_world_map_clearance(const gmmrrt_world_t *world, double x, double y, double cap_m)
+{
+    if (!world || !isfinite(x) || !isfinite(y))
+        return NAN;
+    if (!world->raster)
+        return INFINITY;
+    return gmmrrt_raster_distance_to_blocked(world->raster, x, y, cap_m) - world->robot_radius_m;
 }
 
 /* Internal (declared in planner_internal.h): the planner sets the segment step. */

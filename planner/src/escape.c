@@ -7,9 +7,11 @@
  *
  * Clearance here is the exact signed distance from the robot disc to each circle, box and
  * person (negative = penetration), written out analytically: FCL's penetration query allocates,
- * and set_problem must not (tests/unit/planner/test_alloc.c). Walking people count where they are
- * now (t = 0). "Free" is the planner's own test (gmmrrt_world_point_free plus the walking people),
- * so the exit is a valid tree root under the same clearance rule as every node.
+ * and set_problem must not (tests/unit/planner/test_alloc.c); and to the map's blocked cells, as
+ * the collision world measures it (gmmrrt_world_map_clearance), so a ray never runs into or
+ * through a wall of the map or of the scans. Walking people count where they are now (t = 0).
+ * "Free" is the planner's own test (gmmrrt_world_point_free plus the walking people), so the exit
+ * is a valid tree root under the same clearance rule as every node.
  *
  * Search: GMMRRT_ESCAPE_DIRECTIONS rays from the start, marched in GMMRRT_ESCAPE_STEP_M steps
  * up to GMMRRT_ESCAPE_MAX_M; a ray is usable while the clearance does not fall (or is already
@@ -27,6 +29,12 @@
 #define GMMRRT_ESCAPE_MAX_M 5.0 /* deeper than this is a map or tracking error, not a step */
 /* Past the first free point, so the root's first edges keep the edge margin of collision.c. */
 #define GMMRRT_ESCAPE_MARGIN_M 0.03
+/* How far past the robot's radius the map's clearance is measured exactly (above it the value is
+ * capped, which decides nothing: a ray only stops on a clearance <= 0, and an exit this far from
+ * the map keeps its margin). Bounds the brute-force cells per probe. */
+#define GMMRRT_ESCAPE_MAP_REACH_M 0.1
+/* The kind code of the map in gmmrrt_escape_signed_clearance's `what`. */
+#define GMMRRT_ESCAPE_MAP 3000
 
 /* Signed distance from point (x, y) to an oriented box (negative inside). */
 static double box_signed_distance(const gmmrrt_box_t *b, double x, double y)
@@ -41,7 +49,7 @@ static double box_signed_distance(const gmmrrt_box_t *b, double x, double y)
 }
 
 double gmmrrt_escape_signed_clearance(const struct gmmrrt_planner *p, const gmmrrt_obstacle_set_t *o, double x,
-                                      double y, int32_t *what)
+                                      double y, double bound_m, int32_t *what)
 {
     const double r = p->cfg.robot_radius_m;
     double best = INFINITY;
@@ -50,7 +58,7 @@ double gmmrrt_escape_signed_clearance(const struct gmmrrt_planner *p, const gmmr
         const double d = hypot(x - o->circles[k].x, y - o->circles[k].y) - o->circles[k].radius_m - r;
         if (d < best) {
             best = d;
-            kind = k; /* circles 0.., boxes 1000.., people 2000.. */
+            kind = k; /* circles 0.., boxes 1000.., people 2000.., the map 3000 */
         }
     }
     for (int32_t k = 0; k < o->num_boxes; ++k) {
@@ -68,6 +76,18 @@ double gmmrrt_escape_signed_clearance(const struct gmmrrt_planner *p, const gmmr
                 kind = 2000 + k;
             }
         }
+    /* The map matters only below the shapes' clearance and the caller's bound: its brute-force
+     * search looks no farther (inside a wall, a few cells instead of a disc of them). A map value
+     * at or beyond that reach comes back capped there and cannot be the minimum; a reach <= 0
+     * (deep in a shape: the map is never below -r) skips it. */
+    const double reach = fmin(r + GMMRRT_ESCAPE_MAP_REACH_M, fmin(best, bound_m) + r + 1e-9);
+    if (reach > 0.0) {
+        const double dm = gmmrrt_world_map_clearance(p->world, x, y, reach);
+        if (dm < best) { /* +inf without a map: never */
+            best = dm;
+            kind = GMMRRT_ESCAPE_MAP;
+        }
+    }
     if (what)
         *what = kind;
     return best;
@@ -75,7 +95,9 @@ double gmmrrt_escape_signed_clearance(const struct gmmrrt_planner *p, const gmmr
 
 static void name_shape(char *buf, size_t cap, int32_t what)
 {
-    if (what >= 2000)
+    if (what == GMMRRT_ESCAPE_MAP)
+        snprintf(buf, cap, "the map");
+    else if (what >= 2000)
         snprintf(buf, cap, "person %d", (int)(what - 2000));
     else if (what >= 1000)
         snprintf(buf, cap, "box obstacle %d", (int)(what - 1000));
@@ -92,7 +114,7 @@ gmmrrt_status_t gmmrrt_escape_find(struct gmmrrt_planner *p, const gmmrrt_proble
     const gmmrrt_obstacle_set_t *o = &pr->obstacles;
     const double sx = pr->start_x, sy = pr->start_y;
     int32_t what;
-    const double c0 = gmmrrt_escape_signed_clearance(p, o, sx, sy, &what);
+    const double c0 = gmmrrt_escape_signed_clearance(p, o, sx, sy, INFINITY, &what);
     char shape[48];
     name_shape(shape, sizeof shape, what);
     e->start_x = sx;
@@ -108,14 +130,17 @@ gmmrrt_status_t gmmrrt_escape_find(struct gmmrrt_planner *p, const gmmrrt_proble
         for (double s = GMMRRT_ESCAPE_STEP_M; s <= GMMRRT_ESCAPE_MAX_M && s + GMMRRT_ESCAPE_MARGIN_M <= best_len + 1e-9;
              s += GMMRRT_ESCAPE_STEP_M) {
             const double x = sx + s * ux, y = sy + s * uy;
-            const double c = gmmrrt_escape_signed_clearance(p, o, x, y, NULL);
+            /* Clearance is 1-Lipschitz: a probe is at most the last one plus the distance moved. */
+            const double c = gmmrrt_escape_signed_clearance(p, o, x, y, prev + GMMRRT_ESCAPE_STEP_M, NULL);
             if (c < prev - 1e-12 && c <= 0.0)
                 break; /* this way the robot would go deeper into something */
             prev = c;
             const double xm = sx + (s + GMMRRT_ESCAPE_MARGIN_M) * ux, ym = sy + (s + GMMRRT_ESCAPE_MARGIN_M) * uy;
-            const double cm = gmmrrt_escape_signed_clearance(p, o, xm, ym, NULL);
-            if (gmmrrt_planner_point_free(p, x, y) && gmmrrt_planner_point_free(p, xm, ym) &&
-                gmmrrt_world_point_leavable(p->world, xm, ym) && cm >= c) {
+            if (!gmmrrt_planner_point_free(p, x, y) || !gmmrrt_planner_point_free(p, xm, ym) ||
+                !gmmrrt_world_point_leavable(p->world, xm, ym))
+                continue;
+            const double cm = gmmrrt_escape_signed_clearance(p, o, xm, ym, c + GMMRRT_ESCAPE_MARGIN_M, NULL);
+            if (cm >= c) {
                 const double len = s + GMMRRT_ESCAPE_MARGIN_M;
                 if (len < best_len - 1e-9 || cm > best_gain) {
                     best_len = len;

@@ -196,11 +196,12 @@ static inline int gmmrrt_planner_segment_free(const struct gmmrrt_planner *p, do
            (p->walkers.count == 0 || gmmrrt_walkers_segment_free(&p->walkers, x0, y0, x1, y1));
 }
 
-/* escape.c: exact signed clearance of the robot disc at (x, y) to the set's shapes (what: the
- * nearest, circles 0.., boxes 1000.., people 2000..); and the way out of a start in collision:
+/* escape.c: exact signed clearance of the robot disc at (x, y) to the set's shapes and p's map
+ * (what: the nearest, circles 0.., boxes 1000.., people 2000.., the map 3000); bound_m, a value
+ * the clearance is known not to exceed (INFINITY: none), only narrows the map's search; and the way out of a start in collision:
  * GMMRRT_ESCAPE with the exit point, or GMMRRT_ERR_FROZEN with p->escape.freeze_reason. */
 double gmmrrt_escape_signed_clearance(const struct gmmrrt_planner *p, const gmmrrt_obstacle_set_t *o, double x,
-                                      double y, int32_t *what);
+                                      double y, double bound_m, int32_t *what);
 gmmrrt_status_t gmmrrt_escape_find(struct gmmrrt_planner *p, const gmmrrt_problem_t *pr, double *exit_x,
                                    double *exit_y);
 

@@ -259,7 +259,7 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
         if (fit != GMMRRT_OK)
             return fit;
         const gmmrrt_model_t *bg = pr->background_model;
-        if (p->strategy.task_cost && p->cfg.task_cost == GMMRRT_TASK_COST_BACKGROUND &&
+        if (gmmrrt_planner_needs_background(&p->cfg) &&
             (!bg || bg->kind != GMMRRT_MODEL_KIND_FEATURES || bg->dim != 2 || bg->k < 1 || bg->k > GMMRRT_MAX_K))
             return GMMRRT_ERR_MODEL_MISMATCH;
     }

@@ -29,3 +29,8 @@ gmmrrt_strategy_t gmmrrt_strategy_of(int32_t planner)
     }
     return s;
 }
+
+int gmmrrt_planner_needs_background(const gmmrrt_planner_config_t *cfg)
+{
+    return cfg && gmmrrt_strategy_of(cfg->planner).task_cost && cfg->task_cost == GMMRRT_TASK_COST_BACKGROUND;
+}

@@ -17,18 +17,14 @@
 
 #include "gmmrrt/model.h"
 #include "gmmrrt_learner/demo_io.hpp"
+#include "gmmrrt_learner/labels.hpp"
 #include "gmmrrt_learner/mixture.hpp"
 #include "gmmrrt_learner/status.hpp"
 
 namespace gmmrrt {
 namespace learn {
 
-// "avoid" / "approach" -> gmmrrt_task_t; "all" / "left" / "right" / "frontal" -> gmmrrt_homotopy_t.
-// kInvalidArgument naming the unknown word and the known ones.
-Status ParseTask(const std::string& name, int* task);
-Status ParseHomotopy(const std::string& name, int* homotopy);
-const char* TaskName(int task);          // "none", "avoid", "approach" or "unknown"
-const char* HomotopyName(int homotopy);  // "all", "left", "right", "frontal" or "unknown"
+// ParseTask, ParseHomotopy, TaskName and HomotopyName: labels.hpp.
 const char* KindName(int kind);          // "features", "xy", "generic" or "unknown"
 
 struct EpisodeFilter {

@@ -151,6 +151,17 @@ int gmmrrt_world_segment_free(const gmmrrt_world_t *world, double x0, double y0,
  * the cells within reach); negative when penetrating. Not for the planning loop. */
 double gmmrrt_world_exact_clearance(const gmmrrt_world_t *world, double x, double y);
 
+/* Exact signed clearance (m) of the robot disc at (x, y) from the world's map (raster.h): the
+ * distance to the nearest blocked cell's square (the outside too when unknown cells block) less
+ * the robot's radius, so negative when the disc overlaps the map (-robot radius when (x, y) is in
+ * a blocked cell); +INFINITY without a raster, NAN for a NULL world or a non-finite point.
+ * Values above cap_m - robot radius come back as that (the cells looked at lie within cap_m > 0;
+ * NAN for cap_m <= 0 or NaN). Brute force over those cells and no allocation: for set-up work such as the
+ * escape from a start in collision, not for the planning loop. The same cells block here as in
+ * gmmrrt_world_point_free, which is stricter (it may refuse points up to half a cell's diagonal
+ * farther out). */
+double gmmrrt_world_map_clearance(const gmmrrt_world_t *world, double x, double y, double cap_m);
+
 #ifdef __cplusplus
 }
 #endif

@@ -136,6 +136,13 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
  * Lets a caller refuse a model when it is loaded instead of at every planning call. */
 gmmrrt_status_t gmmrrt_planner_model_fits(const gmmrrt_planner_config_t *cfg, const gmmrrt_model_t *model);
 
+/* 1 when a planner configured by `cfg` divides by a background model (problem.background_model):
+ * cfg->task_cost is GMMRRT_TASK_COST_BACKGROUND and cfg->planner is one whose edge cost carries
+ * the task cost (GMM-RRT*; RRT* and GMM-RRT cost length only and never read it). 0 otherwise,
+ * and for a NULL cfg. The rule set_problem applies; callers refuse a model file without a
+ * background by it when the file is loaded. */
+int gmmrrt_planner_needs_background(const gmmrrt_planner_config_t *cfg);
+
 /* Warm start: inserts a previous path (world x-y points, start first) into the fresh tree
  * where its edges are still free. Call right after set_problem. */
 gmmrrt_status_t gmmrrt_planner_seed_path(gmmrrt_planner_t *p, const double *x, const double *y, int32_t n);

@@ -4,7 +4,8 @@
  * loaded with it (models.c) and passed with the chosen model as problem.background_model
  * (cycle.c). Cases: a daemon with an avoid model and its background plans (and the planner
  * would refuse the same problem without the background, so the plan did use it); a file
- * without a background is refused at start-up, and loads under task_cost = paper; on reload a
+ * without a background is refused at start-up, and loads under task_cost = paper or under RRT*
+ * (which never reads the task cost, so needs no background); on reload a
  * file without one is refused (REJECT_MODEL_RELOAD) and the old model and background both stay,
  * while a good file replaces both; the models in use are checked against new planner settings
  * (what a reload does before taking them); the approach model set brings each direction's own
@@ -29,11 +30,10 @@
 #include "gmmrrt/model_file.h"
 
 #define MS ((int64_t)1000)
-#define T0 ((int64_t)1700000000000000)
+#define T0 DAEMON_FIXTURE_T0
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
 
 static gmmrrtd_t g_d;
-static char k_map[] = "map";
 static int64_t g_t; /* the log time of the last message, us after T0 */
 static char g_dir[256];
 
@@ -73,17 +73,20 @@ static void write_model(const char *name, int32_t task, int32_t k, double mean_d
         fail_msg("cannot write %s: %s", path, err);
 }
 
-/* The planner of the cases: GMM-RRT* with the given task cost, in a block of its own size. */
-static void use_planner(gmmrrtd_t *d, int32_t task_cost)
+/* The planner of the cases: `planner` with the given task cost, in a block of its own size. */
+static void use_planner_of(gmmrrtd_t *d, int32_t planner, int32_t task_cost)
 {
     free(d->mem);
-    d->set.cfg.planner = GMMRRT_PLANNER_GMM_RRT_STAR;
+    d->set.cfg.planner = planner;
     d->set.cfg.task_cost = task_cost;
     d->mem_size = gmmrrt_planner_mem_size(&d->set.cfg);
     d->mem = aligned_alloc(64, (d->mem_size + 63u) / 64u * 64u);
     assert_non_null(d->mem);
     assert_int_equal(gmmrrt_planner_init(&d->planner, d->mem, d->mem_size, &d->set.cfg), GMMRRT_OK);
 }
+
+/* GMM-RRT*, the planner that carries the task cost. */
+static void use_planner(gmmrrtd_t *d, int32_t task_cost) { use_planner_of(d, GMMRRT_PLANNER_GMM_RRT_STAR, task_cost); }
 
 static int setup(void **state)
 {
@@ -107,16 +110,8 @@ static int teardown(void **state)
 
 static void send_pose(gmmrrtd_t *d, double x, double y)
 {
-    gmmrrt_pose2d_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + g_t;
-    m.frame = k_map;
-    m.x = x;
-    m.y = y;
-    uint8_t buf[256];
-    const int n = gmmrrt_pose2d_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_POSE, g_t, buf, (size_t)n);
+    const gmmrrt_pose2d_t m = daemon_fixture_pose(T0 + g_t, x, y, 0.0);
+    daemon_fixture_send_pose(d, g_t, &m);
 }
 
 /* A pose every 50 ms for `ms`: one cycle per 100 ms of log time (dispatch.c). */
@@ -130,38 +125,13 @@ static void hold_pose(gmmrrtd_t *d, double x, double y, int64_t ms)
 
 static void send_person(gmmrrtd_t *d, double x, double y, double yaw)
 {
-    static gmmrrt_people_t m;
-    static uint8_t buf[16384];
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + g_t;
-    m.frame = k_map;
-    m.num_people = 1;
-    m.people[0].id = 1;
-    m.people[0].x = x;
-    m.people[0].y = y;
-    m.people[0].yaw = yaw;
-    const int n = gmmrrt_people_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_PEOPLE, g_t, buf, (size_t)n);
+    daemon_fixture_send_person(d, g_t, T0 + g_t, x, y, yaw);
 }
 
 static void send_goal(gmmrrtd_t *d, int64_t id, double x, double y, int8_t task, int32_t target)
 {
-    gmmrrt_nav_goal_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + g_t;
-    m.frame = k_map;
-    m.goal_id = id;
-    m.command = GMMRRT_NAV_GOAL_T_COMMAND_NEW;
-    m.x = x;
-    m.y = y;
-    m.tolerance_m = 0.3;
-    m.task = task;
-    m.target_person_id = target;
-    uint8_t buf[256];
-    const int n = gmmrrt_nav_goal_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_GOAL, g_t, buf, (size_t)n);
+    const gmmrrt_nav_goal_t m = daemon_fixture_goal(T0 + g_t, id, x, y, task, target);
+    daemon_fixture_send_goal(d, g_t, &m);
 }
 
 /* Avoid a person standing off the straight line from (0, 0) to (6, 0). */
@@ -210,6 +180,29 @@ static void test_a_file_without_background_is_refused_at_start_up(void **state)
     plan_avoid(d);
     assert_true(d->plan_msg.num_waypoints >= 2);
     assert_null(d->problem.background_model);
+}
+
+/* RRT* costs length only and never reads the background: under task_cost = background a file
+ * without one loads and plans (the core's rule, gmmrrt_planner_needs_background); the new
+ * settings GMM-RRT* + background are then refused against it, the background named. */
+static void test_a_file_without_background_serves_a_planner_without_the_task_cost(void **state)
+{
+    gmmrrtd_t *d = *state;
+    use_planner_of(d, GMMRRT_PLANNER_RRT_STAR, GMMRRT_TASK_COST_BACKGROUND);
+    write_model("plain.gmm", GMMRRT_TASK_AVOID, 3, 1.5, 0, 0.0, d->set.model_avoid, sizeof d->set.model_avoid);
+    assert_int_equal(gmmrrtd_models_load(d, 0), 0);
+    assert_true(d->have_avoid);
+    assert_false(d->has_bg_avoid);
+    char why[256] = "";
+    assert_int_equal(gmmrrtd_models_fit_config(d, &d->set.cfg, why, sizeof why), 1);
+    plan_avoid(d);
+    assert_int_equal(d->status.rejected[ST(REJECT_SETUP)], 0);
+    assert_true(d->plan_msg.num_waypoints >= 2);
+    assert_null(d->problem.background_model);
+    gmmrrt_planner_config_t cfg = d->set.cfg;
+    cfg.planner = GMMRRT_PLANNER_GMM_RRT_STAR;
+    assert_int_equal(gmmrrtd_models_fit_config(d, &cfg, why, sizeof why), 0);
+    assert_non_null(strstr(why, "avoid model has no background"));
 }
 
 static void test_reload_replaces_model_and_background_together_or_not_at_all(void **state)
@@ -310,6 +303,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_a_daemon_with_the_background_cost_plans_with_the_files_background,
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(test_a_file_without_background_is_refused_at_start_up, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_a_file_without_background_serves_a_planner_without_the_task_cost, setup,
+                                        teardown),
         cmocka_unit_test_setup_teardown(test_reload_replaces_model_and_background_together_or_not_at_all, setup,
                                         teardown),
         cmocka_unit_test_setup_teardown(test_the_models_in_use_are_checked_against_new_planner_settings, setup,

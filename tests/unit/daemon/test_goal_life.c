@@ -23,11 +23,12 @@
 #include "daemon_fixture.h"
 
 #define MS ((int64_t)1000)
-#define T0 ((int64_t)1700000000000000)
+#define T0 DAEMON_FIXTURE_T0
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
 
 static gmmrrtd_t g_d;
-static char k_map[] = "map", k_odom[] = "odom";
+static char *const k_map = daemon_fixture_map;
+static char k_odom[] = "odom";
 static int64_t g_t; /* the log time of the last message, us after T0 */
 
 static int setup(void **state)
@@ -46,17 +47,9 @@ static int teardown(void **state)
 
 static void send_pose_in(gmmrrtd_t *d, double x, double y, double yaw, char *frame)
 {
-    gmmrrt_pose2d_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + g_t;
+    gmmrrt_pose2d_t m = daemon_fixture_pose(T0 + g_t, x, y, yaw);
     m.frame = frame;
-    m.x = x;
-    m.y = y;
-    m.yaw = yaw;
-    uint8_t buf[256];
-    const int n = gmmrrt_pose2d_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_POSE, g_t, buf, (size_t)n);
+    daemon_fixture_send_pose(d, g_t, &m);
 }
 
 /* A pose every 50 ms for `ms`: one cycle per 100 ms of log time (dispatch.c). */
@@ -70,27 +63,13 @@ static void hold_pose(gmmrrtd_t *d, double x, double y, double yaw, int64_t ms)
 
 static gmmrrt_nav_goal_t goal_msg(int64_t id, double x, double y)
 {
-    gmmrrt_nav_goal_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + g_t;
-    m.frame = k_map;
-    m.goal_id = id;
-    m.command = GMMRRT_NAV_GOAL_T_COMMAND_NEW;
-    m.x = x;
-    m.y = y;
-    m.tolerance_m = 0.3;
-    m.task = GMMRRT_NAV_GOAL_T_TASK_NONE;
-    m.target_person_id = -1;
-    return m;
+    return daemon_fixture_goal(T0 + g_t, id, x, y, GMMRRT_NAV_GOAL_T_TASK_NONE, -1);
 }
 
 static void send_goal_msg(gmmrrtd_t *d, gmmrrt_nav_goal_t m)
 {
     m.utime = T0 + g_t;
-    uint8_t buf[256];
-    const int n = gmmrrt_nav_goal_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_GOAL, g_t, buf, (size_t)n);
+    daemon_fixture_send_goal(d, g_t, &m);
 }
 
 static void send_cancel(gmmrrtd_t *d, int64_t id)
@@ -103,38 +82,20 @@ static void send_cancel(gmmrrtd_t *d, int64_t id)
 
 static void send_person(gmmrrtd_t *d, double x, double y)
 {
-    static gmmrrt_people_t m;
-    static uint8_t buf[16384];
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + g_t;
-    m.frame = k_map;
-    m.num_people = 1;
-    m.people[0].id = 1;
-    m.people[0].x = x;
-    m.people[0].y = y;
-    m.people[0].yaw = M_PI;
-    const int n = gmmrrt_people_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_PEOPLE, g_t, buf, (size_t)n);
+    daemon_fixture_send_person(d, g_t, T0 + g_t, x, y, M_PI);
 }
 
 static void send_boxes(gmmrrtd_t *d, int nb, const double (*box)[4])
 {
-    static gmmrrt_obstacles_t m;
-    static uint8_t buf[16384];
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + g_t;
-    m.frame = k_map;
-    m.num_boxes = nb;
+    gmmrrt_obstacles_t *m = daemon_fixture_obstacles(T0 + g_t);
+    m->num_boxes = nb;
     for (int i = 0; i < nb; ++i) {
-        m.box_x[i] = box[i][0];
-        m.box_y[i] = box[i][1];
-        m.box_width[i] = box[i][2];
-        m.box_height[i] = box[i][3];
+        m->box_x[i] = box[i][0];
+        m->box_y[i] = box[i][1];
+        m->box_width[i] = box[i][2];
+        m->box_height[i] = box[i][3];
     }
-    const int n = gmmrrt_obstacles_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_OBSTACLES, g_t, buf, (size_t)n);
+    daemon_fixture_send_obstacles(d, g_t, m);
 }
 
 static void test_goal_is_accepted_then_planned_with_its_remaining_length(void **state)

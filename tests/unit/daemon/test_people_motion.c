@@ -28,9 +28,8 @@
 #include "daemon_fixture.h"
 #include "gmmrrt/problem_bounds.h"
 
-static char k_frame[] = "map"; /* the daemon's default [world] frame */
 #define MS ((int64_t)1000)
-#define T0 ((int64_t)1700000000000000)
+#define T0 DAEMON_FIXTURE_T0
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
 
 static gmmrrtd_t g_d;
@@ -55,73 +54,41 @@ static int teardown(void **state)
 
 static void send_pose(gmmrrtd_t *d, int64_t t, double x, double y)
 {
-    gmmrrt_pose2d_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + t;
-    m.frame = k_frame;
-    m.x = x;
-    m.y = y;
-    uint8_t buf[256];
-    const int n = gmmrrt_pose2d_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_POSE, t, buf, (size_t)n);
+    const gmmrrt_pose2d_t m = daemon_fixture_pose(T0 + t, x, y, 0.0);
+    daemon_fixture_send_pose(d, t, &m);
 }
 
 static void send_people(gmmrrtd_t *d, int64_t t, const person_in_t *p, int n_people)
 {
-    static gmmrrt_people_t m;
-    static uint8_t buf[16384];
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + t;
-    m.frame = k_frame;
-    m.num_people = n_people;
+    gmmrrt_people_t *m = daemon_fixture_people(T0 + t);
+    m->num_people = n_people;
     for (int i = 0; i < n_people; ++i) {
-        m.people[i].utime = T0 + t;
-        m.people[i].id = i + 1;
-        m.people[i].x = p[i].x;
-        m.people[i].y = p[i].y;
-        m.people[i].yaw = p[i].yaw;
-        m.people[i].vx = p[i].vx;
-        m.people[i].vy = p[i].vy;
+        m->people[i].utime = T0 + t;
+        m->people[i].id = i + 1;
+        m->people[i].x = p[i].x;
+        m->people[i].y = p[i].y;
+        m->people[i].yaw = p[i].yaw;
+        m->people[i].vx = p[i].vx;
+        m->people[i].vy = p[i].vy;
     }
-    const int n = gmmrrt_people_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_PEOPLE, t, buf, (size_t)n);
+    daemon_fixture_send_people(d, t, m);
 }
 
+/* One goal, updated: a changed content replans, as a new goal would. */
 static void send_goal(gmmrrtd_t *d, int64_t t, double x, double y, int8_t task, int32_t target)
 {
-    gmmrrt_nav_goal_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + t;
-    m.frame = k_frame;
-    m.x = x;
-    m.y = y;
-    m.tolerance_m = 0.3;
-    m.task = task;
-    m.target_person_id = target;
-    m.goal_id = 1; /* one goal, updated: a changed content replans, as a new goal would */
-    m.command = GMMRRT_NAV_GOAL_T_COMMAND_NEW;
-    uint8_t buf[256];
-    const int n = gmmrrt_nav_goal_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_GOAL, t, buf, (size_t)n);
+    const gmmrrt_nav_goal_t m = daemon_fixture_goal(T0 + t, 1, x, y, task, target);
+    daemon_fixture_send_goal(d, t, &m);
 }
 
 static void send_circle(gmmrrtd_t *d, int64_t t, double x, double y, double r)
 {
-    static gmmrrt_obstacles_t m;
-    static uint8_t buf[16384];
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + t;
-    m.frame = k_frame;
-    m.num_circles = 1;
-    m.circle_x[0] = x;
-    m.circle_y[0] = y;
-    m.circle_radius[0] = r;
-    const int n = gmmrrt_obstacles_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_OBSTACLES, t, buf, (size_t)n);
+    gmmrrt_obstacles_t *m = daemon_fixture_obstacles(T0 + t);
+    m->num_circles = 1;
+    m->circle_x[0] = x;
+    m->circle_y[0] = y;
+    m->circle_radius[0] = r;
+    daemon_fixture_send_obstacles(d, t, m);
 }
 
 /* The situation at t = 0 and one cycle on it: the cycle runs when the log time passes the

@@ -23,12 +23,12 @@
 #include "daemon_fixture.h"
 
 #define MS ((int64_t)1000)
-#define T0 ((int64_t)1700000000000000)
+#define T0 DAEMON_FIXTURE_T0
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
 
 static gmmrrtd_t g_d;
-static uint8_t g_buf[80000];
-static char k_map[] = "map", k_odom[] = "odom";
+static char *const k_map = daemon_fixture_map;
+static char k_odom[] = "odom";
 
 /* A 12 m x 10 m free map at 5 cm, origin (-1, 0): the robot drives along y = 5. */
 static int setup(void **state)
@@ -59,32 +59,14 @@ static int teardown(void **state)
 
 static void send_pose(gmmrrtd_t *d, int64_t recv, int64_t utime, double x, double y)
 {
-    gmmrrt_pose2d_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = utime;
-    m.frame = k_map;
-    m.x = x;
-    m.y = y;
-    const int n = gmmrrt_pose2d_t_encode(g_buf, 0, (int)sizeof g_buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_POSE, recv, g_buf, (size_t)n);
+    const gmmrrt_pose2d_t m = daemon_fixture_pose(utime, x, y, 0.0);
+    daemon_fixture_send_pose(d, recv, &m);
 }
 
 static void send_goal(gmmrrtd_t *d, int64_t recv, double x, double y)
 {
-    gmmrrt_nav_goal_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = T0 + recv;
-    m.frame = k_map;
-    m.goal_id = 1;
-    m.command = GMMRRT_NAV_GOAL_T_COMMAND_NEW;
-    m.x = x;
-    m.y = y;
-    m.tolerance_m = 0.3;
-    m.task = GMMRRT_NAV_GOAL_T_TASK_AVOID;
-    const int n = gmmrrt_nav_goal_t_encode(g_buf, 0, (int)sizeof g_buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_GOAL, recv, g_buf, (size_t)n);
+    const gmmrrt_nav_goal_t m = daemon_fixture_goal(T0 + recv, 1, x, y, GMMRRT_NAV_GOAL_T_TASK_AVOID, 0);
+    daemon_fixture_send_goal(d, recv, &m);
 }
 
 /* A scan of n beams from rad0 in steps of radstep, every range `range` (NaN: no return). */
@@ -100,9 +82,7 @@ static void send_scan(gmmrrtd_t *d, int64_t recv, int64_t utime, int n, double r
     m.num_ranges = n;
     for (int k = 0; k < n; ++k)
         m.ranges[k] = range;
-    const int len = gmmrrt_planar_scan_t_encode(g_buf, 0, (int)sizeof g_buf, &m);
-    assert_true(len > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_SCAN, recv, g_buf, (size_t)len);
+    daemon_fixture_send_scan(d, recv, &m);
 }
 
 /* Whether the map cell holding world point (x, y) carries a scan mark. */
@@ -235,8 +215,7 @@ static void scan_wall(gmmrrtd_t *d, int64_t t)
     m.num_ranges = 201;
     for (int k = 0; k < m.num_ranges; ++k)
         m.ranges[k] = (float)(4.0 / cos(m.rad0 + k * m.radstep));
-    const int len = gmmrrt_planar_scan_t_encode(g_buf, 0, (int)sizeof g_buf, &m);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_SCAN, t, g_buf, (size_t)len);
+    daemon_fixture_send_scan(d, t, &m);
 }
 
 static void test_plan_goes_around_what_scans_mark_and_stale_scans_stop(void **state)
@@ -280,13 +259,6 @@ static void test_stale_scans_are_forgotten_when_configured(void **state)
     assert_true(gmmrrt_raster_clearance_bound(&d->map, 4.0, 5.0) > 1.0);
 }
 
-static int encode_grid(gmmrrt_occupancy_grid_t *g)
-{
-    const int n = gmmrrt_occupancy_grid_t_encode(g_buf, 0, (int)sizeof g_buf, g);
-    assert_true(n > 0);
-    return n;
-}
-
 static void test_grid_replaces_the_map_keeps_the_last_good_one_and_stale_stops(void **state)
 {
     gmmrrtd_t *d = *state;
@@ -305,7 +277,7 @@ static void test_grid_replaces_the_map_keeps_the_last_good_one_and_stale_stops(v
     send_goal(d, 0, 8.0, 5.0);
     send_pose(d, 0, T0, 0.0, 5.0);
     g.utime = T0 + 10 * MS;
-    gmmrrtd_handle_message(d, GMMRRTD_IN_GRID, 10 * MS, g_buf, (size_t)encode_grid(&g));
+    daemon_fixture_send_grid(d, 10 * MS, &g);
     assert_int_equal(d->have_grid, 1);
     assert_int_equal(d->grid_version, 1);
     for (int k = 1; k <= 5; ++k)
@@ -317,14 +289,14 @@ static void test_grid_replaces_the_map_keeps_the_last_good_one_and_stale_stops(v
     /* A cell out of range: counted, the last good grid stays. */
     g.data[5] = 101;
     g.utime = T0 + 520 * MS;
-    gmmrrtd_handle_message(d, GMMRRTD_IN_GRID, 520 * MS, g_buf, (size_t)encode_grid(&g));
+    daemon_fixture_send_grid(d, 520 * MS, &g);
     assert_int_equal(d->status.rejected[ST(REJECT_BAD_VALUE)], 1);
     assert_int_equal(d->grid_version, 1);
     /* A grid in a frame other than [world] frame: counted as such, the last good grid stays. */
     g.data[5] = 0;
     g.frame = k_odom;
     g.utime = T0 + 530 * MS;
-    gmmrrtd_handle_message(d, GMMRRTD_IN_GRID, 530 * MS, g_buf, (size_t)encode_grid(&g));
+    daemon_fixture_send_grid(d, 530 * MS, &g);
     assert_int_equal(d->status.rejected[ST(REJECT_WRONG_FRAME)], 1);
     assert_int_equal(d->grid_version, 1);
     g.frame = k_map;
@@ -345,7 +317,7 @@ static void test_grid_replaces_the_map_keeps_the_last_good_one_and_stale_stops(v
     assert_int_equal(d->status.goal_state, ST(GOAL_PLANNING));
     assert_int_equal(d->status.goal_failure, ST(FAILURE_NONE));
     g.utime = T0 + 5010 * MS;
-    gmmrrtd_handle_message(d, GMMRRTD_IN_GRID, 5010 * MS, g_buf, (size_t)encode_grid(&g));
+    daemon_fixture_send_grid(d, 5010 * MS, &g);
     assert_int_equal(d->grid_version, 2);
     send_pose(d, 5100 * MS, T0 + 5100 * MS, 0.0, 5.0);
     assert_int_equal(d->status.state, ST(STATE_PLANNING));
@@ -364,11 +336,11 @@ static void test_grid_is_taken_in_the_configured_frame_only(void **state)
     g.resolution_m = 0.1;
     g.width = g.height = 10;
     g.num_cells = 100;
-    gmmrrtd_handle_message(d, GMMRRTD_IN_GRID, 0, g_buf, (size_t)encode_grid(&g));
+    daemon_fixture_send_grid(d, 0, &g);
     assert_int_equal(d->status.rejected[ST(REJECT_WRONG_FRAME)], 1);
     assert_int_equal(d->have_grid, 0);
     g.frame = k_odom;
-    gmmrrtd_handle_message(d, GMMRRTD_IN_GRID, 0, g_buf, (size_t)encode_grid(&g));
+    daemon_fixture_send_grid(d, 0, &g);
     assert_int_equal(d->status.rejected[ST(REJECT_WRONG_FRAME)], 1);
     assert_int_equal(d->have_grid, 1);
     assert_int_equal(d->grid_version, 1);

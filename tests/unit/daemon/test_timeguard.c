@@ -21,9 +21,8 @@
 #include "daemon_fixture.h"
 
 #define S ((int64_t)1000000)
-static char k_frame[] = "map"; /* the daemon's default [world] frame */
 #define MS ((int64_t)1000)
-#define T0 ((int64_t)1700000000000000)
+#define T0 DAEMON_FIXTURE_T0
 #define ST(x) GMMRRT_PLANNER_STATUS_T_##x
 
 static gmmrrtd_t g_d;
@@ -44,67 +43,36 @@ static int teardown(void **state)
 
 static void send_pose(gmmrrtd_t *d, int64_t recv, int64_t utime, double x)
 {
-    gmmrrt_pose2d_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = utime;
-    m.frame = k_frame;
-    m.x = x;
-    uint8_t buf[256];
-    const int n = gmmrrt_pose2d_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_POSE, recv, buf, (size_t)n);
+    const gmmrrt_pose2d_t m = daemon_fixture_pose(utime, x, 0.0, 0.0);
+    daemon_fixture_send_pose(d, recv, &m);
 }
 
 static void send_people(gmmrrtd_t *d, int64_t recv, int64_t utime, int n_people)
 {
-    static gmmrrt_people_t m;
-    static uint8_t buf[16384];
-    memset(&m, 0, sizeof m);
-    m.utime = utime;
-    m.frame = k_frame;
-    m.num_people = n_people;
+    gmmrrt_people_t *m = daemon_fixture_people(utime);
+    m->num_people = n_people;
     for (int i = 0; i < n_people; ++i) {
-        m.people[i].id = i + 1;
-        m.people[i].x = 2.0;
-        m.people[i].y = 1.5 + i;
+        m->people[i].id = i + 1;
+        m->people[i].x = 2.0;
+        m->people[i].y = 1.5 + i;
     }
-    const int n = gmmrrt_people_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_PEOPLE, recv, buf, (size_t)n);
+    daemon_fixture_send_people(d, recv, m);
 }
 
 static void send_goal(gmmrrtd_t *d, int64_t recv, int64_t utime, double x, double y)
 {
-    gmmrrt_nav_goal_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = utime;
-    m.frame = k_frame;
-    m.x = x;
-    m.y = y;
-    m.tolerance_m = 0.3;
-    m.task = GMMRRT_NAV_GOAL_T_TASK_AVOID;
-    m.goal_id = 1;
-    m.command = GMMRRT_NAV_GOAL_T_COMMAND_NEW;
-    uint8_t buf[256];
-    const int n = gmmrrt_nav_goal_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_GOAL, recv, buf, (size_t)n);
+    const gmmrrt_nav_goal_t m = daemon_fixture_goal(utime, 1, x, y, GMMRRT_NAV_GOAL_T_TASK_AVOID, 0);
+    daemon_fixture_send_goal(d, recv, &m);
 }
 
 static void send_obstacles(gmmrrtd_t *d, int64_t recv, int64_t utime)
 {
-    static gmmrrt_obstacles_t m;
-    static uint8_t buf[16384];
-    memset(&m, 0, sizeof m);
-    m.utime = utime;
-    m.frame = k_frame;
-    m.num_circles = 1;
-    m.circle_x[0] = 2.0;
-    m.circle_y[0] = -1.5;
-    m.circle_radius[0] = 0.3;
-    const int n = gmmrrt_obstacles_t_encode(buf, 0, (int)sizeof buf, &m);
-    assert_true(n > 0);
-    gmmrrtd_handle_message(d, GMMRRTD_IN_OBSTACLES, recv, buf, (size_t)n);
+    gmmrrt_obstacles_t *m = daemon_fixture_obstacles(utime);
+    m->num_circles = 1;
+    m->circle_x[0] = 2.0;
+    m->circle_y[0] = -1.5;
+    m->circle_radius[0] = 0.3;
+    daemon_fixture_send_obstacles(d, recv, m);
 }
 
 /* Poses at 10 Hz for n messages from local time l (stamps T0 + l); the plans that follow. */

@@ -480,6 +480,8 @@ void test_csv_errors_name_the_line(void** state) {
     ExpectCsvError("empty_field.csv", kHeader + ok_row + "a,avoid,left,0.1,0,0,1,,0\n", "line 3: column person_y");
     ExpectCsvError("task.csv", kHeader + "a,wander,left,0.0,0,0,1,1,0\n", "line 2: unknown task 'wander'");
     ExpectCsvError("homotopy.csv", kHeader + "a,avoid,up,0.0,0,0,1,1,0\n", "line 2: unknown homotopy 'up'");
+    // "all" selects every homotopy; on an episode it is no label (an unlabelled one is empty).
+    ExpectCsvError("all.csv", kHeader + "a,avoid,all,0.0,0,0,1,1,0\n", "line 2: unknown homotopy 'all'");
     ExpectCsvError("time.csv", kHeader + ok_row + "a,avoid,left,0.0,0,0,1,1,0\n", "line 3: time does not increase");
     ExpectCsvError("relabel.csv", kHeader + ok_row + "a,avoid,right,0.1,0,0,1,1,0\n", "line 3: episode 'a' changes");
     ExpectCsvError("repeat.csv", kHeader + ok_row + "b,avoid,left,0.0,0,0,1,1,0\n" + "a,avoid,left,0.5,0,0,1,1,0\n",

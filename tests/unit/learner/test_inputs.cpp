@@ -186,6 +186,31 @@ void test_episode_features_and_selection(void** state) {
   assert_false(ParseHomotopy("up", &task).ok());
 }
 
+// labels.hpp: every name parses back to its value (one table read both ways); an unknown word
+// is refused naming the known ones and leaves the output alone.
+void test_task_and_homotopy_names_round_trip(void** state) {
+  (void)state;
+  for (int t : {GMMRRT_TASK_AVOID, GMMRRT_TASK_APPROACH}) {
+    int back = -1;
+    assert_true(ParseTask(TaskName(t), &back).ok());
+    assert_int_equal(back, t);
+  }
+  for (int h : {GMMRRT_HOMOTOPY_ALL, GMMRRT_HOMOTOPY_LEFT, GMMRRT_HOMOTOPY_RIGHT, GMMRRT_HOMOTOPY_FRONTAL}) {
+    int back = -1;
+    assert_true(ParseHomotopy(HomotopyName(h), &back).ok());
+    assert_int_equal(back, h);
+  }
+  assert_string_equal(TaskName(GMMRRT_TASK_NONE), "none");
+  assert_string_equal(TaskName(7), "unknown");
+  assert_string_equal(HomotopyName(-1), "unknown");
+  int out = 42;
+  const Status bad = ParseHomotopy("sideways", &out);
+  assert_int_equal(static_cast<int>(bad.code), static_cast<int>(StatusCode::kInvalidArgument));
+  assert_string_equal(bad.message.c_str(), "unknown homotopy 'sideways' (known: all, left, right, frontal)");
+  assert_int_equal(out, 42);
+  assert_string_equal(ParseTask("dance", &out).message.c_str(), "unknown task 'dance' (known: avoid, approach)");
+}
+
 void test_xy_components_sorted_by_progress(void** state) {
   (void)state;
   Mixture m;
@@ -209,6 +234,7 @@ int main(void) {
       cmocka_unit_test(test_json_plain_mixture_is_factorised),
       cmocka_unit_test(test_json_errors),
       cmocka_unit_test(test_episode_features_and_selection),
+      cmocka_unit_test(test_task_and_homotopy_names_round_trip),
       cmocka_unit_test(test_xy_components_sorted_by_progress),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);

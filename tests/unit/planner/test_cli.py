@@ -157,7 +157,6 @@ def test_model_run_passes_on_the_models_side(tmp_path):
     (["--start", "0,0", "--goal", "1,1", "--side-person", "-1"], "--side-person"),
     (["--start", "0,0", "--goal", "3,3", "--person", "1,1,0", "--side-person", "1"], "--side-person"),
     (["--start", "0,0", "--goal", "1,1", "--task-cost", "max"], "--task-cost 'max'"),
-    (["--start", "0,0", "--goal", "1,1", "--task-cost", "background"], "--task-cost background needs a background model"),
     (["--start", "0,0", "--goal", "1,1", "--background-model", "/nonexistent/bg.gmm"], "/nonexistent/bg.gmm"),
     (["--start", "0,0", "--goal", "1,1", "--gmm-bias", "1.5"], "--gmm-bias '1.5': config.gmm_bias must be in [0, 1]"),
     (["--start", "0,0", "--goal", "1,1", "--robot-radius", "-0.1"], "--robot-radius '-0.1': config.robot_radius_m"),
@@ -215,6 +214,23 @@ def test_model_of_the_other_task_is_refused_naming_both(tmp_path, model_task, fl
     r = run("--model", str(model), "--task", other, "--start", "-4,0", "--goal", "4,0", "--person", "0,0,0",
             "--iterations", "300")
     assert r.returncode in (0, 3) and "learned for task" not in r.stderr, r.stderr
+
+
+def test_background_cost_needs_a_background_only_under_a_planner_that_uses_it(tmp_path):
+    """--task-cost background with a model file that has no background: RRT* (length cost only,
+    the task cost never read) plans; GMM-RRT* (the default with --model) is refused, the
+    background named."""
+    model = write_features_model(tmp_path / "plain.gmm", [1.0, 2.0])
+    common = ["--model", str(model), "--start", "-4,0", "--goal", "4,0", "--person", "0,0,0",
+              "--task-cost", "background", "--iterations", "300", "--seed", "3"]
+    r = run(*common, "--planner", "rrt-star")
+    assert r.returncode == 0, r.stderr
+    r = run("--start", "0,0", "--goal", "1,1", "--task-cost", "background", "--iterations", "300")
+    assert r.returncode == 0, r.stderr
+    for planner in ([], ["--planner", "gmm-rrt-star"]):
+        r = run(*common, *planner)
+        assert r.returncode == 1 and r.stdout == ""
+        assert "--task-cost background needs a background model" in r.stderr, r.stderr
 
 
 def test_xy_planner_with_features_model_is_a_mismatch(tmp_path):

@@ -291,6 +291,35 @@ static void test_full_pool_is_pruned_and_the_search_keeps_improving(void **state
     test_planner_free(&t);
 }
 
+/* The background cost reads problem.background_model only where the planner carries the task
+ * cost (GMM-RRT*): gmmrrt_planner_needs_background says so for every kind and cost, and
+ * set_problem applies the same rule (no background: refused under GMM-RRT*, planned under RRT*). */
+static void test_only_the_task_cost_planner_needs_a_background(void **state)
+{
+    (void)state;
+    const int32_t kinds[] = {GMMRRT_PLANNER_GMM_RRT_STAR, GMMRRT_PLANNER_RRT_STAR, GMMRRT_PLANNER_GMM_RRT};
+    const int32_t costs[] = {GMMRRT_TASK_COST_PAPER, GMMRRT_TASK_COST_INWARD, GMMRRT_TASK_COST_BACKGROUND};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            gmmrrt_planner_config_t cfg = point_robot_config(kinds[i]);
+            cfg.task_cost = costs[j];
+            assert_int_equal(gmmrrt_planner_needs_background(&cfg), i == 0 && j == 2);
+        }
+    assert_int_equal(gmmrrt_planner_needs_background(NULL), 0);
+    gmmrrt_model_t m;
+    const double theta[1] = {1.0};
+    assert_int_equal(make_features_model(&m, theta, 1, 1.2, 0.2, 0.3), GMMRRT_OK);
+    for (int i = 0; i < 2; ++i) {
+        gmmrrt_planner_config_t cfg = point_robot_config(kinds[i]);
+        cfg.task_cost = GMMRRT_TASK_COST_BACKGROUND;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        const gmmrrt_problem_t pr = avoid_problem(&m); /* background_model NULL */
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), i == 0 ? GMMRRT_ERR_MODEL_MISMATCH : GMMRRT_OK);
+        test_planner_free(&t);
+    }
+}
+
 static void test_bad_problems_get_their_status(void **state)
 {
     (void)state;
@@ -299,7 +328,7 @@ static void test_bad_problems_get_their_status(void **state)
     test_planner_t t;
     assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
     gmmrrt_problem_t pr = disc_problem();
-    pr.start_x = 0.5; /* inside the disc: escapes (test_escape.c has the details) */
+    pr.start_x = 0.5; /* inside the disc: escapes (test_drivable.c and test_escape.c have the details) */
     assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_ESCAPE);
     pr = disc_problem();
     pr.obstacles.circles[0].radius_m = 6.0; /* 6.2 m to the nearest free point: frozen */
@@ -570,6 +599,7 @@ int main(void)
         cmocka_unit_test(test_set_problem_restarts_the_same_tree),
         cmocka_unit_test(test_pool_exhaustion_gives_pool_full_and_keeps_best),
         cmocka_unit_test(test_full_pool_is_pruned_and_the_search_keeps_improving),
+        cmocka_unit_test(test_only_the_task_cost_planner_needs_a_background),
         cmocka_unit_test(test_bad_problems_get_their_status),
         cmocka_unit_test(test_gmm_planners_need_a_model_of_their_kind),
         cmocka_unit_test(test_config_validation_names_the_field),
