@@ -14,7 +14,7 @@ namespace cli {
 // How the task model's K was chosen, to choose the background's the same way.
 struct KPolicy {
   bool auto_k = false;  // BIC sweep over k_min..k_max, else options.k
-  int k_min = 1, k_max = 30, patience = 3, split_starts = 4;
+  int k_min = 1, k_max = 30, patience = 3, split_starts = 4, fresh_starts = 2;
 };
 
 // Fits the background of spec's episodes (spec.straight_lines set here) with options and the K
