@@ -51,6 +51,8 @@ Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOpt
     row.bic = s.bic;
     row.iterations = s.iterations;
     row.converged = s.converged;
+    row.fresh_starts = o.restarts;
+    row.split_starts = static_cast<int>(o.extra_starts.size());
     result->rows.push_back(row);
     previous = m;
     if (on_row) on_row(row);

@@ -24,6 +24,8 @@ struct BicRow {
   double bic = 0;
   int iterations = 0;
   bool converged = false;
+  int fresh_starts = 0;     // k-means++ candidates screened
+  int split_starts = 0;     // split starts of the K - 1 fit screened
 };
 
 struct BicSweepResult {
@@ -48,10 +50,11 @@ constexpr int kBicSplitStarts = 4;
 
 // Default of SweepBic's fresh_starts: the k-means++ candidates of each K that also has split
 // starts of the K - 1 fit (options.restarts stays the count at K = k_min and whenever there are
-// no split starts). The splits start next to a converged K - 1 optimum and won the screening at
-// most K from about 8 components up; the fresh candidates are there to leave a basin the chain
-// of splits carries along, and two do that as well as eight on the benchmark's mixtures at
-// about half the sweep's CPU time. Evidence: docs/learner.md, "BIC sweep".
+// no split starts). The splits start next to a converged K - 1 optimum; the fresh candidates
+// only guard against a basin the chain of splits carries along, and two do that as well as
+// eight on the benchmark's mixtures (same K and BIC on all six generating-K cases, seeds 1-4)
+// for about half the sweep's CPU time. Evidence and its cost on real trajectories:
+// docs/learner.md, "BIC sweep".
 constexpr int kBicFreshStarts = 2;
 
 // Fits K = k_min..k_max (1 <= k_min <= k_max <= GMMRRT_MAX_K; options.k is ignored), in order,
@@ -61,8 +64,9 @@ constexpr int kBicFreshStarts = 2;
 // returned as they are. on_row (may be empty) is called after each K. Each K > k_min screens,
 // beside options.restarts k-means++ starts, up to split_starts splits of the K - 1 fit (0:
 // fresh starts only): the sweep is then only as good as the best of both, not of EM's luck.
-// A K that has split starts screens min(options.restarts, fresh_starts) k-means++ candidates
-// (fresh_starts >= 1, else kInvalidArgument).
+// A K that has split starts screens min(options.restarts, fresh_starts) k-means++ candidates,
+// any other K options.restarts (fresh_starts >= 1, else kInvalidArgument); each row says what
+// it screened.
 Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
                 int k_min, int k_max, BicSweepResult* result,
                 const std::function<void(const BicRow&)>& on_row = nullptr,

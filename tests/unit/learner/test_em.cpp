@@ -285,7 +285,8 @@ void test_bic_picks_the_generating_k(void** state) {
 
 // Each K after the first screens fresh_starts k-means++ candidates beside its split starts
 // (min(K - 1, split_starts) of them), the first K options.restarts; without split starts every
-// K screens options.restarts. Counted from the candidates the progress callback reports.
+// K screens options.restarts. Counted from the candidates the progress callback reports, and
+// checked against what each row says it screened.
 void test_sweep_screens_fewer_fresh_starts_beside_the_splits(void** state) {
   (void)state;
   std::vector<Blob> blobs = {{Vec({0.0, 0.0}), Diag({0.5, 0.5}), 400},
@@ -293,29 +294,32 @@ void test_sweep_screens_fewer_fresh_starts_beside_the_splits(void** state) {
                              {Vec({0.0, 5.0}), Diag({0.7, 0.4}), 300},
                              {Vec({5.0, 5.0}), Diag({0.4, 0.4}), 300}};
   const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 8);
-  auto candidates_per_k = [&x](int split_starts, int fresh_starts, std::vector<int>* per_k) {
+  auto sweep = [&x](int split_starts, int fresh_starts, BicSweepResult* r, std::vector<int>* seen_per_k) {
     std::set<int> seen;
-    per_k->clear();
+    seen_per_k->clear();
     FitOptions o = Quiet(1, 1);
     assert_int_equal(o.restarts, 8);
     o.progress = [&seen](int restart, int, double) { seen.insert(restart); };
-    BicSweepResult r;
-    const Status st = SweepBic(x, 0, o, 1, 7, &r, [&](const BicRow&) {
-      per_k->push_back(static_cast<int>(seen.size()));
+    return SweepBic(x, 0, o, 1, 7, r, [&](const BicRow&) {
+      seen_per_k->push_back(static_cast<int>(seen.size()));
       seen.clear();
     }, 0, split_starts, fresh_starts);
-    return st;
   };
-  std::vector<int> n;
-  assert_true(candidates_per_k(4, 2, &n).ok());
-  assert_int_equal(static_cast<int>(n.size()), 7);
-  assert_int_equal(n[0], 8);
-  for (int k = 2; k <= 7; ++k) assert_int_equal(n[k - 1], 2 + std::min(k - 1, 4));
-  assert_true(candidates_per_k(4, 100, &n).ok());  // never more than options.restarts
-  for (int k = 2; k <= 7; ++k) assert_int_equal(n[k - 1], 8 + std::min(k - 1, 4));
-  assert_true(candidates_per_k(0, 2, &n).ok());  // no warm starts: every K screens all
-  for (int c : n) assert_int_equal(c, 8);
-  assert_int_equal(static_cast<int>(candidates_per_k(4, 0, &n).code), static_cast<int>(StatusCode::kInvalidArgument));
+  BicSweepResult r;
+  std::vector<int> seen;
+  assert_true(sweep(4, 2, &r, &seen).ok());
+  assert_int_equal(static_cast<int>(r.rows.size()), 7);
+  for (int k = 1; k <= 7; ++k) {
+    const int splits = k == 1 ? 0 : std::min(k - 1, 4), fresh = k == 1 ? 8 : 2;
+    assert_int_equal(r.rows[k - 1].split_starts, splits);
+    assert_int_equal(r.rows[k - 1].fresh_starts, fresh);
+    assert_int_equal(seen[k - 1], fresh + splits);
+  }
+  assert_true(sweep(4, 100, &r, &seen).ok());  // never more than options.restarts
+  for (int k = 2; k <= 7; ++k) assert_int_equal(seen[k - 1], 8 + std::min(k - 1, 4));
+  assert_true(sweep(0, 2, &r, &seen).ok());  // no warm starts: every K screens all
+  for (int c : seen) assert_int_equal(c, 8);
+  assert_int_equal(static_cast<int>(sweep(4, 0, &r, &seen).code), static_cast<int>(StatusCode::kInvalidArgument));
 }
 
 void test_bad_input_is_rejected(void** state) {
