@@ -24,7 +24,7 @@ Status FitBackground(const char* cmd, DataSpec spec, const FitOptions& options, 
   if (k_policy.auto_k) {
     BicSweepResult sweep;
     s = SweepBic(points, mask, o, k_policy.k_min, k_policy.k_max, &sweep, nullptr, k_policy.patience,
-                 k_policy.split_starts);
+                 k_policy.split_starts, k_policy.fresh_starts);
     mixture = sweep.best;
     summary = sweep.best_summary;
   } else {

@@ -5,6 +5,7 @@
 #define GMMRRT_LEARN_CLI_BACKGROUND_FIT_HPP
 
 #include "cli_common.hpp"
+#include "gmmrrt_learner/bic.hpp"
 #include "gmmrrt_learner/em.hpp"
 
 namespace gmmrrt {
@@ -14,7 +15,8 @@ namespace cli {
 // How the task model's K was chosen, to choose the background's the same way.
 struct KPolicy {
   bool auto_k = false;  // BIC sweep over k_min..k_max, else options.k
-  int k_min = 1, k_max = 30, patience = 3, split_starts = 4;
+  int k_min = 1, k_max = 30, patience = kBicStopAfterRises, split_starts = kBicSplitStarts,
+      fresh_starts = kBicFreshStarts;
 };
 
 // Fits the background of spec's episodes (spec.straight_lines set here) with options and the K

@@ -46,6 +46,8 @@ const char kFitHelp[] =
     "                          so far (default 3; 0 fits the whole range)\n"
     "  -L, --split-starts N    BIC sweep: splits of the K - 1 fit screened as extra starts for K\n"
     "                          (default 4; 0: fresh k-means++ starts only)\n"
+    "  -F, --sweep-restarts N  BIC sweep: k-means++ candidates of each K that has split starts\n"
+    "                          (default 2, at most --restarts; the first K uses --restarts)\n"
     "  -S, --seed S            random seed (default 1); same seed, same model\n"
     "  -R, --restarts N        candidate starts (k-means++ + Lloyd + 20 EM steps each, on a\n"
     "                          seeded sample of 20 000 points when there are more); the best\n"
@@ -105,7 +107,8 @@ int RunFit(int argc, char** argv) {
       {"output", required_argument, nullptr, 'o'},
       {"quiet", no_argument, nullptr, 'q'},          {"help", no_argument, nullptr, 'h'},
       {"bic-patience", required_argument, nullptr, 'P'}, {"screen-points", required_argument, nullptr, 'p'},
-      {"accel", required_argument, nullptr, 'A'},    {"split-starts", required_argument, nullptr, 'L'},    {"threads", required_argument, nullptr, 'j'},
+      {"accel", required_argument, nullptr, 'A'},    {"split-starts", required_argument, nullptr, 'L'},
+      {"sweep-restarts", required_argument, nullptr, 'F'},    {"threads", required_argument, nullptr, 'j'},
       {"no-provenance", no_argument, nullptr, 'N'},  {"background", required_argument, nullptr, 'B'},
       {nullptr, 0, nullptr, 0}};
   // The command line as given, for the provenance record (getopt_long reorders argv).
@@ -115,7 +118,8 @@ int RunFit(int argc, char** argv) {
   DataSpec spec;
   FitOptions options;
   std::string output, task_name, homotopy_name = "all", kind_name, angle_dims, k_text;
-  int k_min = 1, k_max = 30, bic_patience = kBicStopAfterRises, split_starts = kBicSplitStarts;
+  int k_min = 1, k_max = 30, bic_patience = kBicStopAfterRises, split_starts = kBicSplitStarts,
+      fresh_starts = kBicFreshStarts;
   bool auto_k = false, k_range_given = false;
   double delta = GMMRRT_MODEL_DEFAULT_DELTA;
   // Data-driven delta by default (delta_quantile.hpp); --delta X stores a fixed one (the paper's 0.001).
@@ -124,7 +128,7 @@ int RunFit(int argc, char** argv) {
   bool delta_given = false;
   optind = 1;
   int c;
-  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:L:p:S:R:m:T:A:j:d:Q:o:qhNB:", kLong, nullptr)) != -1) {
+  while ((c = getopt_long(argc, argv, "i:t:H:x:s:K:f:a:k:r:P:L:F:p:S:R:m:T:A:j:d:Q:o:qhNB:", kLong, nullptr)) != -1) {
     const std::string arg = optarg ? optarg : "";
     long v = 0;
     switch (c) {
@@ -158,6 +162,10 @@ int RunFit(int argc, char** argv) {
         if (!ParseInt(arg, 0, GMMRRT_MAX_K, &v))
           return UsageError(cmd, "--split-starts '" + arg + "' is not in 0.." + std::to_string(GMMRRT_MAX_K));
         split_starts = static_cast<int>(v);
+        break;
+      case 'F':
+        if (!ParseInt(arg, 1, 1000, &v)) return UsageError(cmd, "--sweep-restarts '" + arg + "' is not in 1..1000");
+        fresh_starts = static_cast<int>(v);
         break;
       case 'p':
         if (!ParseInt(arg, 0, 1000000000, &v)) return UsageError(cmd, "--screen-points '" + arg + "' is not in 0..1e9");
@@ -272,7 +280,8 @@ int RunFit(int argc, char** argv) {
         std::fprintf(stderr, "K = %d: mean log-likelihood %.6f, BIC %.3f, %d iterations\n", r.k,
                      r.mean_log_likelihood, r.bic, r.iterations);
     };
-    if (!(s = SweepBic(points, mask, options, k_min, k_max, &sweep, on_row, bic_patience, split_starts)).ok())
+    if (!(s = SweepBic(points, mask, options, k_min, k_max, &sweep, on_row, bic_patience, split_starts,
+                      fresh_starts)).ok())
       return Fail(cmd, DescribeData(spec) + ": " + s.message);
     std::fputs(FormatBicTable(sweep).c_str(), stdout);
     std::printf("chosen K = %d (lowest BIC)\n", sweep.best_k);
@@ -336,6 +345,7 @@ int RunFit(int argc, char** argv) {
     policy.k_max = k_max;
     policy.patience = bic_patience;
     policy.split_starts = split_starts;
+    policy.fresh_starts = fresh_starts;
     if (!(s = FitBackground(cmd, spec, options, policy, delta, &background_model)).ok()) return Fail(cmd, s.message);
   }
   if (!(s = SaveModel(output, model, provenance ? &record : nullptr, background ? &background_model : nullptr)).ok())

@@ -1,6 +1,7 @@
 // bic.cpp - BIC sweep over K for `--k auto` (see bic.hpp; paper Sect. 5.1 chose k = 19 by hand).
 #include "gmmrrt_learner/bic.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <sstream>
@@ -12,13 +13,15 @@ namespace learn {
 
 Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
                 int k_min, int k_max, BicSweepResult* result,
-                const std::function<void(const BicRow&)>& on_row, int stop_after_rises, int split_starts) {
+                const std::function<void(const BicRow&)>& on_row, int stop_after_rises, int split_starts,
+                int fresh_starts) {
   if (k_min < 1 || k_max < k_min || k_max > GMMRRT_MAX_K)
     return Status::Error(StatusCode::kInvalidArgument,
                          "K range " + std::to_string(k_min) + ".." + std::to_string(k_max) +
                              " is not within 1.." + std::to_string(GMMRRT_MAX_K));
   if (split_starts < 0)
     return Status::Error(StatusCode::kInvalidArgument, "split_starts must be >= 0");
+  if (fresh_starts < 1) return Status::Error(StatusCode::kInvalidArgument, "fresh_starts must be >= 1");
   if (stop_after_rises < 0)
     return Status::Error(StatusCode::kInvalidArgument, "stop_after_rises must be >= 0 (0: whole range)");
   *result = BicSweepResult();
@@ -30,6 +33,9 @@ Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOpt
     o.k = k;
     if (split_starts > 0 && previous.k() == k - 1)
       for (Mixture& start : detail::SplitCandidates(previous, split_starts)) o.extra_starts.push_back(std::move(start));
+    // With warm starts from the K - 1 optimum, the k-means++ candidates only guard against a
+    // basin the chain of splits carries along: fresh_starts of them are enough (bic.hpp).
+    if (!o.extra_starts.empty()) o.restarts = std::min(o.restarts, fresh_starts);
     Mixture m;
     FitSummary s;
     Status st = FitMixture(points, angle_mask, o, &m, &s);
@@ -45,6 +51,8 @@ Status SweepBic(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOpt
     row.bic = s.bic;
     row.iterations = s.iterations;
     row.converged = s.converged;
+    row.fresh_starts = o.restarts;
+    row.split_starts = static_cast<int>(o.extra_starts.size());
     result->rows.push_back(row);
     previous = m;
     if (on_row) on_row(row);

@@ -44,6 +44,8 @@ void Usage(FILE* f) {
                "                          0 screens on all points)\n"
                "  -j, --threads N         E-step threads (default: learner's, the cores available)\n"
                "  -A, --accel M           squarem | none (default: learner's, squarem)\n"
+               "  -F, --sweep-restarts N  sweep: k-means++ candidates of a K with split starts (default:\n"
+               "                          learner's)\n"
                "  -h, --help              this help\n");
 }
 
@@ -153,7 +155,8 @@ double ProcessCpuMs() {
 
 int main(int argc, char** argv) {
   std::string points_path;
-  long k = 0, k_min = 0, k_max = 0, seed = 1, max_iter = -1, restarts = -1, screen_points = -1, threads = -1;
+  long k = 0, k_min = 0, k_max = 0, seed = 1, max_iter = -1, restarts = -1, screen_points = -1, threads = -1,
+       sweep_restarts = gmmrrt::learn::kBicFreshStarts;
   int accel = -1;  // -1: the learner's default
   double tol = -1.0;
   static const option opts[] = {{"points", required_argument, nullptr, 'i'}, {"k", required_argument, nullptr, 'k'},
@@ -162,9 +165,10 @@ int main(int argc, char** argv) {
                                 {"restarts", required_argument, nullptr, 'r'}, {"help", no_argument, nullptr, 'h'},
                                 {"screen-points", required_argument, nullptr, 'p'},
                                 {"threads", required_argument, nullptr, 'j'}, {"accel", required_argument, nullptr, 'A'},
+                                {"sweep-restarts", required_argument, nullptr, 'F'},
                                 {nullptr, 0, nullptr, 0}};
   int c;
-  while ((c = getopt_long(argc, argv, "i:k:b:s:t:m:r:p:j:A:h", opts, nullptr)) != -1) {
+  while ((c = getopt_long(argc, argv, "i:k:b:s:t:m:r:p:j:A:F:h", opts, nullptr)) != -1) {
     bool ok = true;
     switch (c) {
       case 'i': points_path = optarg; break;
@@ -176,6 +180,7 @@ int main(int argc, char** argv) {
       case 'r': ok = ParseLong(optarg, &restarts) && restarts >= 1; break;
       case 'p': ok = ParseLong(optarg, &screen_points) && screen_points >= 0; break;
       case 'j': ok = ParseLong(optarg, &threads) && threads >= 1; break;
+      case 'F': ok = ParseLong(optarg, &sweep_restarts) && sweep_restarts >= 1 && sweep_restarts <= 1000; break;
       case 'A':
         ok = std::string(optarg) == "squarem" || std::string(optarg) == "none";
         accel = std::string(optarg) == "squarem" ? 1 : 0;
@@ -239,7 +244,9 @@ int main(int argc, char** argv) {
   BicSweepResult r;
   const double cpu0 = ProcessCpuMs();
   const Clock::time_point t0 = Clock::now();
-  const Status st = gmmrrt::learn::SweepBic(points, 0u, options, static_cast<int>(k_min), static_cast<int>(k_max), &r);
+  const Status st = gmmrrt::learn::SweepBic(points, 0u, options, static_cast<int>(k_min), static_cast<int>(k_max), &r,
+                                                  nullptr, gmmrrt::learn::kBicStopAfterRises,
+                                                  gmmrrt::learn::kBicSplitStarts, static_cast<int>(sweep_restarts));
   const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   const double cpu_ms = ProcessCpuMs() - cpu0;
   if (!st.ok()) {
@@ -247,14 +254,15 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::printf("{\"mode\":\"sweep\",\"n\":%ld,\"dim\":%ld,\"k_min\":%ld,\"k_max\":%ld,\"seed\":%ld,\"tol\":%.17g,"
-              "\"max_iter\":%d,\"restarts\":%d,\"sweep_ms\":%.6f,\"sweep_cpu_ms\":%.6f,\"best_k\":%d,\"rows\":[",
+              "\"max_iter\":%d,\"restarts\":%d,\"sweep_restarts\":%ld,\"sweep_ms\":%.6f,\"sweep_cpu_ms\":%.6f,\"best_k\":%d,\"rows\":[",
               static_cast<long>(points.cols()), static_cast<long>(points.rows()), k_min, k_max, seed,
-              options.tolerance, options.max_iterations, options.restarts, ms, cpu_ms, r.best_k);
+              options.tolerance, options.max_iterations, options.restarts, sweep_restarts, ms, cpu_ms, r.best_k);
   for (size_t i = 0; i < r.rows.size(); ++i)
     std::printf("%s{\"k\":%d,\"k_final\":%d,\"mean_log_likelihood\":%.17g,\"bic\":%.17g,\"iterations\":%d,"
-                "\"converged\":%s}",
+                "\"converged\":%s,\"fresh_starts\":%d,\"split_starts\":%d}",
                 i ? "," : "", r.rows[i].k, r.rows[i].k_final, r.rows[i].mean_log_likelihood, r.rows[i].bic,
-                r.rows[i].iterations, r.rows[i].converged ? "true" : "false");
+                r.rows[i].iterations, r.rows[i].converged ? "true" : "false", r.rows[i].fresh_starts,
+                r.rows[i].split_starts);
   std::string note;
   for (char ch : r.note)
     if (ch == '"' || ch == '\\') note += '\\', note += ch;

@@ -4,6 +4,7 @@
 // choosing the generating K, bad input, and the Eigen density against the C gmm.h density.
 #include <cmath>
 #include <random>
+#include <set>
 
 #include "gmmrrt/gmm.h"
 #include "gmmrrt_learner/bic.hpp"
@@ -282,6 +283,69 @@ void test_bic_picks_the_generating_k(void** state) {
                    static_cast<int>(StatusCode::kInvalidArgument));
 }
 
+// Each K after the first screens fresh_starts k-means++ candidates beside its split starts
+// (min(K - 1, split_starts) of them), the first K options.restarts; without split starts every
+// K screens options.restarts. Counted from the candidates the progress callback reports, and
+// checked against what each row says it screened.
+void test_sweep_screens_fewer_fresh_starts_beside_the_splits(void** state) {
+  (void)state;
+  std::vector<Blob> blobs = {{Vec({0.0, 0.0}), Diag({0.5, 0.5}), 400},
+                             {Vec({5.0, 0.0}), Diag({0.5, 0.8}), 400},
+                             {Vec({0.0, 5.0}), Diag({0.7, 0.4}), 300},
+                             {Vec({5.0, 5.0}), Diag({0.4, 0.4}), 300}};
+  const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 8);
+  auto sweep = [&x](int split_starts, int fresh_starts, BicSweepResult* r, std::vector<int>* seen_per_k) {
+    std::set<int> seen;
+    seen_per_k->clear();
+    FitOptions o = Quiet(1, 1);
+    assert_int_equal(o.restarts, 8);
+    o.progress = [&seen](int restart, int, double) { seen.insert(restart); };
+    return SweepBic(x, 0, o, 1, 7, r, [&](const BicRow&) {
+      seen_per_k->push_back(static_cast<int>(seen.size()));
+      seen.clear();
+    }, 0, split_starts, fresh_starts);
+  };
+  BicSweepResult r;
+  std::vector<int> seen;
+  assert_true(sweep(4, 2, &r, &seen).ok());
+  assert_int_equal(static_cast<int>(r.rows.size()), 7);
+  for (int k = 1; k <= 7; ++k) {
+    const int splits = k == 1 ? 0 : std::min(k - 1, 4), fresh = k == 1 ? 8 : 2;
+    assert_int_equal(r.rows[k - 1].split_starts, splits);
+    assert_int_equal(r.rows[k - 1].fresh_starts, fresh);
+    assert_int_equal(seen[k - 1], fresh + splits);
+  }
+  assert_true(sweep(4, 100, &r, &seen).ok());  // never more than options.restarts
+  for (int k = 2; k <= 7; ++k) assert_int_equal(seen[k - 1], 8 + std::min(k - 1, 4));
+  assert_true(sweep(0, 2, &r, &seen).ok());  // no warm starts: every K screens all
+  for (int c : seen) assert_int_equal(c, 8);
+  assert_int_equal(static_cast<int>(sweep(4, 0, &r, &seen).code), static_cast<int>(StatusCode::kInvalidArgument));
+}
+
+// The sweep with its fewer fresh starts gives the same rows, bit for bit, on 1 and 2 threads
+// (the fresh candidates run side by side with 2; see em.hpp on determinism).
+void test_sweep_is_the_same_on_any_thread_count(void** state) {
+  (void)state;
+  std::vector<Blob> blobs = {{Vec({0.0, 0.0}), Diag({0.6, 0.6}), 500},
+                             {Vec({2.0, 0.0}), Diag({0.6, 0.9}), 500},
+                             {Vec({1.0, 2.0}), Diag({0.8, 0.5}), 400}};
+  const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 11);
+  BicSweepResult r[2];
+  for (int t = 0; t < 2; ++t) {
+    FitOptions o = Quiet(1, 5);
+    o.threads = t + 1;
+    assert_true(SweepBic(x, 0, o, 1, 6, &r[t], nullptr, 0).ok());
+  }
+  assert_int_equal(static_cast<int>(r[0].rows.size()), 6);
+  assert_int_equal(static_cast<int>(r[1].rows.size()), 6);
+  for (size_t i = 0; i < r[0].rows.size(); ++i) {
+    assert_true(r[0].rows[i].bic == r[1].rows[i].bic);
+    assert_int_equal(r[0].rows[i].iterations, r[1].rows[i].iterations);
+  }
+  assert_int_equal(r[0].rows[1].fresh_starts, kBicFreshStarts);
+  assert_int_equal(r[0].best_k, r[1].best_k);
+}
+
 void test_bad_input_is_rejected(void** state) {
   (void)state;
   Mixture m;
@@ -365,6 +429,8 @@ int main(void) {
       cmocka_unit_test(test_degenerate_components_are_reseeded_or_dropped),
       cmocka_unit_test(test_cluster_across_the_seam_is_one_component),
       cmocka_unit_test(test_bic_picks_the_generating_k),
+      cmocka_unit_test(test_sweep_screens_fewer_fresh_starts_beside_the_splits),
+      cmocka_unit_test(test_sweep_is_the_same_on_any_thread_count),
       cmocka_unit_test(test_bad_input_is_rejected),
       cmocka_unit_test(test_eigen_density_equals_the_c_density),
   };

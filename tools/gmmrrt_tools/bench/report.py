@@ -489,8 +489,9 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
                          f"{_get(ex, 'sklearn', 'best_k')}, {fmt(lowest['sklearn'], 1)}, "
                          f"{fmt(_get(ex, 'sklearn', 'sweep_cpu_ms'), 0, ' ms')} | {fmt(ex.get('speedup_cpu'), 1, 'x')} |")
             L += ["", "Our sweep stops once the BIC has been above its lowest for 3 K in a row (`--bic-patience`, "
-                  "the learner's default), scikit-learn's fits all 30; ours runs 8 candidate starts per K, "
-                  "scikit-learn one. A lower BIC is a better fit by that criterion.", ""]
+                  "the learner's default), scikit-learn's fits all 30; ours screens 8 k-means++ starts at K = 1 and, "
+                  "at each later K, 2 fresh ones (`--sweep-restarts`) beside up to 4 splits of the K - 1 fit "
+                  "(`--split-starts`), scikit-learn one start per K. A lower BIC is a better fit by that criterion.", ""]
             for name, ex in extra.items():
                 if isinstance(ex, dict) and "error" not in ex:
                     L.append(f"- {name}: {_get(ex, 'ours', 'note') or 'whole range'}; command: "
