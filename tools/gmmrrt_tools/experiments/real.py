@@ -99,6 +99,8 @@ def _avoid_planners(mdl: Path, one_person: bool) -> List[Tuple[str, str, Optiona
             (f"GMM-RRT* ({DEFAULT_COST} cost, human's side)", "gmm-rrt-star", mdl, d + ("HUMAN_SIDE",)),
             # What the background cost can reach once the side is right: the floor the side leaves.
             ("GMM-RRT* (background cost, human's side)", "gmm-rrt-star", mdl, ("--task-cost", "background", "HUMAN_SIDE")),
+            # The same floor without a model: what the side alone is worth, so the model's share is visible.
+            ("RRT* (human's side)", "rrt-star", None, ("HUMAN_SIDE",)),
             ("RRT*", "rrt-star", None, ())]
     return out
 
