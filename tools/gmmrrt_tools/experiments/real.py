@@ -352,11 +352,14 @@ def _real_report(ctx: Ctx, rs: RealSet, results) -> None:
                f"{pairs} pairs) pass on the same side in {100 * a:.0f} %.\n")
         md += _side_limit(rs, per, labels)
     # per-episode table
-    ep_lines = ["| episode | people | human side | " + " | ".join(f"{l}: TDM (m){'' if rs.approach else ', side'}"
+    ep_lines = ["| episode | people | human side | human length / straight distance | " + " | ".join(f"{l}: TDM (m){'' if rs.approach else ', side'}"
                                                                 for l in labels) + " |",
-                "|" + "---|" * (3 + len(labels))]
+                "|" + "---|" * (4 + len(labels))]
     for k, e in enumerate(rs.episodes):
-        cells = [e.episode_id, str(len(rs.scenes[k].people)), RD.side_of_sweep(e.xy, e.person)]
+        # How far the human went out of their way: a loop round the person, not a side choice, when large.
+        straight = float(np.linalg.norm(np.asarray(e.xy[-1]) - np.asarray(e.xy[0])))
+        detour = f"{M.path_length(e.xy) / straight:.2f}" if straight > 0 else "–"
+        cells = [e.episode_id, str(len(rs.scenes[k].people)), RD.side_of_sweep(e.xy, e.person), detour]
         for l in labels:
             m = per[l][k]
             cells.append("–" if m is None else f"{m['tdm_m']:.3f}" + ("" if rs.approach else
