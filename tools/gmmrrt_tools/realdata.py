@@ -154,10 +154,10 @@ def _read_tracks(tracks_path: str) -> Dict[Tuple[str, str], Dict[float, Tuple[fl
 WALKING_MIN_SPEED_M_S = 0.3
 
 # A pedestrian who stays this close to the walker at every step both are tracked in the episode window
-# walks in the walker's group: group members walk abreast or in a V a step apart, about 0.7-1 m from
-# their neighbour and within about 1.5 m of each other in groups of up to four (Moussaid et al., "The
-# walking behaviour of pedestrian social groups", PLoS ONE 5(4), 2010), and a group moves as one, so
-# the robot put in the walker's place walks with them rather than past them.
+# walks in the walker's group: pairs walk abreast and threes in a V, neighbours about 0.7-0.8 m apart,
+# so the members of a group of two or three stay within about 1.5 m of one another (Moussaid et al., "The
+# walking behaviour of pedestrian social groups and its impact on crowd dynamics", PLoS ONE 5(4) e10047,
+# 2010); a group moves as one, so the robot put in the walker's place walks with them, not past them.
 GROUP_DISTANCE_M = 1.5
 
 
