@@ -153,14 +153,31 @@ def _read_tracks(tracks_path: str) -> Dict[Tuple[str, str], Dict[float, Tuple[fl
 # handed to the planner as a walker it would then treat as standing.
 WALKING_MIN_SPEED_M_S = 0.3
 
+# A pedestrian who stays this close to the walker at every step both are tracked in the episode window
+# walks in the walker's group: pairs walk abreast and threes in a V, neighbours about 0.7-0.8 m apart,
+# so the members of a group of two or three stay within about 1.5 m of one another (Moussaid et al., "The
+# walking behaviour of pedestrian social groups and its impact on crowd dynamics", PLoS ONE 5(4) e10047,
+# 2010); a group moves as one, so the robot put in the walker's place walks with them, not past them.
+GROUP_DISTANCE_M = 1.5
+
+
+def walks_with(walker: Dict[float, Tuple[float, float]], other: Dict[float, Tuple[float, float]], times) -> bool:
+    """True when `other` walks in the walker's group through the window `times` [s]: tracked with the
+    walker at two or more of those times, and within GROUP_DISTANCE_M of them at every one."""
+    common = [t for t in times if t in walker and t in other]
+    return len(common) >= 2 and all(math.hypot(walker[t][0] - other[t][0], walker[t][1] - other[t][1])
+                                    <= GROUP_DISTANCE_M for t in common)
+
 
 def ucy_walkers(tracks_path: str, index_path: str, episodes,
-                bounds_of: Dict[str, Tuple[float, float, float, float]]) -> Dict[str, List[Tuple[float, ...]]]:
+                bounds_of: Dict[str, Tuple[float, float, float, float]],
+                exclude_group: bool = False) -> Dict[str, List[Tuple[float, ...]]]:
     """episode id -> the pedestrians walking in the scene when the episode starts, as a planner at
     that moment would see them: position at t0 = 0.4 k0, velocity of their next 0.4 s step (the
     constant-velocity prediction of gmmrrt-plan --person x,y,yaw,vx,vy), yaw = their heading;
     everyone tracked at t0 and t0 + 0.4 except the walker and the standing person of the episode,
-    whose step is at least WALKING_MIN_SPEED_M_S, inside bounds_of[episode id] (xmin, ymin, xmax, ymax)."""
+    whose step is at least WALKING_MIN_SPEED_M_S, inside bounds_of[episode id] (xmin, ymin, xmax, ymax).
+    With exclude_group, the walker's own group (walks_with through the episode window) is left out too."""
     rows = read_index(index_path)
     tracks = _read_tracks(tracks_path)
     out = {}
@@ -170,10 +187,14 @@ def ucy_walkers(tracks_path: str, index_path: str, episodes,
             raise EpisodeError(f"{index_path}: episode {e.episode_id} is not in the index")
         t0 = round(0.4 * int(r["k0"]), 1)
         t1 = round(t0 + 0.4, 1)
+        window = [round(0.4 * k, 1) for k in range(int(r["k0"]), int(r["k1"]) + 1)]
+        own = tracks.get((r["scene"], r["robot_track"]), {})
         b = bounds_of[e.episode_id]
         walkers = []
         for (scene, track), pos in tracks.items():
             if scene != r["scene"] or track in (r["person_track"], r["robot_track"]) or t0 not in pos or t1 not in pos:
+                continue
+            if exclude_group and walks_with(own, pos, window):
                 continue
             (x0, y0), (x1, y1) = pos[t0], pos[t1]
             vx, vy = (x1 - x0) / 0.4, (y1 - y0) / 0.4

@@ -100,12 +100,13 @@ def test_real_data_harness_scores_what_the_planner_returns(tmp_path):
     assert "tools/experiments.py real --quick" in md and "two humans in nearly the same situation" in md
     data = json.loads((out / "real_upo_avoid-quick.json").read_text())
     runs = data["runs"]
-    assert len(runs) == 16  # 2 episodes x 8 planners
+    assert len(runs) == 18  # 2 episodes x 9 planners
     assert sorted({r["seed"] for r in runs}) == [7, 8]
     assert all("--seed" in r["argv"] and "--json" in r["argv"] for r in runs)
     gmm_runs = [r for r in runs if r["planner"].startswith("GMM-RRT*")]
     assert all("--model" in r["argv"] and "--gmm-bias 0.95" in r["argv"] and "--task-cost " in r["argv"] for r in gmm_runs)
-    assert all("--model" not in r["argv"] for r in runs if r["planner"] == "RRT*")
+    assert all("--model" not in r["argv"] for r in runs if r["planner"].startswith("RRT*"))
+    assert sum(r["planner"] == "RRT* (human's side)" for r in runs) == 2  # the side's worth without a model
     # every standing person of the recording, except in the one-person row; the sides as asked
     for r in runs:
         n = r["argv"].count("--person ")

@@ -2,6 +2,8 @@
 standing person of a UPO recording, the UCY scene's standing pedestrians, the side of a sweep, how often
 two humans agree) and the named errors for a data set without a split or an episode without a person."""
 import math
+import os
+from pathlib import Path
 
 import pytest
 
@@ -87,6 +89,55 @@ def test_ucy_walkers_are_the_people_walking_at_the_start(tmp_path):
         RD.ucy_walkers(str(tracks), str(idx), [ep("zz", (0, 0, 0), [(0, 1)])], {"zz": (0, 0, 1, 1)})
 
 
+def test_ucy_walkers_leave_out_the_walkers_own_group(tmp_path):
+    idx = tmp_path / "ucy_index.csv"
+    idx.write_text("episode_id,scene,person_track,robot_track,k0,k1,split\ne1,z,1,2,1,4,test\n")
+    tracks = tmp_path / "tracks.csv"
+    rows = ["scene,track,t,x,y"]
+    for k in (1, 2, 3, 4):
+        t = round(0.4 * k, 1)
+        rows += [f"z,1,{t},0,0", f"z,2,{t},{0.5 * k},5",       # the person, the walker (1.25 m/s)
+                 f"z,3,{t},{0.5 * k},{5.8}",                 # abreast of the walker throughout: its group
+                 f"z,4,{t},{0.5 * k + 1.4 * (k - 1)},4"]     # starts 1 m away, then walks off: not a group
+    tracks.write_text("\n".join(rows) + "\n")
+    e1 = ep("e1", (0, 0, 0.5), [(0.5, 5), (2, 5)])
+    every = RD.ucy_walkers(str(tracks), str(idx), [e1], {"e1": (-10, -10, 10, 10)})["e1"]
+    assert sorted(round(w[1], 3) for w in every) == [4.0, 5.8]
+    crowd = RD.ucy_walkers(str(tracks), str(idx), [e1], {"e1": (-10, -10, 10, 10)}, exclude_group=True)["e1"]
+    assert [round(w[1], 3) for w in crowd] == [4.0]
+    walker = {0.4: (0.0, 0.0), 0.8: (1.0, 0.0)}
+    assert RD.walks_with(walker, {0.4: (0.0, 1.5), 0.8: (1.0, 1.5)}, [0.4, 0.8])
+    assert not RD.walks_with(walker, {0.4: (0.0, 1.0), 0.8: (1.0, 1.6)}, [0.4, 0.8])
+    assert not RD.walks_with(walker, {0.4: (0.0, 1.0)}, [0.4, 0.8])  # one common step says nothing
+
+
+REAL = Path(os.environ.get("GMMRRT_REAL_DATA", "../shared/data/real"))
+
+
+@pytest.mark.skipif(not all((REAL / f).is_file() for f in ("ucy_tracks.csv", "ucy_index.csv", "ucy_avoid_episodes.csv")),
+                    reason=f"real data not found at {REAL} (set GMMRRT_REAL_DATA)")
+def test_real_ucy_starts_inside_a_walker_are_mostly_its_own_group():
+    """On the UCY avoid test split, most walkers that start in contact with another walking pedestrian
+    (centres within 0.55 m) start beside a member of their own group: leaving the group out removes
+    most such starts and keeps everyone else."""
+    from gmmrrt_tools.scenes import read_episodes
+
+    idx, tracks = str(REAL / "ucy_index.csv"), str(REAL / "ucy_tracks.csv")
+    eps = read_episodes(str(REAL / "ucy_avoid_episodes.csv"), index=idx, split="test")
+    assert eps, f"{idx}: no test episode"
+    wide = {e.episode_id: (-1e9, -1e9, 1e9, 1e9) for e in eps}
+    all_w = RD.ucy_walkers(tracks, idx, eps, wide)
+    crowd = RD.ucy_walkers(tracks, idx, eps, wide, exclude_group=True)
+
+    def starts_inside(walkers):
+        return sum(any(math.hypot(w[0] - e.xy[0][0], w[1] - e.xy[0][1]) < 0.55 for w in walkers[e.episode_id])
+                   for e in eps)
+    before, after = starts_inside(all_w), starts_inside(crowd)
+    assert before > 0 and after < before / 2, (before, after)
+    for e in eps:  # the crowd is a subset: only group members were dropped
+        assert set(crowd[e.episode_id]) <= set(all_w[e.episode_id])
+
+
 def test_human_agreement_pairs_nearest_situations_of_other_groups():
     person = (0, 0, 0)
     left = [(-3, 0.1), (0, -1), (3, 0.1)]
@@ -126,5 +177,11 @@ def test_side_limit_counts_the_other_side_plans_a_target_allows():
     rs.name = "real_ucy_avoid"  # 0.9 x RRT* = 0.45: 10 (0.45 - 0.2) / 0.8 = 3.1 -> 3 plans
     text = RE._side_limit(rs, {"GMM-RRT* (paper cost)": gmm, "RRT*": rrt}, ["GMM-RRT* (paper cost)", "RRT*"])
     assert "0.450 m" in text and "allows 3 such plans" in text
+    # against RRT*: which other-side plans the two share, and the ratio where both are on the human's side
+    assert "RRT* takes the other side too in 0 of its 2" in text
+    assert "where both take the human's side (8 episodes) it scores 0.200 m against RRT*'s 0.500 m (0.40x)" in text
+    rrt2 = [{"tdm_m": 0.5, "same_side": True}] * 9 + [{"tdm_m": 0.8, "same_side": False}]
+    text = RE._side_limit(rs, {"GMM-RRT* (paper cost)": gmm, "RRT*": rrt2}, ["GMM-RRT* (paper cost)", "RRT*"])
+    assert "RRT* takes the other side too in 1 of its 2 (1.00 m against RRT*'s 0.80 m)" in text
     rs.name = "real_ucy_approach"
     assert RE._side_limit(rs, {}, []) == ""

@@ -99,6 +99,8 @@ def _avoid_planners(mdl: Path, one_person: bool) -> List[Tuple[str, str, Optiona
             (f"GMM-RRT* ({DEFAULT_COST} cost, human's side)", "gmm-rrt-star", mdl, d + ("HUMAN_SIDE",)),
             # What the background cost can reach once the side is right: the floor the side leaves.
             ("GMM-RRT* (background cost, human's side)", "gmm-rrt-star", mdl, ("--task-cost", "background", "HUMAN_SIDE")),
+            # The same floor without a model: what the side alone is worth, so the model's share is visible.
+            ("RRT* (human's side)", "rrt-star", None, ("HUMAN_SIDE",)),
             ("RRT*", "rrt-star", None, ())]
     return out
 
@@ -160,7 +162,10 @@ def real_ucy_avoid(ctx: Ctx) -> RealSet:
     eps = _limit(ctx, [e for e in every if e.split == ctx.split])
     people = RD.ucy_people(tracks, idx, eps, every)
     scenes = [multi_person_scene(e, people[e.episode_id]) for e in eps]
-    walkers = RD.ucy_walkers(tracks, idx, eps, {e.episode_id: sc.bounds for e, sc in zip(eps, scenes)})
+    # The crowd a planner would predict, without the walker's own group: a group walks as one, so the
+    # robot in one member's place walks with the others rather than past them (realdata.walks_with).
+    walkers = RD.ucy_walkers(tracks, idx, eps, {e.episode_id: sc.bounds for e, sc in zip(eps, scenes)},
+                             exclude_group=True)
     planners = _avoid_planners(mdl, one_person=False)
     # The crowd: the same planners given everyone walking at the episode's start (constant-velocity
     # prediction), to see whether the people the standing-person models ignore explain the humans.
@@ -347,11 +352,14 @@ def _real_report(ctx: Ctx, rs: RealSet, results) -> None:
                f"{pairs} pairs) pass on the same side in {100 * a:.0f} %.\n")
         md += _side_limit(rs, per, labels)
     # per-episode table
-    ep_lines = ["| episode | people | human side | " + " | ".join(f"{l}: TDM (m){'' if rs.approach else ', side'}"
+    ep_lines = ["| episode | people | human side | human length / straight distance | " + " | ".join(f"{l}: TDM (m){'' if rs.approach else ', side'}"
                                                                 for l in labels) + " |",
-                "|" + "---|" * (3 + len(labels))]
+                "|" + "---|" * (4 + len(labels))]
     for k, e in enumerate(rs.episodes):
-        cells = [e.episode_id, str(len(rs.scenes[k].people)), RD.side_of_sweep(e.xy, e.person)]
+        # How far the human went out of their way: a loop round the person, not a side choice, when large.
+        straight = float(np.linalg.norm(np.asarray(e.xy[-1]) - np.asarray(e.xy[0])))
+        detour = f"{M.path_length(e.xy) / straight:.2f}" if straight > 0 else "–"
+        cells = [e.episode_id, str(len(rs.scenes[k].people)), RD.side_of_sweep(e.xy, e.person), detour]
         for l in labels:
             m = per[l][k]
             cells.append("–" if m is None else f"{m['tdm_m']:.3f}" + ("" if rs.approach else
@@ -400,9 +408,27 @@ def _side_limit(rs: RealSet, per, labels) -> str:
         need = "unreachable at this same-side TDM" if x_max < 0 else f"≥ {100 * (1 - max(0.0, x_max) / n):.0f} %"
         rows.append(f"{l}: {len(other)} of {n} plans on the other side carry {100 * share:.0f} % of its TDM "
                     f"({o_:.2f} m each against {s_:.2f} m); the target allows {max(0, math.floor(x_max)) if x_max >= 0 else 0} "
-                    f"such plans, a side agreement {need} (it has {100 * len(same) / n:.0f} %)")
+                    f"such plans, a side agreement {need} (it has {100 * len(same) / n:.0f} %)"
+                    + (_shared_with_rrt(per[l], per.get("RRT*", [])) if unit != "m" else ""))
     out.append("; ".join(rows) + ".\n")
     return "".join(out) if rows else ""
+
+
+def _shared_with_rrt(gmm, rrt) -> str:
+    """For a target relative to RRT*: whether the planner's other-side plans are RRT*'s too (then they add
+    about the same TDM to both and only a side choice unlike RRT*'s moves the ratio), and the ratio of the
+    two on the episodes where both pass on the human's side (what the cost alone does)."""
+    pairs = [(g, r) for g, r in zip(gmm, rrt) if g is not None and r is not None]
+    both_other = [(g, r) for g, r in pairs if not g["same_side"] and not r["same_side"]]
+    both_same = [(g, r) for g, r in pairs if g["same_side"] and r["same_side"]]
+    if not pairs or not both_same:
+        return ""
+    out = (f"; RRT* takes the other side too in {len(both_other)} of its {sum(not g['same_side'] for g, _ in pairs)}"
+           + (f" ({np.mean([g['tdm_m'] for g, _ in both_other]):.2f} m against RRT*'s "
+              f"{np.mean([r['tdm_m'] for _, r in both_other]):.2f} m)" if both_other else ""))
+    sg, sr = float(np.mean([g["tdm_m"] for g, _ in both_same])), float(np.mean([r["tdm_m"] for _, r in both_same]))
+    return out + (f", and where both take the human's side ({len(both_same)} episodes) it scores {sg:.3f} m "
+                  f"against RRT*'s {sr:.3f} m ({sg / sr:.2f}x)" if sr > 0 else "")
 
 
 def _worst_figure(rs: RealSet, paths, per, labels, n=6):

@@ -1,0 +1,75 @@
+"""tools/side_rules.py: the person-frame geometry it learns the side from, its scoring on hand-made
+episodes whose side the straight line decides (so every rule can be checked against the truth), and a
+run on the real data (skipped, with the reason, without ../shared/data/real)."""
+import importlib.util
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from gmmrrt_tools.episodes import Episode
+
+ROOT = Path(__file__).resolve().parents[3]
+REAL = Path(os.environ.get("GMMRRT_REAL_DATA", ROOT.parent / "shared" / "data" / "real"))
+
+
+def _load():
+    spec = importlib.util.spec_from_file_location("side_rules", ROOT / "tools" / "side_rules.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+SR = _load()
+
+
+def ep(eid, xy, person=(0.0, 0.0, 0.0), meta=None):
+    e = Episode.from_rows(eid, "avoid", "left", [(0.1 * i, x, y, math.nan, *person) for i, (x, y) in enumerate(xy)])
+    e.meta = meta or {}
+    return e
+
+
+def test_geometry_is_in_the_person_frame():
+    # the person at (1, 1) facing +y: the mover goes from 3 m behind to 3 m ahead, 1 m to the person's right
+    g = SR.geometry(ep("a", [(2, -2), (2, 4)], person=(1.0, 1.0, math.pi / 2)))
+    s_x, s_y, g_x, g_y, offset, along, ux, uy = g
+    assert (s_x, s_y, g_x, g_y) == pytest.approx((-3, -1, 3, -1))
+    assert offset == pytest.approx(1.0)   # the person is on the line's left
+    assert along == pytest.approx(0.5)
+    assert (ux, uy) == pytest.approx((1, 0))
+
+
+def test_rules_are_scored_against_the_humans_side():
+    # the human passes on the straight line's side whenever the person is 0.3 m or more off the line;
+    # so the straight line's rule is right on every episode, in cross-validation and on test
+    eps = []
+    for i in range(40):
+        off = (0.3 + 0.05 * (i % 10)) * (1 if i % 2 else -1)
+        bulge = 0.8 if off > 0 else -0.8  # passes farther out on the line's side
+        eps.append(ep(f"e{i}", [(-3, off), (0, off + bulge), (3, off)], meta={"g": str(i // 4)}))
+    train, test = eps[:30], eps[30:]
+    rows = SR.evaluate(train, test, lambda e: e.meta["g"])
+    assert rows[0][0] == "straight line's side" and rows[0][1:] == (1.0, 1.0)
+    assert [r for r, _, _ in rows if "neighbours" in r] == ["1 nearest neighbours", "5 nearest neighbours",
+                                                           "15 nearest neighbours"]  # 31 > a training fold
+    assert all(0.0 <= cv <= 1.0 and 0.0 <= t <= 1.0 for _, cv, t in rows)
+    assert dict((r, t) for r, _, t in rows)["logistic regression"] == 1.0  # the offset's sign separates
+
+
+def test_unknown_set_is_refused():
+    r = subprocess.run([sys.executable, str(ROOT / "tools" / "side_rules.py"), "--sets", "nope"],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "--sets: unknown nope" in r.stderr
+
+
+@pytest.mark.skipif(not (REAL / "ucy_avoid_episodes.csv").is_file(),
+                    reason=f"real data not found at {REAL} (set GMMRRT_REAL_DATA)")
+def test_real_data_table_chooses_on_train():
+    r = subprocess.run([sys.executable, str(ROOT / "tools" / "side_rules.py"), "--real-data", str(REAL),
+                        "--sets", "ucy_avoid"], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    assert "chosen on train:" in r.stdout and r.stdout.count("(chosen)") == 1
+    assert "| straight line's side" in r.stdout
