@@ -2,7 +2,8 @@
 // programs by, as the compiler reads them from the one header that defines each: the
 // walking-people model of the core (planner.h), the planning bounds' margin (problem_bounds.h), the path status codes (status.h),
 // gmmrrtd's accepted utime range (planner/daemon/clock.h) and the demonstration reader's pairing
-// limit (learner demo_io.hpp). Python imports the module instead
+// limit (learner demo_io.hpp), and the task and homotopy words with their wire values (the learner's
+// labels.hpp over model.h's enums). Python imports the module instead
 // of writing the numbers again. Usage: gmmrrt-print-constants OUT.py (written whole or not at all).
 #include <cstdint>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include "gmmrrt/planner.h"
 #include "gmmrrt/problem_bounds.h"
 #include "gmmrrt_learner/demo_io.hpp"
+#include "gmmrrt_learner/labels.hpp"
 
 // A Python float literal of v: the shortest of 15 or 17 significant digits that reads back to v,
 // with ".0" where it would otherwise read as an int.
@@ -61,6 +63,15 @@ int main(int argc, char **argv)
                     "# flagged for a corner tighter than the turning radius\n");
     std::fprintf(f, "GMMRRT_ESCAPE = %d\n", static_cast<int>(GMMRRT_ESCAPE));
     std::fprintf(f, "GMMRRT_TIGHT_TURNS = %d\n", static_cast<int>(GMMRRT_TIGHT_TURNS));
+    std::fprintf(f, "# learner/include/gmmrrt_learner/labels.hpp: episode labels, word -> gmmrrt_task_t /\n"
+                    "# gmmrrt_homotopy_t (the values of nav_goal_t.TASK_* and demo_info_t.HOMOTOPY_*)\n");
+    std::fprintf(f, "TASKS = {");
+    for (int t = GMMRRT_TASK_AVOID; t <= GMMRRT_TASK_APPROACH; ++t)
+        std::fprintf(f, "%s\"%s\": %d", t == GMMRRT_TASK_AVOID ? "" : ", ", gmmrrt::learn::TaskName(t), t);
+    std::fprintf(f, "}\nHOMOTOPIES = {");
+    for (int h = GMMRRT_HOMOTOPY_LEFT; h <= GMMRRT_HOMOTOPY_FRONTAL; ++h)
+        std::fprintf(f, "%s\"%s\": %d", h == GMMRRT_HOMOTOPY_LEFT ? "" : ", ", gmmrrt::learn::HomotopyName(h), h);
+    std::fprintf(f, "}\n");
     const bool ok = std::ferror(f) == 0;
     if (std::fclose(f) != 0 || !ok || std::rename(tmp.c_str(), out.c_str()) != 0) {
         std::perror(out.c_str());

@@ -20,14 +20,16 @@ import tempfile
 from dataclasses import dataclass, field
 from typing import Dict, Iterable, List, Optional, Tuple
 
+import gmmrrt_constants  # generated beside the message package (tools/constants/)
 import numpy as np
 
 CSV_COLUMNS = ("episode_id", "task", "homotopy", "t", "robot_x", "robot_y", "person_x", "person_y",
                "person_yaw")
 
-# Wire values: nav_goal_t.TASK_* / demo_info_t.HOMOTOPY_* (= gmmrrt_task_t / gmmrrt_homotopy_t).
-TASKS = {"avoid": 1, "approach": 2}
-HOMOTOPIES = {"left": 1, "right": 2, "frontal": 3}
+# Wire values: nav_goal_t.TASK_* / demo_info_t.HOMOTOPY_* (= gmmrrt_task_t / gmmrrt_homotopy_t), with
+# the learner's words for them (labels.hpp), generated at build time so the two cannot drift apart.
+TASKS = dict(gmmrrt_constants.TASKS)
+HOMOTOPIES = dict(gmmrrt_constants.HOMOTOPIES)
 TASK_NAMES = {v: k for k, v in TASKS.items()}
 HOMOTOPY_NAMES = {v: k for k, v in HOMOTOPIES.items()}
 
