@@ -139,7 +139,7 @@ struct gmmrrt_planner {
     double setup_ms;               /* duration of the last successful set_problem */
     int64_t pruned;                /* nodes recycled by pruning since set_problem */
 
-    /* Per-problem copies, not cleared by gmmrrt_planner_init (13 KB that a one-shot plan would
+    /* Per-problem copies, not cleared by gmmrrt_planner_init (14.5 KB that a one-shot plan would
      * otherwise write twice on a cold cache): set_problem writes each part before anything reads
      * it (the problem with its obstacle arrays up to their counts, the walkers, the walkers'
      * world only when someone walks, the GMM-RRT stages only for gmm-rrt), and nothing reads
