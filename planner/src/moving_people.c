@@ -59,9 +59,13 @@ gmmrrt_status_t gmmrrt_walkers_prepare(struct gmmrrt_planner *p, const gmmrrt_pr
         return GMMRRT_ERR_INVALID_ARGUMENT;
     for (int32_t i = 0; i < o->num_people; ++i) {
         const double vx = pr->person_vx[i], vy = pr->person_vy[i];
-        if (!isfinite(vx) || !isfinite(vy) || hypot(vx, vy) > GMMRRT_MAX_PERSON_SPEED_M_S)
+        if (!isfinite(vx) || !isfinite(vy))
             return GMMRRT_ERR_INVALID_ARGUMENT;
-        if (!(hypot(vx, vy) >= GMMRRT_STANDING_SPEED_M_S) || !(p->cfg.person_radius_m > 0.0))
+        /* A standing person (the usual case) skips libm's hypot, whose code a cold set-up would fetch. */
+        const double speed = (vx == 0.0 && vy == 0.0) ? 0.0 : hypot(vx, vy);
+        if (speed > GMMRRT_MAX_PERSON_SPEED_M_S)
+            return GMMRRT_ERR_INVALID_ARGUMENT;
+        if (!(speed >= GMMRRT_STANDING_SPEED_M_S) || !(p->cfg.person_radius_m > 0.0))
             continue;
         w->person[w->count] = i;
         w->x[w->count] = o->people[i].x;

@@ -106,10 +106,7 @@ struct gmmrrt_planner {
 
     /* Problem */
     int has_problem;
-    gmmrrt_walkers_t walkers;
     gmmrrt_escape_t escape;
-    gmmrrt_obstacle_set_t world_obstacles; /* the statics and standing people, when some walk */
-    gmmrrt_problem_t problem;
     double delta;                  /* task-cost delta in use */
     int task_active;               /* task cost and mixture sampling apply */
     int32_t num_active;            /* people the task is about */
@@ -124,8 +121,6 @@ struct gmmrrt_planner {
 
     /* Informed sampling (sampler.c): the ellipse's centre, axis direction and focal distance. */
     double inf_cx, inf_cy, inf_cos, inf_sin, inf_cmin;
-
-    gmmrrt_gmm_rrt_t gmm_rrt;      /* the GMM-RRT baseline's own state (gmm_rrt.c) */
 
     /* Tree and search state */
     int32_t num_nodes;
@@ -143,6 +138,16 @@ struct gmmrrt_planner {
     int64_t conv_ref_iter;
     double setup_ms;               /* duration of the last successful set_problem */
     int64_t pruned;                /* nodes recycled by pruning since set_problem */
+
+    /* Per-problem copies, not cleared by gmmrrt_planner_init (14.5 KB that a one-shot plan would
+     * otherwise write twice on a cold cache): set_problem writes each part before anything reads
+     * it (the problem with its obstacle arrays up to their counts, the walkers, the walkers'
+     * world only when someone walks, the GMM-RRT stages only for gmm-rrt), and nothing reads
+     * them before a problem is set (has_problem). */
+    gmmrrt_walkers_t walkers;
+    gmmrrt_problem_t problem;
+    gmmrrt_obstacle_set_t world_obstacles; /* the statics and standing people, when some walk */
+    gmmrrt_gmm_rrt_t gmm_rrt;      /* the GMM-RRT baseline's own state (gmm_rrt.c) */
 
     /* Scratch, last and not cleared by gmmrrt_planner_init (30 KB: clearing it was most of a
      * one-shot plan's set-up on a cold cache); every entry is written before it is read (the

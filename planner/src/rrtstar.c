@@ -71,7 +71,7 @@ gmmrrt_status_t gmmrrt_planner_init(gmmrrt_planner_t **out, void *mem, size_t si
         return GMMRRT_ERR_BUFFER_TOO_SMALL;
     uint8_t *base = mem;
     struct gmmrrt_planner *p = mem;
-    memset(p, 0, offsetof(struct gmmrrt_planner, near_idx)); /* not the scratch (planner_internal.h) */
+    memset(p, 0, offsetof(struct gmmrrt_planner, walkers)); /* not the per-problem copies nor the scratch */
     p->cfg = *cfg;
     p->strategy = gmmrrt_strategy_of(cfg->planner);
     p->pool.xy = (gmmrrt_xy_t *)(void *)(base + l.xy);
@@ -230,6 +230,31 @@ int gmmrrt_planner_edge_allowed(const struct gmmrrt_planner *p, double x0, doubl
     return edge_allowed(p, x0, y0, x1, y1);
 }
 
+/* *dst = *src, less the unused capacity of the obstacle and velocity arrays (each is read only
+ * below its count): 5 KB that a cold set-up would otherwise write. Everything between those
+ * arrays is copied as a byte range, so a field added there is copied too. */
+#define PR_OFF(f) offsetof(gmmrrt_problem_t, f)
+static void copy_range(gmmrrt_problem_t *dst, const gmmrrt_problem_t *src, size_t from, size_t to)
+{
+    memcpy((uint8_t *)dst + from, (const uint8_t *)src + from, to - from);
+}
+
+static void copy_problem(gmmrrt_problem_t *dst, const gmmrrt_problem_t *src)
+{
+    const int32_t nc = src->obstacles.num_circles, nb = src->obstacles.num_boxes, np = src->obstacles.num_people;
+    copy_range(dst, src, 0, PR_OFF(obstacles.circles));
+    memcpy(dst->obstacles.circles, src->obstacles.circles, (size_t)nc * sizeof src->obstacles.circles[0]);
+    copy_range(dst, src, PR_OFF(obstacles.num_boxes), PR_OFF(obstacles.boxes));
+    memcpy(dst->obstacles.boxes, src->obstacles.boxes, (size_t)nb * sizeof src->obstacles.boxes[0]);
+    copy_range(dst, src, PR_OFF(obstacles.num_people), PR_OFF(obstacles.people));
+    memcpy(dst->obstacles.people, src->obstacles.people, (size_t)np * sizeof src->obstacles.people[0]);
+    copy_range(dst, src, PR_OFF(obstacles.raster), PR_OFF(person_vx));
+    memcpy(dst->person_vx, src->person_vx, (size_t)np * sizeof src->person_vx[0]);
+    memcpy(dst->person_vy, src->person_vy, (size_t)np * sizeof src->person_vy[0]);
+    copy_range(dst, src, PR_OFF(nominal_speed_m_s), sizeof *src);
+}
+#undef PR_OFF
+
 gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_problem_t *pr)
 {
     if (!p || !pr)
@@ -302,7 +327,7 @@ gmmrrt_status_t gmmrrt_planner_set_problem(gmmrrt_planner_t *p, const gmmrrt_pro
         p->walkers.root_y = root_y;
     }
 
-    p->problem = *pr;
+    copy_problem(&p->problem, pr);
     p->problem.start_x = root_x;
     p->problem.start_y = root_y;
     pr = &p->problem;

@@ -11,7 +11,8 @@
  * solution time is set-up plus the time to the first solution (OMPL's intermediate-solution
  * callback where the planner calls it, else the solve's duration when it returned early with a
  * solution, else unknown: "-"), median over every run of every budget. Set-up: OMPL from the space's construction to the end of
- * setup(); ours from init to the end of set_problem.
+ * setup(); ours from init to the end of set_problem. Every run starts with the CPU's caches
+ * evicted (evict_caches), so that every planner's first path is timed from the same state.
  *
  * With --model FILE (a features avoid model), also the social avoid scene of gmmrrt-bench-ompl
  * (problem.hpp: a person of radius 2 m at the origin facing the start, (-5, 0) -> (5, 0), cost
@@ -480,6 +481,25 @@ static Run run_ours_task(const Problem &p, double budget_ms, uint64_t seed, std:
     return r;
 }
 
+/* Every run of every planner starts from the same state of the CPU's caches and TLBs: before
+ * each run (outside both clocks) this writes one byte per cache line of a 128 MiB buffer, four
+ * times the last-level cache of the machines of docs/benchmarks.md (32 MiB; a CPU with a larger
+ * one would keep part of each side's lines). Without it the first-path times compared
+ * different states: a planner that stops at its first path (RRTConnect) ran each time right
+ * after a run of its own of some microseconds, its code and data still cached, while an anytime
+ * planner (ours, RRTstar, ...) started after one of its own runs of up to a second that had
+ * evicted them. Each planner keeps its own sequence of runs (its allocator's state stays its own). */
+static volatile unsigned char evict_sink; /* the writes' checksum: keeps them */
+
+static void evict_caches()
+{
+    static std::vector<unsigned char> buffer(size_t(128) << 20, 1);
+    unsigned char sum = 0;
+    for (size_t i = 0; i < buffer.size(); i += 64)
+        sum = static_cast<unsigned char>(sum + ++buffer[i]);
+    evict_sink = sum;
+}
+
 static double median(std::vector<double> v)
 {
     v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return std::isnan(x); }), v.end());
@@ -656,6 +676,7 @@ int main(int argc, char **argv)
             for (int t = 0; t < trials; ++t)
                 for (size_t k = 0; k < budgets.size(); ++k) {
                     Run r;
+                    evict_caches();
                     try {
                         r = name == "gmmrrt" ? (social ? run_ours_task(p, budgets[k], first_seed + (uint64_t)t, &block)
                                                        : run_ours(p, budgets[k], first_seed + (uint64_t)t, &block))
