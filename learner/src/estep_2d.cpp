@@ -40,7 +40,7 @@ constexpr long kChunkPoints = 8192;
 // its log-likelihood after 16 iterations is the same to 16 digits.)
 constexpr double kNegligible = -37.0;
 
-// Points per group whose components are culled together (ActiveComponents in the kernel): the
+// Points per group whose terms are culled together (ActiveTerms in the kernel): the
 // points are in spatial order (FitMixture), so a group's bounding box is small, and on the
 // benchmark data (K = 19) about a third of the components survive it; the bounds cost about 20
 // operations per component and group, which 64 points repay. A multiple of both lane counts.

@@ -346,6 +346,53 @@ void test_culling_components_gives_the_same_bits(void** state) {
   }
 }
 
+// The same with theta wrapped (angle_mask 2: 3 images per component): narrow and wide
+// components spread over (-pi, pi], points in spatial order and not, clumps at the seam
+// (+-pi: a group's box straddles the wrap for some components) and elsewhere.
+void test_culling_terms_with_the_angle_gives_the_same_bits(void** state) {
+  (void)state;
+  std::mt19937_64 rng(17);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI);
+  Mixture m = RandomMixture(19, 14);
+  m.angle_mask = 2u;
+  for (int i = 0; i < 19; ++i) {
+    m.means.col(i) << 3.0 + 2.0 * normal(rng), gmmrrt_wrap_angle(angle(rng));
+    m.chol[i] << 0.1 + 0.3 * std::fabs(normal(rng)), 0.0, 0.2 * normal(rng), 0.05 + (i % 4 == 0 ? 1.5 : 0.3) * std::fabs(normal(rng));
+  }
+  m.means(1, 0) = M_PI;  // a mean on the seam
+  const Eigen::Index n = 6001;
+  Eigen::MatrixXd xt(n, 2);
+  for (Eigen::Index c = 0; c < n; ++c) {
+    const int i = static_cast<int>(rng() % 19);
+    const Eigen::Vector2d z(normal(rng), normal(rng));
+    const Eigen::Vector2d x = m.means.col(i) + 2.0 * m.chol[i] * z;
+    xt.row(c) << x[0], gmmrrt_wrap_angle(x[1]);
+  }
+  for (Eigen::Index c = 0; c + 128 <= 3000; c += 128) {  // clumps, every third at the seam
+    const double u0 = 3.0 + 2.0 * normal(rng);
+    const double u1 = (c / 128) % 3 == 0 ? M_PI - 1e-4 : angle(rng);
+    for (Eigen::Index q = c; q < c + 128; ++q)
+      xt.row(q) << u0 + 1e-3 * normal(rng), gmmrrt_wrap_angle(u1 + 1e-3 * normal(rng));
+  }
+  const std::vector<Eigen::Index> order = detail::SpatialOrder2d(xt);
+  Eigen::MatrixXd sorted(n, 2);
+  for (Eigen::Index c = 0; c < n; ++c) sorted.row(c) = xt.row(order[c]);
+  for (const Eigen::MatrixXd* pts : {&sorted, &xt}) {
+    const Eigen::VectorXd x0 = pts->col(0), x1 = pts->col(1);
+    for (detail::Simd simd : {detail::Simd::kBaseline, detail::Simd::kAuto}) {
+      Eigen::VectorXd la(n), lb(n);
+      detail::Moments2d a, b;
+      const double ma = detail::EStep2d(m, x0.data(), x1.data(), n, la.data(), &a, simd, 1, true);
+      const double mb = detail::EStep2d(m, x0.data(), x1.data(), n, lb.data(), &b, simd, 1, false);
+      assert_true(ma == mb);
+      assert_true(la == lb);
+      assert_true(a.n == b.n && a.m0 == b.m0 && a.m1 == b.m1);
+      assert_true(a.s00 == b.s00 && a.s01 == b.s01 && a.s11 == b.s11);
+    }
+  }
+}
+
 // Five separated blobs, 30 000 points: more than a 4 000-point screening sample.
 Eigen::MatrixXd FiveBlobs() {
   using test_support::Diag;
@@ -398,6 +445,7 @@ int main(void) {
       cmocka_unit_test(test_fused_estep_with_angle_matches_the_general_path),
       cmocka_unit_test(test_baseline_and_avx2_kernels_agree),
       cmocka_unit_test(test_culling_components_gives_the_same_bits),
+      cmocka_unit_test(test_culling_terms_with_the_angle_gives_the_same_bits),
       cmocka_unit_test(test_screening_on_a_sample_is_deterministic_and_recovers_the_mixture),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
