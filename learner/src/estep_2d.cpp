@@ -42,8 +42,8 @@ constexpr double kNegligible = -37.0;
 
 // Points per group whose terms are culled together (ActiveTerms in the kernel): the
 // points are in spatial order (FitMixture), so a group's bounding box is small, and on the
-// benchmark data (K = 19) about a third of the components survive it; the bounds cost about 20
-// operations per component and group, which 64 points repay. A multiple of both lane counts.
+// benchmark data (K = 19) about a third of the terms survive it; the bounds cost about 50
+// operations per term and group, which 64 points repay. A multiple of both lane counts.
 constexpr long kCullPoints = 64;
 static_assert(kCullPoints % 4 == 0 && kBlock % kCullPoints == 0, "groups must hold whole vectors and blocks");
 
