@@ -346,8 +346,10 @@ void AdvanceSquarem(const FitState& s, EmRun* run, int until) {
     if (o.progress && (o.restarts == 1 || run->kept)) o.progress(run->restart, t, ll);
     return t;
   };
-  int spent = 0;  // E-steps of refused extrapolations in this call: not in run->ll, but work
-  auto at_cap = [&](int t) { return t + spent >= o.max_iterations || t + spent >= until; };
+  // E-steps of refused extrapolations are not in run->ll but are work: they count towards the
+  // cap (all of the run's, from earlier calls too) and towards `until` (this call's).
+  int spent = 0;
+  auto at_cap = [&](int t) { return t + run->ll_refused >= o.max_iterations || t + spent >= until; };
   auto m_step = [&](Mixture* m) {  // from the pending statistics of run->m
     const bool changed = MStep(s, run->stats, run->m.means, run->score, run->iterations + 1, m);
     ++run->iterations;
@@ -630,7 +632,10 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     full.kept = true;
     run = std::move(full);
     Advance(s, &run, std::max(0, options.max_iterations - run.iterations));
-  } else {
+  } else if (!run.converged &&
+             static_cast<int>(run.ll.size()) - 1 + run.ll_refused < options.max_iterations) {
+    // The screening's E-steps count towards the cap (the log-likelihood history goes on from
+    // them): a screening that reached the cap is the fit (Advance would add one more step).
     Advance(s, &run, options.max_iterations);
   }
   if (run.m.k() == 0)

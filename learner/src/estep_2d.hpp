@@ -41,9 +41,14 @@ bool EStep2dAvx2Available();
 // general E-step); returns the mean of point_ll. Deterministic: a fixed summation order (2
 // lanes on the baseline kernel, 4 on the AVX2 one; blocks of 512 points; chunks of 8192 points,
 // which run on up to `threads` threads and are added in chunk order): the two kernels agree up
-// to rounding (same machine, same kernel -> same bits, for any thread count).
+// to rounding (same machine, same kernel -> same bits, for any thread count). Terms
+// (component, image) are culled per group of 64 points by bounds over the group's bounding box
+// (a term is skipped only where every point's term is below the negligible cut, which the
+// per-point code would have set to 0): the same bits as cull = false (tested), and fewer
+// operations when the points come in spatial order.
 double EStep2d(const Mixture& m, const double* x0, const double* x1, Eigen::Index n_points,
-               double* point_ll, Moments2d* moments, Simd simd = Simd::kAuto, int threads = 1);
+               double* point_ll, Moments2d* moments, Simd simd = Simd::kAuto, int threads = 1,
+               bool cull = true);
 
 // exp(x) for 4 doubles at a time, as the kernel computes it (relative error < 1e-15 against
 // std::exp for x in [-700, 0]; x below -700 gives 0): exposed for the unit test.

@@ -169,6 +169,38 @@ void test_any_thread_count_gives_the_same_bits(void** state) {
   }
 }
 
+// --max-iter N is N EM steps however the candidates were screened: on all points (whose
+// screening steps are the fit's first ones) and on a sample (the kept candidate then continues
+// on all points), with plain EM and SQUAREM (each E-step counts, refused extrapolations too).
+void test_iteration_cap_is_exact(void** state) {
+  (void)state;
+  std::vector<Blob> blobs = {{Vec({0.0, 0.0}), Diag({1.0, 1.0}), 3000},
+                             {Vec({1.5, 0.5}), Diag({0.7, 1.2}), 3000},
+                             {Vec({-1.0, 2.0}), Diag({0.5, 0.5}), 2000}};
+  const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 6);
+  for (int screen_points : {0, 2000})
+    for (int restarts : {1, 3})
+      for (bool accelerate : {false, true})
+        for (int cap : {0, 1, 5, 16, 25}) {
+          FitOptions o = Quiet(3, 4);
+          o.restarts = restarts;
+          o.screen_points = screen_points;
+          o.accelerate = accelerate;
+          o.tolerance = 1e-300;  // no step converges: the cap stops the fit
+          o.max_iterations = cap;
+          Mixture m;
+          FitSummary s;
+          assert_true(FitMixture(x, 0, o, &m, &s).ok());
+          assert_false(s.converged);
+          if (!accelerate) {
+            assert_int_equal(s.iterations, cap);
+            if (screen_points == 0) assert_int_equal(s.log_likelihood.size(), cap + 1);
+          } else {
+            assert_true(s.iterations <= cap);
+          }
+        }
+}
+
 // SQUAREM on overlapping components (where plain EM crawls): at least plain EM's likelihood
 // (less 1e-4 nats/point: both stop at a tolerance, not at the optimum itself), in fewer than
 // half the E-steps, and the recorded log-likelihood never decreases.
@@ -426,6 +458,7 @@ int main(void) {
       cmocka_unit_test(test_same_seed_gives_the_same_mixture),
       cmocka_unit_test(test_any_thread_count_gives_the_same_bits),
       cmocka_unit_test(test_squarem_reaches_plain_em_likelihood_in_fewer_steps),
+      cmocka_unit_test(test_iteration_cap_is_exact),
       cmocka_unit_test(test_degenerate_components_are_reseeded_or_dropped),
       cmocka_unit_test(test_cluster_across_the_seam_is_one_component),
       cmocka_unit_test(test_bic_picks_the_generating_k),

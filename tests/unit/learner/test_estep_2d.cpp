@@ -17,6 +17,7 @@
 #include "gmmrrt/features.h"
 #include "gmmrrt_learner/em.hpp"
 #include "gmmrrt_learner/mixture.hpp"
+#include "spatial_order.hpp"
 #include "test_support.hpp"
 
 // cmocka last: its fail() macro would clash with the standard library.
@@ -260,6 +261,138 @@ void test_baseline_and_avx2_kernels_agree(void** state) {
   for (int q = 0; q < 4; ++q) assert_true(e[q] == f[q]);  // lane-wise the same operations
 }
 
+// Culling components per group of points (bounds over the group's bounding box) skips only
+// terms the per-point code sets to 0, so it gives the same bits as no culling: checked on 19
+// components, some thin and tilted (condition number up to ~1e4, where the eigenvalue bound is
+// loosest), with points in spatial order (as FitMixture hands them over: most groups cull), in
+// random order (wide boxes: few cull), far away (1e4: one term survives) and in tight clumps
+// (tight bounds: the boundary of the cut), on both compiled kernels and on an odd count. (With
+// the cut moved by 1 nat in the culling's favour, this test fails.)
+void test_culling_components_gives_the_same_bits(void** state) {
+  (void)state;
+  Mixture m = RandomMixture(19, 12);
+  std::mt19937_64 rng(13);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int i = 0; i < 19; ++i)  // spread out: a group's box is near a few of them only
+    m.means.col(i) << 100.0 + 12.0 * normal(rng), -50.0 + 12.0 * normal(rng);
+  for (int i = 0; i < 19; i += 3) {  // thin, tilted components
+    m.chol[i](0, 0) = 2.0;
+    m.chol[i](1, 0) = 1.5;
+    m.chol[i](1, 1) = 0.02;
+  }
+  const Eigen::Index n = 6001;  // odd: the last vector is partly padding
+  Eigen::MatrixXd xt(n, 2);
+  for (Eigen::Index c = 0; c < n; ++c) {
+    const int i = static_cast<int>(rng() % 19);
+    const Eigen::Vector2d z(normal(rng), normal(rng));
+    xt.row(c) = (m.means.col(i) + 3.0 * m.chol[i] * z).transpose();
+  }
+  for (Eigen::Index c = 0; c < 40; ++c) xt.row(c) << 1e4 + c, -1e4;
+  // Clumps of 128 points within ~1e-3 at random places: tiny boxes, where the bounds are tight,
+  // so terms just above and just below the cut meet the margin.
+  for (Eigen::Index c = 40; c + 128 <= 5040; c += 128) {  // 5040..5807: the clumps below
+    const double u0 = 100.0 + 15.0 * normal(rng), u1 = -50.0 + 15.0 * normal(rng);
+    for (Eigen::Index q = c; q < c + 128; ++q) xt.row(q) << u0 + 1e-3 * normal(rng), u1 + 1e-3 * normal(rng);
+  }
+  // Clumps where one component's term is 36.5 nats below the point's largest: 0.5 nat inside
+  // the cut, the band a culling error of a nat would wrongly skip. Found on a ray from mu_j
+  // (component j's term relative to the largest falls from about 0 to far below).
+  auto gap_at = [&m](int j, const Eigen::Vector2d& x) {  // term j - largest term + 36.5
+    Eigen::VectorXd one(1);
+    double top = -HUGE_VAL, mine = 0.0;
+    for (int i = 0; i < 19; ++i) {
+      Mixture c;
+      c.dim = 2;
+      c.angle_mask = 0;
+      c.weights = Eigen::VectorXd::Ones(1);
+      c.means = m.means.col(i);
+      c.chol = {m.chol[i]};
+      LogDensity(c, x, &one);
+      const double term = std::log(m.weights[i]) + one[0];
+      top = std::max(top, term);
+      if (i == j) mine = term;
+    }
+    return mine - top + 36.5;
+  };
+  for (int j = 0; j < 6; ++j) {
+    const Eigen::Vector2d dir(std::cos(j + 0.5), std::sin(j + 0.5));
+    double lo = 0.0, hi = 1.0;
+    assert_true(gap_at(j, m.means.col(j)) > 0.0);
+    while (gap_at(j, m.means.col(j) + hi * dir) > 0.0) hi *= 2.0;
+    for (int it = 0; it < 60; ++it) {  // bisection to the crossing
+      const double mid = 0.5 * (lo + hi);
+      (gap_at(j, m.means.col(j) + mid * dir) > 0.0 ? lo : hi) = mid;
+    }
+    const Eigen::Vector2d x = m.means.col(j) + lo * dir;
+    assert_true(std::fabs(gap_at(j, x)) < 1e-6);
+    for (Eigen::Index q = 5040 + 128 * j; q < 5040 + 128 * (j + 1); ++q)
+      xt.row(q) << x[0] + 1e-6 * normal(rng), x[1] + 1e-6 * normal(rng);
+  }
+  const std::vector<Eigen::Index> order = detail::SpatialOrder2d(xt);
+  Eigen::MatrixXd sorted(n, 2);
+  for (Eigen::Index c = 0; c < n; ++c) sorted.row(c) = xt.row(order[c]);
+  for (const Eigen::MatrixXd* pts : {&sorted, &xt}) {
+    const Eigen::VectorXd x0 = pts->col(0), x1 = pts->col(1);
+    for (detail::Simd simd : {detail::Simd::kBaseline, detail::Simd::kAuto}) {
+      Eigen::VectorXd la(n), lb(n);
+      detail::Moments2d a, b;
+      const double ma = detail::EStep2d(m, x0.data(), x1.data(), n, la.data(), &a, simd, 1, true);
+      const double mb = detail::EStep2d(m, x0.data(), x1.data(), n, lb.data(), &b, simd, 1, false);
+      assert_true(ma == mb);
+      assert_true(la == lb);
+      assert_true(a.n == b.n && a.m0 == b.m0 && a.m1 == b.m1);
+      assert_true(a.s00 == b.s00 && a.s01 == b.s01 && a.s11 == b.s11);
+    }
+  }
+}
+
+// The same with theta wrapped (angle_mask 2: 3 images per component): narrow and wide
+// components spread over (-pi, pi], points in spatial order and not, clumps at the seam
+// (+-pi: a group's box straddles the wrap for some components) and elsewhere.
+void test_culling_terms_with_the_angle_gives_the_same_bits(void** state) {
+  (void)state;
+  std::mt19937_64 rng(17);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI);
+  Mixture m = RandomMixture(19, 14);
+  m.angle_mask = 2u;
+  for (int i = 0; i < 19; ++i) {
+    m.means.col(i) << 3.0 + 2.0 * normal(rng), gmmrrt_wrap_angle(angle(rng));
+    m.chol[i] << 0.1 + 0.3 * std::fabs(normal(rng)), 0.0, 0.2 * normal(rng), 0.05 + (i % 4 == 0 ? 1.5 : 0.3) * std::fabs(normal(rng));
+  }
+  m.means(1, 0) = M_PI;  // a mean on the seam
+  const Eigen::Index n = 6001;
+  Eigen::MatrixXd xt(n, 2);
+  for (Eigen::Index c = 0; c < n; ++c) {
+    const int i = static_cast<int>(rng() % 19);
+    const Eigen::Vector2d z(normal(rng), normal(rng));
+    const Eigen::Vector2d x = m.means.col(i) + 2.0 * m.chol[i] * z;
+    xt.row(c) << x[0], gmmrrt_wrap_angle(x[1]);
+  }
+  for (Eigen::Index c = 0; c + 128 <= 3000; c += 128) {  // clumps, every third at the seam
+    const double u0 = 3.0 + 2.0 * normal(rng);
+    const double u1 = (c / 128) % 3 == 0 ? M_PI - 1e-4 : angle(rng);
+    for (Eigen::Index q = c; q < c + 128; ++q)
+      xt.row(q) << u0 + 1e-3 * normal(rng), gmmrrt_wrap_angle(u1 + 1e-3 * normal(rng));
+  }
+  const std::vector<Eigen::Index> order = detail::SpatialOrder2d(xt);
+  Eigen::MatrixXd sorted(n, 2);
+  for (Eigen::Index c = 0; c < n; ++c) sorted.row(c) = xt.row(order[c]);
+  for (const Eigen::MatrixXd* pts : {&sorted, &xt}) {
+    const Eigen::VectorXd x0 = pts->col(0), x1 = pts->col(1);
+    for (detail::Simd simd : {detail::Simd::kBaseline, detail::Simd::kAuto}) {
+      Eigen::VectorXd la(n), lb(n);
+      detail::Moments2d a, b;
+      const double ma = detail::EStep2d(m, x0.data(), x1.data(), n, la.data(), &a, simd, 1, true);
+      const double mb = detail::EStep2d(m, x0.data(), x1.data(), n, lb.data(), &b, simd, 1, false);
+      assert_true(ma == mb);
+      assert_true(la == lb);
+      assert_true(a.n == b.n && a.m0 == b.m0 && a.m1 == b.m1);
+      assert_true(a.s00 == b.s00 && a.s01 == b.s01 && a.s11 == b.s11);
+    }
+  }
+}
+
 // Five separated blobs, 30 000 points: more than a 4 000-point screening sample.
 Eigen::MatrixXd FiveBlobs() {
   using test_support::Diag;
@@ -311,6 +444,8 @@ int main(void) {
       cmocka_unit_test(test_fused_estep_matches_the_density_and_direct_moments),
       cmocka_unit_test(test_fused_estep_with_angle_matches_the_general_path),
       cmocka_unit_test(test_baseline_and_avx2_kernels_agree),
+      cmocka_unit_test(test_culling_components_gives_the_same_bits),
+      cmocka_unit_test(test_culling_terms_with_the_angle_gives_the_same_bits),
       cmocka_unit_test(test_screening_on_a_sample_is_deterministic_and_recovers_the_mixture),
   };
   return cmocka_run_group_tests(tests, nullptr, nullptr);
