@@ -86,32 +86,49 @@ void gmmrrt_connect_reset(struct gmmrrt_planner *p)
     c->state = GMMRRT_CONNECT_GROWING;
 }
 
-/* Index of the node of entries [lo, hi) nearest to (x, y); of equally near ones the first. */
+/* Index of the node of entries [lo, hi) nearest to (x, y); of equally near ones the first.
+ * Four interleaved running minima (entries lo + 4m + k), each keeping its first minimum, then
+ * the least of them with the lower index on a tie: the same answer as one scan in order, at a
+ * quarter of the dependency chain (the scan is a fifth of the connect phase's time). */
 static int32_t nearest(const gmmrrt_xy_t *xy, int32_t lo, int32_t hi, double x, double y)
 {
-    int32_t best = lo;
-    double best_d2 = INFINITY;
-    for (int32_t i = lo; i < hi; ++i) {
+    double bd[4] = {INFINITY, INFINITY, INFINITY, INFINITY};
+    int32_t bi[4] = {lo, lo, lo, lo};
+    int32_t i = lo;
+    for (; i + 4 <= hi; i += 4)
+        for (int k = 0; k < 4; ++k) {
+            const double dx = xy[i + k].x - x, dy = xy[i + k].y - y;
+            const double d2 = dx * dx + dy * dy;
+            if (d2 < bd[k]) {
+                bd[k] = d2;
+                bi[k] = i + k;
+            }
+        }
+    for (int k = 0; i < hi; ++i, ++k) {
         const double dx = xy[i].x - x, dy = xy[i].y - y;
         const double d2 = dx * dx + dy * dy;
-        if (d2 < best_d2) {
-            best_d2 = d2;
-            best = i;
+        if (d2 < bd[k]) {
+            bd[k] = d2;
+            bi[k] = i;
         }
     }
+    int32_t best = bi[0];
+    double best_d2 = bd[0];
+    for (int k = 1; k < 4; ++k)
+        if (bd[k] < best_d2 || (bd[k] == best_d2 && bi[k] < best)) {
+            best_d2 = bd[k];
+            best = bi[k];
+        }
     return best;
 }
 
-/* One step of the start tree (goal_tree 0) or the goal tree (1) towards (x, y), a free point:
- * from its nearest node, at most step_m. REACHED with *out the node at (x, y) (added, or one
- * already there), ADVANCED with *out the node added short of it, TRAPPED when the step is
+/* One step of the start tree (goal_tree 0) or the goal tree (1) from its node n towards
+ * (x, y), a free point, at most step_m. REACHED with *out the node at (x, y) (added, or n when
+ * it is there), ADVANCED with *out the node added short of it, TRAPPED when the step is
  * blocked, FULL when the array has no room. */
-static int extend(struct gmmrrt_planner *p, int goal_tree, double x, double y, int32_t *out)
+static int extend_from(struct gmmrrt_planner *p, int goal_tree, int32_t n, double x, double y, int32_t *out)
 {
     gmmrrt_connect_t *c = &p->connect;
-    const int32_t lo = goal_tree ? GMMRRT_CONNECT_MAX_NODES - c->n_goal : 0;
-    const int32_t hi = goal_tree ? GMMRRT_CONNECT_MAX_NODES : c->n_start;
-    const int32_t n = nearest(c->xy, lo, hi, x, y);
     const double nx = c->xy[n].x, ny = c->xy[n].y;
     const double dx = x - nx, dy = y - ny;
     const double dist = sqrt(dx * dx + dy * dy); /* plain sqrt: map coordinates */
@@ -137,6 +154,15 @@ static int extend(struct gmmrrt_planner *p, int goal_tree, double x, double y, i
     c->parent[i] = n;
     *out = i;
     return steered ? ADVANCED : REACHED;
+}
+
+/* extend_from the tree's node nearest to (x, y). */
+static int extend(struct gmmrrt_planner *p, int goal_tree, double x, double y, int32_t *out)
+{
+    const gmmrrt_connect_t *c = &p->connect;
+    const int32_t lo = goal_tree ? GMMRRT_CONNECT_MAX_NODES - c->n_goal : 0;
+    const int32_t hi = goal_tree ? GMMRRT_CONNECT_MAX_NODES : c->n_start;
+    return extend_from(p, goal_tree, nearest(c->xy, lo, hi, x, y), x, y, out);
 }
 
 /* The joined path, start first: the start tree's branch to node a, then the goal tree's branch
@@ -180,10 +206,13 @@ void gmmrrt_connect_iterate(struct gmmrrt_planner *p)
         return;
     int32_t other = -1;
     if (st != FULL) {
+        /* After an ADVANCED step the node just added is the nearest to the target (it is
+         * step_m closer than the node it grew from, which was the nearest), so the greedy
+         * connection scans the tree once. */
         const double tx = c->xy[grown].x, ty = c->xy[grown].y;
-        do
-            st = extend(p, !from_goal, tx, ty, &other);
-        while (st == ADVANCED);
+        st = extend(p, !from_goal, tx, ty, &other);
+        while (st == ADVANCED)
+            st = extend_from(p, !from_goal, other, tx, ty, &other);
     }
     if (st == FULL) {
         c->state = GMMRRT_CONNECT_OFF; /* RRT* alone from here */
