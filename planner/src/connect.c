@@ -70,6 +70,7 @@ void gmmrrt_connect_reset(struct gmmrrt_planner *p)
     gmmrrt_connect_t *c = &p->connect;
     c->turn = 0;
     c->n_start = c->n_goal = 0;
+    c->iterations = 0;
     c->state = GMMRRT_CONNECT_OFF;
     /* Walking people are tested against a time window from each point's straight distance to
      * the root (moving_people.c), which holds for the near-straight paths RRT* converges to but
@@ -194,6 +195,13 @@ void gmmrrt_connect_iterate(struct gmmrrt_planner *p)
         c->state = GMMRRT_CONNECT_OFF;
         return;
     }
+    if (c->iterations >= p->cfg.connect_max_iterations) {
+        /* The cap: RRT* alone from the root from here (its tree is the root only), the same
+         * search as with connect_first = 0 from this iteration on. */
+        c->state = GMMRRT_CONNECT_OFF;
+        return;
+    }
+    ++c->iterations;
     ++p->iterations;
     double sx, sy;
     if (!gmmrrt_sample(p, &sx, &sy) || !gmmrrt_planner_point_free(p, sx, sy))
