@@ -87,40 +87,34 @@ void gmmrrt_connect_reset(struct gmmrrt_planner *p)
     c->state = GMMRRT_CONNECT_GROWING;
 }
 
-/* Index of the node of entries [lo, hi) nearest to (x, y); of equally near ones the first.
- * Four interleaved running minima (entries lo + 4m + k), each keeping its first minimum, then
- * the least of them with the lower index on a tie: the same answer as one scan in order, at a
- * quarter of the dependency chain (the scan is a fifth of the connect phase's time). */
-static int32_t nearest(const gmmrrt_xy_t *xy, int32_t lo, int32_t hi, double x, double y)
+/* A tree extends from the first of its GMMRRT_CONNECT_TRIES nearest nodes (nearest first)
+ * whose step towards the target is free, as RRT*'s choose-parent looks through a near set
+ * rather than at the nearest node alone. Why: in a building the nearest node is often behind a
+ * wall (a room's node beside the corridor it cannot see), and one blocked nearest node spent the
+ * whole sample; with four tries the floor plan's first path takes about 0.4x the iterations and
+ * problem C's slowest seeds a tenth (docs/planner.md). */
+#define GMMRRT_CONNECT_TRIES 4
+
+/* The up to GMMRRT_CONNECT_TRIES nodes of entries [lo, hi) nearest to (x, y), nearest first
+ * (of equally near ones the lower index first), into idx; returns how many. */
+static int nearest_few(const gmmrrt_xy_t *xy, int32_t lo, int32_t hi, double x, double y, int32_t *idx)
 {
-    double bd[4] = {INFINITY, INFINITY, INFINITY, INFINITY};
-    int32_t bi[4] = {lo, lo, lo, lo};
-    int32_t i = lo;
-    for (; i + 4 <= hi; i += 4)
-        for (int k = 0; k < 4; ++k) {
-            const double dx = xy[i + k].x - x, dy = xy[i + k].y - y;
-            const double d2 = dx * dx + dy * dy;
-            if (d2 < bd[k]) {
-                bd[k] = d2;
-                bi[k] = i + k;
-            }
-        }
-    for (int k = 0; i < hi; ++i, ++k) {
+    double d2s[GMMRRT_CONNECT_TRIES];
+    int m = 0;
+    for (int32_t i = lo; i < hi; ++i) {
         const double dx = xy[i].x - x, dy = xy[i].y - y;
         const double d2 = dx * dx + dy * dy;
-        if (d2 < bd[k]) {
-            bd[k] = d2;
-            bi[k] = i;
+        if (m == GMMRRT_CONNECT_TRIES && !(d2 < d2s[m - 1]))
+            continue;
+        int j = m < GMMRRT_CONNECT_TRIES ? m++ : m - 1;
+        for (; j > 0 && d2s[j - 1] > d2; --j) {
+            d2s[j] = d2s[j - 1];
+            idx[j] = idx[j - 1];
         }
+        d2s[j] = d2;
+        idx[j] = i;
     }
-    int32_t best = bi[0];
-    double best_d2 = bd[0];
-    for (int k = 1; k < 4; ++k)
-        if (bd[k] < best_d2 || (bd[k] == best_d2 && bi[k] < best)) {
-            best_d2 = bd[k];
-            best = bi[k];
-        }
-    return best;
+    return m;
 }
 
 /* One step of the start tree (goal_tree 0) or the goal tree (1) from its node n towards
@@ -157,13 +151,19 @@ static int extend_from(struct gmmrrt_planner *p, int goal_tree, int32_t n, doubl
     return steered ? ADVANCED : REACHED;
 }
 
-/* extend_from the tree's node nearest to (x, y). */
+/* extend_from the first of the tree's nearest nodes to (x, y) whose step is free (TRAPPED
+ * when none is). */
 static int extend(struct gmmrrt_planner *p, int goal_tree, double x, double y, int32_t *out)
 {
     const gmmrrt_connect_t *c = &p->connect;
     const int32_t lo = goal_tree ? GMMRRT_CONNECT_MAX_NODES - c->n_goal : 0;
     const int32_t hi = goal_tree ? GMMRRT_CONNECT_MAX_NODES : c->n_start;
-    return extend_from(p, goal_tree, nearest(c->xy, lo, hi, x, y), x, y, out);
+    int32_t idx[GMMRRT_CONNECT_TRIES];
+    const int m = nearest_few(c->xy, lo, hi, x, y, idx);
+    int st = TRAPPED;
+    for (int k = 0; k < m && st == TRAPPED; ++k)
+        st = extend_from(p, goal_tree, idx[k], x, y, out);
+    return st;
 }
 
 /* The joined path, start first: the start tree's branch to node a, then the goal tree's branch
@@ -214,9 +214,9 @@ void gmmrrt_connect_iterate(struct gmmrrt_planner *p)
         return;
     int32_t other = -1;
     if (st != FULL) {
-        /* After an ADVANCED step the node just added is the nearest to the target (it is
-         * step_m closer than the node it grew from, which was the nearest), so the greedy
-         * connection scans the tree once. */
+        /* After an ADVANCED step the greedy connection goes on from the node just added, as
+         * RRT-Connect's CONNECT does (it is step_m closer to the target than the node it grew
+         * from), so it scans the tree once. */
         const double tx = c->xy[grown].x, ty = c->xy[grown].y;
         st = extend(p, !from_goal, tx, ty, &other);
         while (st == ADVANCED)
