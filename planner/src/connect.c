@@ -3,7 +3,9 @@
  * exists, RRT-Connect (Kuffner & LaValle 2000, as OMPL's RRTConnect): a tree from the start and
  * one from the goal take turns; the one whose turn it is extends one step (at most step_m)
  * towards the iteration's sample, and the other then extends greedily towards that new node,
- * step after step, until it reaches it (the trees are joined) or an edge is blocked. Once
+ * step after step, until it reaches it (the trees are joined) or an edge is blocked. A tree's
+ * step starts from the first of its GMMRRT_CONNECT_TRIES nearest nodes whose step is free (not
+ * the nearest alone; see that constant). Once
  * joined, the path start -> goal is inserted into the RRT* tree as a warm start
  * (gmmrrt_planner_seed_path: each edge re-checked, its cost-to-come from the planner's own edge
  * cost, the goal node a solution) and RRT* goes on from that tree, so the anytime search keeps
@@ -21,8 +23,9 @@
  * are checked from the goal side, which gives the same answer (the segment test is symmetric,
  * and so is the preferred side's ray). Memory: one array of GMMRRT_CONNECT_MAX_NODES points with
  * parents for both trees (the start's from entry 0 up, the goal's from the last entry down) and
- * one for the joined path, inside the planner block; when it is full the phase ends and RRT*
- * searches alone. Nearest nodes by a linear scan: the trees stay small while no path exists on
+ * one for the joined path, inside the planner block; when it is full, or after
+ * cfg.connect_max_iterations iterations without a path, the phase ends and RRT* searches alone
+ * from the root (the cap bounds the phase's work, which grows with its trees). Nearest nodes by a linear scan: the trees stay small while no path exists on
  * the problems this phase is for, and the scan is a tight loop over 16-byte points.
  * Not used with walking people (gmmrrt_connect_reset says why) nor by gmm-rrt (a baseline whose
  * staged sampling is the point).
