@@ -38,6 +38,7 @@ void gmmrrt_planner_config_default(gmmrrt_planner_config_t *cfg)
     cfg->rewire_k_factor = 4.485; /* OMPL's k_rrg, 1.1 e (1 + 1/d), d = 2 */
     cfg->informed_sampling = 1;
     cfg->connect_first = 1;
+    cfg->connect_max_iterations = 4096; /* docs/planner.md, "Defaults" */
     cfg->w_length = 1.0;
     cfg->w_task = 2.0;
     cfg->task_cost = GMMRRT_TASK_COST_PAPER; /* measured better on the real splits (docs/planner.md) */

@@ -3,7 +3,9 @@
  * exists, RRT-Connect (Kuffner & LaValle 2000, as OMPL's RRTConnect): a tree from the start and
  * one from the goal take turns; the one whose turn it is extends one step (at most step_m)
  * towards the iteration's sample, and the other then extends greedily towards that new node,
- * step after step, until it reaches it (the trees are joined) or an edge is blocked. Once
+ * step after step, until it reaches it (the trees are joined) or an edge is blocked. A tree's
+ * step starts from the first of its GMMRRT_CONNECT_TRIES nearest nodes whose step is free (not
+ * the nearest alone; see that constant). Once
  * joined, the path start -> goal is inserted into the RRT* tree as a warm start
  * (gmmrrt_planner_seed_path: each edge re-checked, its cost-to-come from the planner's own edge
  * cost, the goal node a solution) and RRT* goes on from that tree, so the anytime search keeps
@@ -21,8 +23,9 @@
  * are checked from the goal side, which gives the same answer (the segment test is symmetric,
  * and so is the preferred side's ray). Memory: one array of GMMRRT_CONNECT_MAX_NODES points with
  * parents for both trees (the start's from entry 0 up, the goal's from the last entry down) and
- * one for the joined path, inside the planner block; when it is full the phase ends and RRT*
- * searches alone. Nearest nodes by a linear scan: the trees stay small while no path exists on
+ * one for the joined path, inside the planner block; when it is full, or after
+ * cfg.connect_max_iterations iterations without a path, the phase ends and RRT* searches alone
+ * from the root (the cap bounds the phase's work, which grows with its trees). Nearest nodes by a linear scan: the trees stay small while no path exists on
  * the problems this phase is for, and the scan is a tight loop over 16-byte points.
  * Not used with walking people (gmmrrt_connect_reset says why) nor by gmm-rrt (a baseline whose
  * staged sampling is the point).
@@ -70,6 +73,7 @@ void gmmrrt_connect_reset(struct gmmrrt_planner *p)
     gmmrrt_connect_t *c = &p->connect;
     c->turn = 0;
     c->n_start = c->n_goal = 0;
+    c->iterations = 0;
     c->state = GMMRRT_CONNECT_OFF;
     /* Walking people are tested against a time window from each point's straight distance to
      * the root (moving_people.c), which holds for the near-straight paths RRT* converges to but
@@ -86,32 +90,43 @@ void gmmrrt_connect_reset(struct gmmrrt_planner *p)
     c->state = GMMRRT_CONNECT_GROWING;
 }
 
-/* Index of the node of entries [lo, hi) nearest to (x, y); of equally near ones the first. */
-static int32_t nearest(const gmmrrt_xy_t *xy, int32_t lo, int32_t hi, double x, double y)
+/* A tree extends from the first of its GMMRRT_CONNECT_TRIES nearest nodes (nearest first)
+ * whose step towards the target is free, as RRT*'s choose-parent looks through a near set
+ * rather than at the nearest node alone. Why: in a building the nearest node is often behind a
+ * wall (a room's node beside the corridor it cannot see), and one blocked nearest node spent the
+ * whole sample; with four tries the floor plan's first path takes about 0.4x the iterations and
+ * problem C's slowest seeds a tenth (docs/planner.md). */
+#define GMMRRT_CONNECT_TRIES 4
+
+/* The up to GMMRRT_CONNECT_TRIES nodes of entries [lo, hi) nearest to (x, y), nearest first
+ * (of equally near ones the lower index first), into idx; returns how many. */
+static int nearest_few(const gmmrrt_xy_t *xy, int32_t lo, int32_t hi, double x, double y, int32_t *idx)
 {
-    int32_t best = lo;
-    double best_d2 = INFINITY;
+    double d2s[GMMRRT_CONNECT_TRIES];
+    int m = 0;
     for (int32_t i = lo; i < hi; ++i) {
         const double dx = xy[i].x - x, dy = xy[i].y - y;
         const double d2 = dx * dx + dy * dy;
-        if (d2 < best_d2) {
-            best_d2 = d2;
-            best = i;
+        if (m == GMMRRT_CONNECT_TRIES && !(d2 < d2s[m - 1]))
+            continue;
+        int j = m < GMMRRT_CONNECT_TRIES ? m++ : m - 1;
+        for (; j > 0 && d2s[j - 1] > d2; --j) {
+            d2s[j] = d2s[j - 1];
+            idx[j] = idx[j - 1];
         }
+        d2s[j] = d2;
+        idx[j] = i;
     }
-    return best;
+    return m;
 }
 
-/* One step of the start tree (goal_tree 0) or the goal tree (1) towards (x, y), a free point:
- * from its nearest node, at most step_m. REACHED with *out the node at (x, y) (added, or one
- * already there), ADVANCED with *out the node added short of it, TRAPPED when the step is
+/* One step of the start tree (goal_tree 0) or the goal tree (1) from its node n towards
+ * (x, y), a free point, at most step_m. REACHED with *out the node at (x, y) (added, or n when
+ * it is there), ADVANCED with *out the node added short of it, TRAPPED when the step is
  * blocked, FULL when the array has no room. */
-static int extend(struct gmmrrt_planner *p, int goal_tree, double x, double y, int32_t *out)
+static int extend_from(struct gmmrrt_planner *p, int goal_tree, int32_t n, double x, double y, int32_t *out)
 {
     gmmrrt_connect_t *c = &p->connect;
-    const int32_t lo = goal_tree ? GMMRRT_CONNECT_MAX_NODES - c->n_goal : 0;
-    const int32_t hi = goal_tree ? GMMRRT_CONNECT_MAX_NODES : c->n_start;
-    const int32_t n = nearest(c->xy, lo, hi, x, y);
     const double nx = c->xy[n].x, ny = c->xy[n].y;
     const double dx = x - nx, dy = y - ny;
     const double dist = sqrt(dx * dx + dy * dy); /* plain sqrt: map coordinates */
@@ -137,6 +152,21 @@ static int extend(struct gmmrrt_planner *p, int goal_tree, double x, double y, i
     c->parent[i] = n;
     *out = i;
     return steered ? ADVANCED : REACHED;
+}
+
+/* extend_from the first of the tree's nearest nodes to (x, y) whose step is free (TRAPPED
+ * when none is). */
+static int extend(struct gmmrrt_planner *p, int goal_tree, double x, double y, int32_t *out)
+{
+    const gmmrrt_connect_t *c = &p->connect;
+    const int32_t lo = goal_tree ? GMMRRT_CONNECT_MAX_NODES - c->n_goal : 0;
+    const int32_t hi = goal_tree ? GMMRRT_CONNECT_MAX_NODES : c->n_start;
+    int32_t idx[GMMRRT_CONNECT_TRIES];
+    const int m = nearest_few(c->xy, lo, hi, x, y, idx);
+    int st = TRAPPED;
+    for (int k = 0; k < m && st == TRAPPED; ++k)
+        st = extend_from(p, goal_tree, idx[k], x, y, out);
+    return st;
 }
 
 /* The joined path, start first: the start tree's branch to node a, then the goal tree's branch
@@ -168,6 +198,13 @@ void gmmrrt_connect_iterate(struct gmmrrt_planner *p)
         c->state = GMMRRT_CONNECT_OFF;
         return;
     }
+    if (c->iterations >= p->cfg.connect_max_iterations) {
+        /* The cap: RRT* alone from the root from here (its tree is the root only), the same
+         * search as with connect_first = 0 from this iteration on. */
+        c->state = GMMRRT_CONNECT_OFF;
+        return;
+    }
+    ++c->iterations;
     ++p->iterations;
     double sx, sy;
     if (!gmmrrt_sample(p, &sx, &sy) || !gmmrrt_planner_point_free(p, sx, sy))
@@ -180,10 +217,13 @@ void gmmrrt_connect_iterate(struct gmmrrt_planner *p)
         return;
     int32_t other = -1;
     if (st != FULL) {
+        /* After an ADVANCED step the greedy connection goes on from the node just added, as
+         * RRT-Connect's CONNECT does (it is step_m closer to the target than the node it grew
+         * from), so it scans the tree once. */
         const double tx = c->xy[grown].x, ty = c->xy[grown].y;
-        do
-            st = extend(p, !from_goal, tx, ty, &other);
-        while (st == ADVANCED);
+        st = extend(p, !from_goal, tx, ty, &other);
+        while (st == ADVANCED)
+            st = extend_from(p, !from_goal, other, tx, ty, &other);
     }
     if (st == FULL) {
         c->state = GMMRRT_CONNECT_OFF; /* RRT* alone from here */

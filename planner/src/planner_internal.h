@@ -84,6 +84,7 @@ typedef struct {
     int32_t state;              /* gmmrrt_connect_state_t */
     int32_t n_start, n_goal;    /* nodes of each tree */
     int32_t turn;               /* 0: the start tree extends towards the next sample, 1: the goal tree */
+    int64_t iterations;         /* of this phase since gmmrrt_connect_reset (cfg.connect_max_iterations) */
 } gmmrrt_connect_t;
 
 /* Set by collision.c's internal hook: segment walk step. */

@@ -280,13 +280,21 @@ static void to_cells(const gmmrrt_raster_t *r, double x, double y, double *u, do
     *v = (-dx * r->sin_yaw + dy * r->cos_yaw) / r->resolution_m;
 }
 
-static int32_t clamp_index(double t, int32_t n)
+/* The two neighbour indices along one axis, floor(a) and floor(a) + 1, each clamped to
+ * [0, n - 1] (a below -1 or NaN: both 0). */
+static void neighbours(double a, int32_t n, int32_t *lo, int32_t *hi)
 {
-    if (!(t >= 0.0))
-        return 0;
-    if (t >= (double)(n - 1))
-        return n - 1;
-    return (int32_t)t;
+    if (!(a >= 0.0)) { /* floor(a) <= -1: the first clamps to 0, the second too */
+        *lo = *hi = 0;
+        return;
+    }
+    if (a >= (double)(n - 1)) {
+        *lo = *hi = n - 1;
+        return;
+    }
+    const int32_t f = (int32_t)a; /* a >= 0: truncation is floor */
+    *lo = f;
+    *hi = f + 1 < n ? f + 1 : n - 1;
 }
 
 double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double y)
@@ -294,22 +302,31 @@ double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double 
     double u, v;
     to_cells(r, x, y, &u, &v);
     /* Centres around the point: cells floor(u - 0.5) and the next, clamped. */
-    const double fu = floor(u - 0.5), fv = floor(v - 0.5);
+    int32_t ia, ib, ja, jb;
+    neighbours(u - 0.5, r->width, &ia, &ib);
+    neighbours(v - 0.5, r->height, &ja, &jb);
+    /* Offsets from the point to each neighbour's centre, in cells, squared. */
+    const double cua = (double)ia + 0.5 - u, cub = (double)ib + 0.5 - u;
+    const double cva = (double)ja + 0.5 - v, cvb = (double)jb + 0.5 - v;
+    const double ua2 = cua * cua, ub2 = cub * cub, va2 = cva * cva, vb2 = cvb * cvb;
+    const int ok_ia = ia >= r->valid_i0 && ia < r->valid_i1, ok_ib = ib >= r->valid_i0 && ib < r->valid_i1;
+    const int ok_ja = ja >= r->valid_j0 && ja < r->valid_j1, ok_jb = jb >= r->valid_j0 && jb < r->valid_j1;
+    const size_t w = (size_t)r->width;
+    /* The four neighbours in the order (ia, ja), (ib, ja), (ia, jb), (ib, jb). Every index is
+     * clamped to the raster, so all four loads stay inside it; one outside the valid window is
+     * loaded but left out. Loads and square roots first, then the maximum: four independent
+     * chains instead of four branches (the same values as neighbour by neighbour). */
+    const int ok[4] = {ok_ia && ok_ja, ok_ib && ok_ja, ok_ia && ok_jb, ok_ib && ok_jb};
+    const float f[4] = {r->dist[(size_t)ja * w + (size_t)ia], r->dist[(size_t)ja * w + (size_t)ib],
+                        r->dist[(size_t)jb * w + (size_t)ia], r->dist[(size_t)jb * w + (size_t)ib]};
+    const double d2[4] = {ua2 + va2, ub2 + va2, ua2 + vb2, ub2 + vb2};
+    double lb[4];
+    for (int k = 0; k < 4; ++k)
+        lb[k] = (double)f[k] - sqrt(d2[k]) * r->resolution_m;
     double best = -INFINITY; /* no valid neighbour: blocked */
-    for (int dj = 0; dj <= 1; ++dj) {
-        const int32_t j = clamp_index(fv + dj, r->height);
-        if (j < r->valid_j0 || j >= r->valid_j1)
-            continue;
-        for (int di = 0; di <= 1; ++di) {
-            const int32_t i = clamp_index(fu + di, r->width);
-            if (i < r->valid_i0 || i >= r->valid_i1)
-                continue;
-            const double cu = (double)i + 0.5 - u, cv = (double)j + 0.5 - v;
-            const double lb = (double)r->dist[(size_t)j * (size_t)r->width + (size_t)i] -
-                              sqrt(cu * cu + cv * cv) * r->resolution_m;
-            best = lb > best ? lb : best;
-        }
-    }
+    for (int k = 0; k < 4; ++k)
+        if (ok[k] && lb[k] > best)
+            best = lb[k];
     return best;
 }
 

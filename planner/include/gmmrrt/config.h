@@ -70,6 +70,9 @@ typedef struct {
                                   other (RRT-Connect, Kuffner & LaValle 2000), then hand the joined
                                   path to the RRT* tree, which goes on from it (connect.c;
                                   docs/planner.md); 0: RRT* from the first sample. Not used by gmm-rrt */
+    int32_t connect_max_iterations; /* >= 1: the connect phase ends after this many iterations
+                                  without a path and RRT* goes on alone from the root, so the
+                                  phase's work (its trees' linear scans grow with them) is bounded */
     double w_length;           /* >= 0, weight of length in the edge cost */
     double w_task;             /* >= 0, weight of the task cost c(f) (paper Sect. 4) */
     int32_t task_cost;         /* gmmrrt_task_cost_kind_t (default PAPER; a model that is not over

@@ -4,8 +4,9 @@
  * benchmark's problem C in fewer iterations than RRT* alone, the tree it hands over keeps the
  * tree's invariants (parents, cost-to-come = parent's + edge, every edge exactly free, the best
  * path's cost), the search then keeps improving to the problem's exact optimum, the task cost
- * stays consistent with the planner's own edge cost, a seed gives one result, and the phase is
- * selectable (config connect_first).
+ * stays consistent with the planner's own edge cost, a seed gives one result, the phase is
+ * selectable (config connect_first), and at its iteration cap (connect_max_iterations) it hands
+ * the search to RRT* alone, which still finds a path in a tree that keeps the invariants.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -234,6 +235,53 @@ static void test_same_seed_same_path_and_the_phase_is_selectable(void **state)
     assert_true(gmmrrt_planner_mem_size(&on) > gmmrrt_planner_mem_size(&off));
 }
 
+static void test_the_iteration_cap_hands_over_to_rrt_star(void **state)
+{
+    (void)state;
+    enum { CAP = 40 };
+    int checked = 0;
+    for (uint64_t seed = 1; seed <= 20 && checked < 3; ++seed) {
+        gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+        cfg.seed = seed;
+        cfg.connect_max_iterations = CAP;
+        test_planner_t t;
+        assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+        gmmrrt_problem_t pr = narrow_passage();
+        assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+        gmmrrt_plan_stats_t st;
+        const gmmrrt_budget_t cap = {0.0, CAP, 0.0, 0};
+        (void)gmmrrt_planner_run(t.p, &cap, &st);
+        if (isfinite(st.best_cost)) { /* joined within the cap: not the case under test */
+            test_planner_free(&t);
+            continue;
+        }
+        ++checked;
+        /* The phase spent exactly its cap, and the RRT* tree is still the root alone. */
+        const gmmrrt_planner_t *p = t.p;
+        assert_int_equal(p->connect.iterations, CAP);
+        assert_int_equal(p->connect.state, GMMRRT_CONNECT_GROWING);
+        assert_int_equal(gmmrrt_planner_node_count(t.p), 1);
+        /* The next iterations are RRT*'s: the phase is over and the tree grows from the root. */
+        const gmmrrt_budget_t more = {0.0, 200, 0.0, 0};
+        (void)gmmrrt_planner_run(t.p, &more, &st);
+        assert_int_equal(p->connect.state, GMMRRT_CONNECT_OFF);
+        assert_int_equal(p->connect.iterations, CAP);
+        assert_true(gmmrrt_planner_node_count(t.p) > 1);
+        /* RRT* alone still finds the passage, in a tree with the invariants. */
+        const int64_t first = run_to_first_path(t.p, 200000);
+        assert_true(first > CAP);
+        check_tree(t.p, 1);
+        test_planner_free(&t);
+    }
+    assert_int_equal(checked, 3); /* problem C takes the phase more than 40 iterations for most seeds */
+
+    gmmrrt_planner_config_t bad = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    bad.connect_max_iterations = 0;
+    char err[128];
+    assert_int_equal(gmmrrt_planner_config_validate(&bad, err, sizeof err), GMMRRT_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(err, "connect_max_iterations"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -241,6 +289,7 @@ int main(void)
         cmocka_unit_test(test_handed_over_tree_keeps_the_invariants_and_converges),
         cmocka_unit_test(test_task_cost_of_the_handed_over_path_is_the_planners),
         cmocka_unit_test(test_same_seed_same_path_and_the_phase_is_selectable),
+        cmocka_unit_test(test_the_iteration_cap_hands_over_to_rrt_star),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
