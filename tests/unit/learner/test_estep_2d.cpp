@@ -261,6 +261,30 @@ void test_baseline_and_avx2_kernels_agree(void** state) {
   for (int q = 0; q < 4; ++q) assert_true(e[q] == f[q]);  // lane-wise the same operations
 }
 
+// The E-step with and without culling components per group of points gives the same bits
+// (log-likelihoods, per-point values and moments), on the points in spatial order and as given,
+// with the baseline and the vector kernels.
+static void AssertCullingKeepsTheBits(const Mixture& m, const Eigen::MatrixXd& xt) {
+  const Eigen::Index n = xt.rows();
+  const std::vector<Eigen::Index> order = detail::SpatialOrder2d(xt);
+  Eigen::MatrixXd sorted(n, 2);
+  for (Eigen::Index c = 0; c < n; ++c) sorted.row(c) = xt.row(order[c]);
+  const Eigen::MatrixXd* const both[2] = {&sorted, &xt};
+  for (const Eigen::MatrixXd* pts : both) {
+    const Eigen::VectorXd x0 = pts->col(0), x1 = pts->col(1);
+    for (detail::Simd simd : {detail::Simd::kBaseline, detail::Simd::kAuto}) {
+      Eigen::VectorXd la(n), lb(n);
+      detail::Moments2d a, b;
+      const double ma = detail::EStep2d(m, x0.data(), x1.data(), n, la.data(), &a, simd, 1, true);
+      const double mb = detail::EStep2d(m, x0.data(), x1.data(), n, lb.data(), &b, simd, 1, false);
+      assert_true(ma == mb);
+      assert_true(la == lb);
+      assert_true(a.n == b.n && a.m0 == b.m0 && a.m1 == b.m1);
+      assert_true(a.s00 == b.s00 && a.s01 == b.s01 && a.s11 == b.s11);
+    }
+  }
+}
+
 // Culling components per group of points (bounds over the group's bounding box) skips only
 // terms the per-point code sets to 0, so it gives the same bits as no culling: checked on 19
 // components, some thin and tilted (condition number up to ~1e4, where the eigenvalue bound is
@@ -328,22 +352,7 @@ void test_culling_components_gives_the_same_bits(void** state) {
     for (Eigen::Index q = 5040 + 128 * j; q < 5040 + 128 * (j + 1); ++q)
       xt.row(q) << x[0] + 1e-6 * normal(rng), x[1] + 1e-6 * normal(rng);
   }
-  const std::vector<Eigen::Index> order = detail::SpatialOrder2d(xt);
-  Eigen::MatrixXd sorted(n, 2);
-  for (Eigen::Index c = 0; c < n; ++c) sorted.row(c) = xt.row(order[c]);
-  for (const Eigen::MatrixXd* pts : {&sorted, &xt}) {
-    const Eigen::VectorXd x0 = pts->col(0), x1 = pts->col(1);
-    for (detail::Simd simd : {detail::Simd::kBaseline, detail::Simd::kAuto}) {
-      Eigen::VectorXd la(n), lb(n);
-      detail::Moments2d a, b;
-      const double ma = detail::EStep2d(m, x0.data(), x1.data(), n, la.data(), &a, simd, 1, true);
-      const double mb = detail::EStep2d(m, x0.data(), x1.data(), n, lb.data(), &b, simd, 1, false);
-      assert_true(ma == mb);
-      assert_true(la == lb);
-      assert_true(a.n == b.n && a.m0 == b.m0 && a.m1 == b.m1);
-      assert_true(a.s00 == b.s00 && a.s01 == b.s01 && a.s11 == b.s11);
-    }
-  }
+  AssertCullingKeepsTheBits(m, xt);
 }
 
 // The same with theta wrapped (angle_mask 2: 3 images per component): narrow and wide
@@ -375,22 +384,7 @@ void test_culling_terms_with_the_angle_gives_the_same_bits(void** state) {
     for (Eigen::Index q = c; q < c + 128; ++q)
       xt.row(q) << u0 + 1e-3 * normal(rng), gmmrrt_wrap_angle(u1 + 1e-3 * normal(rng));
   }
-  const std::vector<Eigen::Index> order = detail::SpatialOrder2d(xt);
-  Eigen::MatrixXd sorted(n, 2);
-  for (Eigen::Index c = 0; c < n; ++c) sorted.row(c) = xt.row(order[c]);
-  for (const Eigen::MatrixXd* pts : {&sorted, &xt}) {
-    const Eigen::VectorXd x0 = pts->col(0), x1 = pts->col(1);
-    for (detail::Simd simd : {detail::Simd::kBaseline, detail::Simd::kAuto}) {
-      Eigen::VectorXd la(n), lb(n);
-      detail::Moments2d a, b;
-      const double ma = detail::EStep2d(m, x0.data(), x1.data(), n, la.data(), &a, simd, 1, true);
-      const double mb = detail::EStep2d(m, x0.data(), x1.data(), n, lb.data(), &b, simd, 1, false);
-      assert_true(ma == mb);
-      assert_true(la == lb);
-      assert_true(a.n == b.n && a.m0 == b.m0 && a.m1 == b.m1);
-      assert_true(a.s00 == b.s00 && a.s01 == b.s01 && a.s11 == b.s11);
-    }
-  }
+  AssertCullingKeepsTheBits(m, xt);
 }
 
 // Five separated blobs, 30 000 points: more than a 4 000-point screening sample.
