@@ -289,13 +289,18 @@ void test_cluster_across_the_seam_is_one_component(void** state) {
   assert_true(m.means(1, back) > -M_PI && m.means(1, back) <= M_PI);
 }
 
-void test_bic_picks_the_generating_k(void** state) {
-  (void)state;
+// 1 400 points of four separated Gaussians (the sweep tests' generating K = 4).
+static Eigen::MatrixXd FourSeparatedBlobs() {
   std::vector<Blob> blobs = {{Vec({0.0, 0.0}), Diag({0.5, 0.5}), 400},
                              {Vec({5.0, 0.0}), Diag({0.5, 0.8}), 400},
                              {Vec({0.0, 5.0}), Diag({0.7, 0.4}), 300},
                              {Vec({5.0, 5.0}), Diag({0.4, 0.4}), 300}};
-  const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 8);
+  return test_support::Sample(blobs, 0, 8);
+}
+
+void test_bic_picks_the_generating_k(void** state) {
+  (void)state;
+  const Eigen::MatrixXd x = FourSeparatedBlobs();
   BicSweepResult r;
   assert_true(SweepBic(x, 0, Quiet(1, 1), 1, 8, &r, nullptr, 0).ok());  // the whole range
   assert_int_equal(static_cast<int>(r.rows.size()), 8);
@@ -321,11 +326,7 @@ void test_bic_picks_the_generating_k(void** state) {
 // checked against what each row says it screened.
 void test_sweep_screens_fewer_fresh_starts_beside_the_splits(void** state) {
   (void)state;
-  std::vector<Blob> blobs = {{Vec({0.0, 0.0}), Diag({0.5, 0.5}), 400},
-                             {Vec({5.0, 0.0}), Diag({0.5, 0.8}), 400},
-                             {Vec({0.0, 5.0}), Diag({0.7, 0.4}), 300},
-                             {Vec({5.0, 5.0}), Diag({0.4, 0.4}), 300}};
-  const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 8);
+  const Eigen::MatrixXd x = FourSeparatedBlobs();
   auto sweep = [&x](int split_starts, int fresh_starts, BicSweepResult* r, std::vector<int>* seen_per_k) {
     std::set<int> seen;
     seen_per_k->clear();
