@@ -83,7 +83,10 @@ gmmrrt_status_t gmmrrt_walkers_prepare(struct gmmrrt_planner *p, const gmmrrt_pr
         return GMMRRT_OK;
     /* The world without the walkers (standing people keep their indices' order). */
     gmmrrt_obstacle_set_t *ws = &p->world_obstacles;
+    if (o->num_circles < 0 || o->num_circles > GMMRRT_MAX_CIRCLES || o->num_boxes < 0 || o->num_boxes > GMMRRT_MAX_BOXES)
+        return GMMRRT_ERR_INVALID_ARGUMENT; /* checked here too: the copies below come before the world's checks */
     ws->bounds = o->bounds;
+    ws->raster = o->raster; /* the map stays a wall while people walk */
     ws->num_circles = o->num_circles;
     memcpy(ws->circles, o->circles, (size_t)o->num_circles * sizeof o->circles[0]);
     ws->num_boxes = o->num_boxes;

@@ -7,7 +7,9 @@
  * through a wall), the exit is free and leavable by the planner's own tests, the clearance to
  * the walls never falls along the straight motion to the exit while the robot is in contact,
  * the exit is on the start's side of every wall, and the search then finds a path to the goal.
- * The walls are the map's occupied cells, or the cells a range scan marked.
+ * The walls are the map's occupied cells, or the cells a range scan marked. The last case checks
+ * that the map stays a wall while someone walks (the planner's world is then rebuilt without the
+ * walkers, and must keep the map).
  */
 #include <math.h>
 #include <setjmp.h>
@@ -242,6 +244,46 @@ static void test_start_against_a_wall_of_scan_marks_leaves_on_its_side(void **st
     free(m.raster_mem);
 }
 
+/* A wall across the room, x in [-0.05, 0.05], from the bottom to y = 0.5, with a 1 m gap above
+ * it; start and goal on either side below its top. A person walks along the top of the room. Every
+ * point of the path, in 1 mm steps, keeps the robot off the wall (the oracle, not the raster). */
+static void test_a_walking_person_leaves_the_map_a_wall(void **state)
+{
+    (void)state;
+    const wall_t across[] = {{-0.05, -1.5, 0.05, 0.5}};
+    map_t m;
+    make_map(&m, across, 1);
+    gmmrrt_problem_t pr = map_problem(&m, -1.5, -1.0, 1.5, -1.0);
+    pr.obstacles.num_people = 1;
+    pr.obstacles.people[0] = (gmmrrt_pose_t){-2.3, 1.3, 0.0};
+    pr.person_vx[0] = 0.5; /* walking, above the standing speed */
+    gmmrrt_planner_config_t cfg = robot_config();
+    cfg.person_radius_m = 0.2;
+    test_planner_t t;
+    assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+    assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+    gmmrrt_budget_t b = {0.0, 4000, 0.0, 0};
+    assert_int_equal(gmmrrt_planner_run(t.p, &b, NULL), GMMRRT_OK);
+    gmmrrt_path_t path;
+    assert_int_equal(gmmrrt_planner_best_path(t.p, &path), GMMRRT_OK);
+    assert_true(path.num_points >= 2);
+    double top = -INFINITY;
+    for (int32_t k = 0; k + 1 < path.num_points; ++k) {
+        const double len = hypot(path.x[k + 1] - path.x[k], path.y[k + 1] - path.y[k]);
+        const int32_t steps = (int32_t)ceil(len / 0.001) + 1;
+        for (int32_t q = 0; q <= steps; ++q) {
+            const double s = (double)q / steps;
+            const double x = path.x[k] + s * (path.x[k + 1] - path.x[k]), y = path.y[k] + s * (path.y[k + 1] - path.y[k]);
+            if (wall_clearance(&m, x, y) < -1e-9)
+                fail_msg("the path runs into the wall at (%.4f, %.4f)", x, y);
+            top = fmax(top, y);
+        }
+    }
+    assert_true(top > 0.5 + ROBOT_M - 1e-6); /* round the wall's end, not through it */
+    test_planner_free(&t);
+    free(m.raster_mem);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -249,6 +291,7 @@ int main(void)
         cmocka_unit_test(test_start_in_a_closed_pocket_freezes_naming_the_map),
         cmocka_unit_test(test_start_against_or_inside_a_wall_leaves_on_its_side),
         cmocka_unit_test(test_start_against_a_wall_of_scan_marks_leaves_on_its_side),
+        cmocka_unit_test(test_a_walking_person_leaves_the_map_a_wall),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
