@@ -36,8 +36,8 @@ constexpr long kChunkPoints = 8192;
 // it alone would not change that sum; its responsibility would add at most N * 8.5e-17
 // (1.7e-11 for N = 200 000) to a component's effective count, which is >= D + 1 or re-seeded.
 // Skipping such terms (the exp and the six moment updates) is most of the saving when K is
-// large. (The cut was exp(-50) before: at -37 the benchmark fit makes 18 % fewer exp calls and
-// its log-likelihood after 16 iterations is the same to 16 digits.)
+// large: on the benchmark fit a cut at -37 makes 18 % fewer exp calls than one at -50, with the
+// same log-likelihood after 16 iterations to 16 digits.
 constexpr double kNegligible = -37.0;
 
 // Points per group whose terms are culled together (ActiveTerms in the kernel): the
