@@ -183,5 +183,10 @@ def test_side_limit_counts_the_other_side_plans_a_target_allows():
     rrt2 = [{"tdm_m": 0.5, "same_side": True}] * 9 + [{"tdm_m": 0.8, "same_side": False}]
     text = RE._side_limit(rs, {"GMM-RRT* (paper cost)": gmm, "RRT*": rrt2}, ["GMM-RRT* (paper cost)", "RRT*"])
     assert "RRT* takes the other side too in 1 of its 2 (1.00 m against RRT*'s 0.80 m)" in text
+    # a row given the walking crowd is compared with RRT* given the same crowd, not with RRT* without it
+    walk = "GMM-RRT* (paper cost, walking people given)"
+    per = {walk: gmm, "RRT*": rrt, "RRT* (walking people given)": rrt2}
+    text = RE._side_limit(rs, per, [walk, "RRT*", "RRT* (walking people given)"])
+    assert "RRT* takes the other side too in 1 of its 2" in text
     rs.name = "real_ucy_approach"
     assert RE._side_limit(rs, {}, []) == ""

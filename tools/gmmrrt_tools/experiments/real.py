@@ -409,9 +409,16 @@ def _side_limit(rs: RealSet, per, labels) -> str:
         rows.append(f"{l}: {len(other)} of {n} plans on the other side carry {100 * share:.0f} % of its TDM "
                     f"({o_:.2f} m each against {s_:.2f} m); the target allows {max(0, math.floor(x_max)) if x_max >= 0 else 0} "
                     f"such plans, a side agreement {need} (it has {100 * len(same) / n:.0f} %)"
-                    + (_shared_with_rrt(per[l], per.get("RRT*", [])) if unit != "m" else ""))
+                    + (_shared_with_rrt(per[l], per.get(_rrt_peer(l, per), [])) if unit != "m" else ""))
     out.append("; ".join(rows) + ".\n")
     return "".join(out) if rows else ""
+
+
+def _rrt_peer(label: str, per) -> str:
+    """The RRT* row a GMM-RRT* row is compared with: the one given the same people (with the walking
+    crowd where the row has it), so that only the cost differs."""
+    walking = "RRT* (walking people given)"
+    return walking if "walking people given" in label and walking in per else "RRT*"
 
 
 def _shared_with_rrt(gmm, rrt) -> str:
