@@ -197,6 +197,10 @@ void test_iteration_cap_is_exact(void** state) {
             if (screen_points == 0) assert_int_equal(s.log_likelihood.size(), cap + 1);
           } else {
             assert_true(s.iterations <= cap);
+            // Every E-step counts, the refused extrapolations' included: on all points the
+            // history plus the refused steps is the cap exactly.
+            if (screen_points == 0)
+              assert_int_equal(static_cast<int>(s.log_likelihood.size()) - 1 + s.extrapolations_refused, cap);
           }
         }
 }
