@@ -161,6 +161,15 @@ def evaluate_costs(train, test, cost_name: str) -> List[Tuple[str, float, float]
     return rows
 
 
+def near_ties(costs, within: float = 0.05) -> Tuple[int, float]:
+    """(how many episodes, the share of their humans passing with the person on their left) among those
+    whose two side costs are within `within` of each other (|log ratio| < within): where the costs do
+    not decide, a convention (keeping right: the person on the left) would show."""
+    r = side_choice.scores(costs.pairs(), "ratio")
+    m = np.abs(r) < within
+    return int(m.sum()), float(np.mean(costs.human_left[m])) if m.any() else float("nan")
+
+
 def _cost_ctx(a):
     """The experiments' context for planning the side costs (the real study's settings)."""
     from gmmrrt_tools.experiments.common import Ctx
@@ -205,12 +214,18 @@ def main(argv=None) -> int:
             train = [e for e in every if e.split == a.train_split]
             test = [e for e in every if e.split == a.split]
             rows = evaluate(train, test, group_of)
+            ties = []
             if costs:
                 from gmmrrt_tools.experiments.side_costs import side_costs
 
                 ctx = _cost_ctx(a)
                 for c in costs:
-                    rows += evaluate_costs(*side_costs(ctx, name, c), c)
+                    tr, te = side_costs(ctx, name, c)
+                    rows += evaluate_costs(tr, te, c)
+                    for split, sc in ((a.train_split, tr), (a.split, te)):
+                        n, left = near_ties(sc)
+                        ties.append(f"{c} cost, {split}: {n} episodes, {100 * left:.0f} % with the person on the "
+                                    f"human's left")
         except (EpisodeError, MissingTool, OSError, RuntimeError) as exc:
             print(f"side_rules: {name}: {exc}", file=sys.stderr)
             return 1
@@ -220,6 +235,9 @@ def main(argv=None) -> int:
         print(f"| rule | {a.train_split}, grouped 5-fold CV | {a.split} |\n|---|---|---|")
         for r, cv, t in rows:
             print(f"| {r}{' (chosen)' if r == best[0] else ''} | {100 * cv:.1f} % | {100 * t:.1f} % |")
+        if ties:
+            print(f"\nWhere the two side costs are within 5 % of each other (the costs do not decide; a convention "
+                  f"would show): {'; '.join(ties)}.")
     return 0
 
 

@@ -101,3 +101,14 @@ def test_real_data_table_chooses_on_train():
     assert r.returncode == 0, r.stderr
     assert "chosen on train:" in r.stdout and r.stdout.count("(chosen)") == 1
     assert "| straight line's side" in r.stdout
+
+
+def test_near_ties_are_the_episodes_the_costs_do_not_decide():
+    import numpy as np
+    from gmmrrt_tools.experiments.side_costs import SideCosts
+
+    e = ep("a", [(-3, 0.5), (3, 0.5)])
+    sc = SideCosts([e] * 4, np.array([10.0, 10.2, 10.0, 13.0]), np.array([10.1, 10.0, 10.4, 10.0]),
+                   np.array([True, True, False, False]), ["g"] * 4)
+    n, left = SR.near_ties(sc)  # |log ratio| < 0.05: the first three
+    assert n == 3 and left == pytest.approx(2 / 3)
