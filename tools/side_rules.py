@@ -117,48 +117,65 @@ def _cost_features(costs, geo: np.ndarray) -> np.ndarray:
     return np.column_stack([lr, geo])
 
 
-def evaluate_costs(train, test, cost_name: str) -> List[Tuple[str, float, float]]:
+def evaluate_costs(train, test, cost_name: str, test_choice=None) -> List[Tuple[str, float, float]]:
     """(rule, agreement on train by grouped cross-validation, agreement on test) for the rules on the two
-    side costs (train, test: experiments/side_costs.SideCosts; train's costs cross-fitted)."""
+    side costs (train, test: experiments/side_costs.SideCosts; train's costs cross-fitted). test_choice,
+    a dict, receives each rule's side per test episode (True: left)."""
     from sklearn.linear_model import LogisticRegression
     from sklearn.pipeline import make_pipeline
     from sklearn.preprocessing import StandardScaler
 
     y, yt = train.human_left, test.human_left
     fold = _cv_fold(train.groups)
-    tag = f" ({cost_name} cost)"
     rows = []
+    choice = test_choice if test_choice is not None else {}
 
-    def cv(fit, predict, x, xt):
+    def add(rule, cv_agreement, pt):
+        """One row: the rule (tagged with the cost), its cross-validated agreement, its test choices."""
+        name = f"{rule} ({cost_name} cost)"
+        choice[name] = np.asarray(pt, dtype=bool)
+        rows.append((name, cv_agreement, float(np.mean(choice[name] == yt))))
+
+    def cv(rule, fit, predict, x, xt):
+        """Fitted on four folds, scored on the fifth; then fitted on all of train for the test."""
         p = np.zeros(len(y), dtype=bool)
         for f in range(int(fold.max()) + 1):
             m = fit(x[fold != f], y[fold != f])
             p[fold == f] = predict(m, x[fold == f])
-        m = fit(x, y)
-        return float(np.mean(p == y)), float(np.mean(predict(m, xt) == yt))
+        add(rule, float(np.mean(p == y)), predict(fit(x, y), xt))
 
     ratio, ratio_t = (side_choice.scores(c.pairs(), "ratio") for c in (train, test))
-    rows.append(("cheaper side" + tag, float(np.mean(side_choice.choose(ratio) == y)),
-                 float(np.mean(side_choice.choose(ratio_t) == yt))))
+    add("cheaper side", float(np.mean(side_choice.choose(ratio) == y)), side_choice.choose(ratio_t))
     for kind in ("ratio", "difference"):
         x, xt = (side_choice.scores(c.pairs(), kind) for c in (train, test))
-        rows.append((f"cheaper after a bias on the cost {kind}" + tag,
-                     *cv(side_choice.fit_bias, lambda b, s: side_choice.choose(s, b), x, xt)))
+        cv(f"cheaper after a bias on the cost {kind}", side_choice.fit_bias,
+           lambda b, s: side_choice.choose(s, b), x, xt)
     # A convention (keep right: the person on the mover's left) would show as one side taken more often.
-    rows.append(("always the side most training humans take" + tag,
-                 *cv(lambda _x, yy: bool(np.mean(yy) >= 0.5), lambda b, s: np.full(len(s), b), ratio, ratio_t)))
+    cv("always the side most training humans take", lambda _x, yy: bool(np.mean(yy) >= 0.5),
+       lambda b, s: np.full(len(s), b), ratio, ratio_t)
     geo, geo_t = (np.array([geometry(e) for e in c.episodes]) for c in (train, test))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         # The bias again, as the point where a fitted probability of 'left' crosses 1/2 (smoother than
         # counting agreements).
-        rows.append(("logistic regression on the log cost ratio" + tag,
-                     *cv(lambda x, yy: LogisticRegression().fit(x, yy), lambda m, x: m.predict(x),
-                         _cost_features(train, geo)[:, :1], _cost_features(test, geo_t)[:, :1])))
-        rows.append(("logistic regression on the log cost ratio and the geometry" + tag,
-                     *cv(lambda x, yy: make_pipeline(StandardScaler(), LogisticRegression()).fit(x, yy),
-                         lambda m, x: m.predict(x), _cost_features(train, geo), _cost_features(test, geo_t))))
+        cv("logistic regression on the log cost ratio", lambda x, yy: LogisticRegression().fit(x, yy),
+           lambda m, x: m.predict(x), _cost_features(train, geo)[:, :1], _cost_features(test, geo_t)[:, :1])
+        cv("logistic regression on the log cost ratio and the geometry",
+           lambda x, yy: make_pipeline(StandardScaler(), LogisticRegression()).fit(x, yy),
+           lambda m, x: m.predict(x), _cost_features(train, geo), _cost_features(test, geo_t))
     return rows
+
+
+def chosen_tdm(test, left) -> float:
+    """Mean TDM (metrics.tdm_pair, eq. (2)) of the test plans on the sides `left` (True: left) against
+    the humans' paths; an episode whose chosen side has no path counts its other side's."""
+    from gmmrrt_tools import metrics as M
+
+    out = []
+    for e, (pl, pr), lf in zip(test.episodes, test.paths, left):
+        p = (pl if lf else pr) or (pr if lf else pl)
+        out.append(M.tdm_pair(e.xy, np.array(p)))
+    return float(np.mean(out))
 
 
 def near_ties(costs, within: float = 0.05) -> Tuple[int, float]:
@@ -214,14 +231,17 @@ def main(argv=None) -> int:
             train = [e for e in every if e.split == a.train_split]
             test = [e for e in every if e.split == a.split]
             rows = evaluate(train, test, group_of)
-            ties = []
+            ties, tdm = [], {}
             if costs:
                 from gmmrrt_tools.experiments.side_costs import side_costs
 
                 ctx = _cost_ctx(a)
                 for c in costs:
                     tr, te = side_costs(ctx, name, c)
-                    rows += evaluate_costs(tr, te, c)
+                    test_choice: dict = {}
+                    rows += evaluate_costs(tr, te, c, test_choice)
+                    for r, left in test_choice.items():
+                        tdm[r] = chosen_tdm(te, left)
                     for split, sc in ((a.train_split, tr), (a.split, te)):
                         n, left = near_ties(sc)
                         ties.append(f"{c} cost, {split}: {n} episodes, {100 * left:.0f} % with the person on the "
@@ -235,6 +255,9 @@ def main(argv=None) -> int:
         print(f"| rule | {a.train_split}, grouped 5-fold CV | {a.split} |\n|---|---|---|")
         for r, cv, t in rows:
             print(f"| {r}{' (chosen)' if r == best[0] else ''} | {100 * cv:.1f} % | {100 * t:.1f} % |")
+        if tdm:
+            print(f"\nTest TDM of the plans on the side each cost rule picks (`--side either`'s path of that side): "
+                  + "; ".join(f"{r}: {v:.3f} m" for r, v in tdm.items()) + ".")
         if ties:
             print(f"\nWhere the two side costs are within 5 % of each other (the costs do not decide; a convention "
                   f"would show): {'; '.join(ties)}.")

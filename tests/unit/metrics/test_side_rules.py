@@ -112,3 +112,16 @@ def test_near_ties_are_the_episodes_the_costs_do_not_decide():
                    np.array([True, True, False, False]), ["g"] * 4)
     n, left = SR.near_ties(sc)  # |log ratio| < 0.05: the first three
     assert n == 3 and left == pytest.approx(2 / 3)
+
+
+def test_chosen_tdm_scores_the_picked_sides_path():
+    import numpy as np
+    from gmmrrt_tools.experiments.side_costs import SideCosts
+
+    human = ep("a", [(-3, 0.0), (0, 1.0), (3, 0.0)])
+    left_path, right_path = [(-3, 0.0), (0, 1.0), (3, 0.0)], [(-3, 0.0), (0, -1.0), (3, 0.0)]
+    sc = SideCosts([human, human], np.array([1.0, np.inf]), np.array([2.0, 2.0]), np.array([True, True]),
+                   ["g", "g"], [(left_path, right_path), ([], right_path)])
+    assert SR.chosen_tdm(sc, [True, True]) == pytest.approx(0.5 * SR.chosen_tdm(sc, [False, False]))
+    # the second episode has no left path: its right path counts whatever the rule says
+    assert SR.chosen_tdm(sc, [True, False]) == pytest.approx(SR.chosen_tdm(sc, [True, True]))

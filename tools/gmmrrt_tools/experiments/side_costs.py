@@ -17,7 +17,7 @@ from __future__ import annotations
 import csv
 import io
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Dict, List, Tuple
 
@@ -48,6 +48,7 @@ class SideCosts:
     cost_right: np.ndarray
     human_left: np.ndarray
     groups: List[str]
+    paths: List[Tuple[list, list]] = field(default_factory=list)  # per episode: (left path, right path); [] = none
 
     def pairs(self) -> List[Tuple[float, float]]:
         return list(zip(self.cost_left.tolist(), self.cost_right.tolist()))
@@ -101,8 +102,8 @@ def _people(ctx: Ctx, name: str, idx: str, every: list, eps: list) -> Dict[str, 
     return RD.ucy_people(_real_file(ctx, "ucy_tracks.csv"), idx, eps, every)
 
 
-def _plan_either(ctx: Ctx, name: str, eps: list, people, models: List[Path], cost: str) -> Tuple[np.ndarray, np.ndarray]:
-    """Costs of each side for eps[k] planned with models[k] (seed = base + k)."""
+def _plan_either(ctx: Ctx, name: str, eps: list, people, models: List[Path], cost: str):
+    """Costs and paths of each side for eps[k] planned with models[k] (seed = base + k)."""
     jobs = []
     for k, (e, mdl) in enumerate(zip(eps, models)):
         sc = multi_person_scene(e, people[e.episode_id])
@@ -112,7 +113,10 @@ def _plan_either(ctx: Ctx, name: str, eps: list, people, models: List[Path], cos
     res = ctx.run_plans(jobs, f"{name} {cost} cost, both sides")
     cl = np.array([_cost(r.sides.get("left", {})) for _, r in res])
     cr = np.array([_cost(r.sides.get("right", {})) for _, r in res])
-    return cl, cr
+    paths = [tuple([tuple(map(float, p)) for p in (r.sides.get(side, {}).get("path") or [])]
+                   if math.isfinite(c) else [] for side, c in (("left", l), ("right", rr)))
+             for (_, r), l, rr in zip(res, cl, cr)]
+    return cl, cr, paths
 
 
 def side_costs(ctx: Ctx, name: str, cost: str) -> Tuple[SideCosts, SideCosts]:
@@ -140,11 +144,11 @@ def side_costs(ctx: Ctx, name: str, cost: str) -> Tuple[SideCosts, SideCosts]:
                        homotopy="all", k=ctx.real_k, seed=ctx.s.seed, index=idx, split=ctx.train_split,
                        bin_dir=ctx.bin_dir, background=True)
     people = _people(ctx, name, idx, every, train + test)
-    cl, cr = _plan_either(ctx, f"{name} {ctx.train_split} (cross-fitted)", train, people,
-                          [fold_models[f] for f in fold], cost)
-    tl, tr = _plan_either(ctx, f"{name} {ctx.split}", test, people, [full] * len(test), cost)
+    cl, cr, paths = _plan_either(ctx, f"{name} {ctx.train_split} (cross-fitted)", train, people,
+                                 [fold_models[f] for f in fold], cost)
+    tl, tr, tpaths = _plan_either(ctx, f"{name} {ctx.split}", test, people, [full] * len(test), cost)
 
     def human(es):
         return np.array([RD.side_of_sweep(e.xy, e.person) == "left" for e in es])
-    return (SideCosts(train, cl, cr, human(train), groups),
-            SideCosts(test, tl, tr, human(test), [group_of(e) for e in test]))
+    return (SideCosts(train, cl, cr, human(train), groups, paths),
+            SideCosts(test, tl, tr, human(test), [group_of(e) for e in test], tpaths))
