@@ -75,3 +75,29 @@ def test_fold_index_marks_the_fitting_episodes_train(tmp_path):
     src.write_text("episode_id,scene\na,s1\n")
     with pytest.raises(RuntimeError, match=r"index\.csv: line 1: no split column"):
         side_costs.fold_index(str(src), out, {"a"})
+
+
+def test_both_sides_are_read_from_the_planners_report(monkeypatch):
+    """experiments/side_costs._plan_either on the `sides` object gmmrrt-plan --side either prints: a side
+    whose status is not ok has no cost (inf) and no path, whatever numbers it carries."""
+    from types import SimpleNamespace
+
+    from gmmrrt_tools import runner as R
+
+    sides = {"left": {"status": "ok", "cost": 3.0, "path": [[0, 0], [1, 1]]},
+             "right": {"status": "no path on the preferred side", "cost": 7.0, "path": [[0, 0]]}}
+
+    class Ctx:
+        s = SimpleNamespace(seed=1, bias=0.95)
+
+        def plan(self, *args, **kwargs):
+            return ["gmmrrt-plan"]
+
+        def run_plans(self, jobs, desc):
+            return [(tag, R.PlanResult("ok", [], {}, seed, argv, sides)) for tag, argv, seed in jobs]
+
+    monkeypatch.setattr(side_costs, "multi_person_scene", lambda e, people: None)
+    e = SimpleNamespace(episode_id="a")
+    cl, cr, paths = side_costs._plan_either(Ctx(), "set", [e], {"a": []}, [None], "paper")
+    assert cl.tolist() == [3.0] and cr.tolist() == [math.inf]
+    assert paths == [([(0.0, 0.0), (1.0, 1.0)], [])]

@@ -113,9 +113,13 @@ def _plan_either(ctx: Ctx, name: str, eps: list, people, models: List[Path], cos
     res = ctx.run_plans(jobs, f"{name} {cost} cost, both sides")
     cl = np.array([_cost(r.sides.get("left", {})) for _, r in res])
     cr = np.array([_cost(r.sides.get("right", {})) for _, r in res])
-    paths = [tuple([tuple(map(float, p)) for p in (r.sides.get(side, {}).get("path") or [])]
-                   if math.isfinite(c) else [] for side, c in (("left", l), ("right", rr)))
-             for (_, r), l, rr in zip(res, cl, cr)]
+    paths = []
+    for (_, r), c_left, c_right in zip(res, cl, cr):
+        pair = []
+        for side, c in (("left", c_left), ("right", c_right)):
+            pts = r.sides.get(side, {}).get("path") or [] if math.isfinite(c) else []
+            pair.append([(float(x), float(y)) for x, y in pts])
+        paths.append((pair[0], pair[1]))
     return cl, cr, paths
 
 
