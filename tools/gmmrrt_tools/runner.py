@@ -59,6 +59,8 @@ class PlanResult:
     stats: Dict
     seed: int
     argv: List[str]
+    # --side either: {"left": {"status", "cost", "length_m", "path"}, "right": {...}} (docs/planner.md)
+    sides: Dict = field(default_factory=dict)
 
 
 def _fmt(v: float) -> str:
@@ -120,7 +122,8 @@ def run_plan(argv: List[str], seed: int, timeout_s: float = 600.0) -> PlanResult
         msg = (proc.stderr.strip().splitlines() or [f"exit {proc.returncode}, no output"])[-1]
         return PlanResult(f"error: {msg}", [], {"exit_code": proc.returncode}, int(seed), argv)
     path = [tuple(map(float, p)) for p in (obj.get("path") or [])]
-    return PlanResult(str(obj.get("status", "")), path, dict(obj.get("stats") or {}), int(seed), argv)
+    return PlanResult(str(obj.get("status", "")), path, dict(obj.get("stats") or {}), int(seed), argv,
+                      dict(obj.get("sides") or {}))
 
 
 def learn(args: Sequence[str], bin_dir: Optional[str] = None, timeout_s: float = 900.0) -> str:

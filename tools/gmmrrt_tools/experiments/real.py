@@ -17,7 +17,7 @@ from gmmrrt_tools import scenes as S
 
 from .common import (
     CLEARANCE_M, Ctx, PERSON_RADIUS_M, ROBOT_RADIUS_M, UPO_APPROACH_SET, legend_handles,
-    classify, fmt_ms, record
+    classify, fmt_ms, portable, record
 )
 
 # ==================================================================== real data
@@ -79,6 +79,7 @@ class RealSet:
     approach: bool = False
     agreement: Tuple[float, float, int] = (math.nan, math.nan, 0)
     walkers: Optional[List[list]] = None  # per episode: (x, y, yaw, vx, vy) of the people walking at its start
+    repeats: str = ""  # the episodes left out as repeats of an event listed before (realdata.distinct_events)
 
 
 # GMM-RRT* runs name their task cost (--task-cost) so a table does not depend on the CLI's default;
@@ -114,16 +115,23 @@ def _k_suffix(ctx: Ctx) -> str:
     return f"_k{ctx.real_k}" if ctx.real_k else ""
 
 
-def _study_episodes(ctx: Ctx, ep_csv: str, idx: str) -> list:
-    """Every episode of a study, with its split and index row (the learner's reader), after
-    checking that each has a standing person and that the training and evaluation splits exist."""
+def _study_episodes(ctx: Ctx, ep_csv: str, idx: str) -> Tuple[list, str]:
+    """Every episode of a study, with its split and index row (the learner's reader), each event once
+    (realdata.distinct_events: an episode listed twice is counted once, and named), after checking that
+    each has a standing person and that the training and evaluation splits exist. Returns the episodes
+    and the notes on the repeats left out (also printed on stderr), for the report."""
+    import io
+
     from gmmrrt_tools import realdata as RD
 
-    every = S.read_episodes(ep_csv, index=idx)
+    notes = io.StringIO()
+    every = RD.distinct_events(ep_csv, S.read_episodes(ep_csv, index=idx), notes)
+    if notes.getvalue():
+        print(notes.getvalue(), end="", file=sys.stderr)
     RD._require_person(ep_csv, every)
     RD.require_split(idx, ctx.train_split, every)
     RD.require_split(idx, ctx.split, every)
-    return every
+    return every, notes.getvalue()
 
 
 def real_upo_avoid(ctx: Ctx) -> RealSet:
@@ -131,7 +139,7 @@ def real_upo_avoid(ctx: Ctx) -> RealSet:
 
     s = ctx.s
     ep_csv, idx = _real_file(ctx, "upo_avoid_episodes.csv"), _real_file(ctx, "upo_avoid_index.csv")
-    every = _study_episodes(ctx, ep_csv, idx)
+    every, repeats = _study_episodes(ctx, ep_csv, idx)
     mdl = R.fit_model(ctx.work / "models" / f"upo_avoid_{ctx.train_split}_all_bg{_k_suffix(ctx)}.gmm", "avoid", [ep_csv],
                       homotopy="all", k=ctx.real_k, seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir,
                       background=True)
@@ -146,7 +154,7 @@ def real_upo_avoid(ctx: Ctx) -> RealSet:
                    "its own person first, and compared with what the human drove.",
                    eps, [multi_person_scene(e, people[e.episode_id]) for e in eps],
                    _avoid_planners(mdl, one_person=True),
-                   agreement=RD.human_side_agreement(every, lambda e: e.meta["scene"]))
+                   agreement=RD.human_side_agreement(every, lambda e: e.meta["scene"]), repeats=repeats)
 
 
 def real_ucy_avoid(ctx: Ctx) -> RealSet:
@@ -155,7 +163,7 @@ def real_ucy_avoid(ctx: Ctx) -> RealSet:
     s = ctx.s
     ep_csv, idx = _real_file(ctx, "ucy_avoid_episodes.csv"), _real_file(ctx, "ucy_index.csv")
     tracks = _real_file(ctx, "ucy_tracks.csv")
-    every = _study_episodes(ctx, ep_csv, idx)
+    every, repeats = _study_episodes(ctx, ep_csv, idx)
     mdl = R.fit_model(ctx.work / "models" / f"ucy_avoid_{ctx.train_split}_all_bg{_k_suffix(ctx)}.gmm", "avoid", [ep_csv],
                       homotopy="all", k=ctx.real_k, seed=s.seed, index=idx, split=ctx.train_split, bin_dir=ctx.bin_dir,
                       background=True)
@@ -183,7 +191,7 @@ def real_ucy_avoid(ctx: Ctx) -> RealSet:
                    "the annotated gaze when an episode is about them, else towards the walker.",
                    eps, scenes, planners,
                    agreement=RD.human_side_agreement(every, lambda e: (e.meta["scene"], e.meta["person_track"])),
-                   walkers=[walkers[e.episode_id] for e in eps])
+                   walkers=[walkers[e.episode_id] for e in eps], repeats=repeats)
 
 
 def real_ucy_approach(ctx: Ctx) -> RealSet:
@@ -337,6 +345,11 @@ def _real_report(ctx: Ctx, rs: RealSet, results) -> None:
                     f"the path's smallest distance to a standing person's centre (robot {ROBOT_RADIUS_M} m + person "
                     f"{PERSON_RADIUS_M} m = 0.55 m is contact).")
     ppl = [len(sc.people) for sc in rs.scenes]
+    if rs.repeats:
+        md += ("Each event is counted once: an episode that repeats an earlier one (the same person and positions "
+               "at the same times) is left out of the models' evaluation, the side rules and the humans' agreement "
+               "(realdata.distinct_events):\n\n" + "".join(f"- {l}\n" for l in portable(rs.repeats).splitlines())
+               + "\n")
     md += (f"People per episode: {min(ppl)}–{max(ppl)} (mean {np.mean(ppl):.1f}); {sum(p > 1 for p in ppl)} of {n} "
            "episodes have more than one.\n\n")
     md += "\n".join(lines) + "\n"
