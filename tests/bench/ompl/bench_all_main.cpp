@@ -35,8 +35,8 @@
  * validators over the same raster, and every returned path of both sides is re-checked with
  * them. The blocked cells mean the same on both sides; OMPL's free space is the larger one. The
  * map is loaded once before every run, outside both clocks, with its distance field (one transform
- * per map, docs/world.md, about 1.5 ms for this 440 x 280 map under load): a robot pays it when a
- * map arrives, not per plan; OMPL's validators read the same cells and need nothing built.
+ * per map load, docs/world.md): a robot pays it when a map arrives, not per plan; OMPL's validators
+ * read the same cells and need nothing built.
  *
  * With --arena DIR, one ompl::tools::Benchmark-format log per problem and budget,
  * DIR/<problem>_<budget>ms.log (arena_log.hpp), for Planner Arena.
