@@ -581,7 +581,8 @@ static double static_clearance(const struct gmmrrt_world *w, near_statics_t *n, 
         /* The raster's bound is the whole answer for the map: when it is at most `need`, so
          * is the minimum, and the caller refuses whatever the obstacles add. */
         const double lm = gmmrrt_raster_clearance_bound(w->raster, x, y) - w->raster_slack_m - w->robot_radius_m;
-        if (!(lm > need))
+        /* Without circles and boxes the obstacles' clearance is infinite: the map alone. */
+        if (!(lm > need) || w->obstacles.num_circles + w->obstacles.num_boxes == 0)
             return lm;
         const double ls = static_clearance_obstacles(w, n, x, y, need);
         return ls < lm ? ls : lm;

@@ -141,9 +141,11 @@ static int extend_from(struct gmmrrt_planner *p, int goal_tree, int32_t n, doubl
     if (steered) {
         qx = nx + dx * (p->cfg.step_m / dist);
         qy = ny + dy * (p->cfg.step_m / dist);
-        if (!gmmrrt_planner_point_free(p, qx, qy))
-            return TRAPPED;
     }
+    /* No separate point test of the steered end: the edge test refuses every edge whose end the
+     * point test refuses (its test of the ends is the same clearance bound, or the closed forms and
+     * the people with the edge margin added: stricter), so that test would only compute the end's
+     * bound a second time; the answers, and so the trees, are the same. */
     if (!gmmrrt_planner_edge_allowed(p, nx, ny, qx, qy))
         return TRAPPED;
     const int32_t i = goal_tree ? GMMRRT_CONNECT_MAX_NODES - 1 - c->n_goal++ : c->n_start++;

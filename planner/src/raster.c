@@ -64,6 +64,7 @@ gmmrrt_status_t gmmrrt_raster_init(gmmrrt_raster_t *r, void *mem, size_t size, i
     r->max_cells = max_cells;
     r->max_side = max_side;
     r->resolution_m = 1.0;
+    r->inv_resolution_m = 1.0;
     r->cos_yaw = 1.0;
     r->unknown_blocked = 1;
     r->mark_epoch_utime = -1;
@@ -89,6 +90,7 @@ gmmrrt_status_t gmmrrt_raster_set_geometry(gmmrrt_raster_t *r, int32_t width, in
     r->width = width;
     r->height = height;
     r->resolution_m = resolution_m;
+    r->inv_resolution_m = 1.0 / resolution_m;
     r->origin_x = origin_x;
     r->origin_y = origin_y;
     r->origin_yaw = origin_yaw;
@@ -276,8 +278,13 @@ gmmrrt_status_t gmmrrt_raster_update_distance_window(gmmrrt_raster_t *r, int64_t
 static void to_cells(const gmmrrt_raster_t *r, double x, double y, double *u, double *v)
 {
     const double dx = x - r->origin_x, dy = y - r->origin_y;
-    *u = (dx * r->cos_yaw + dy * r->sin_yaw) / r->resolution_m;
-    *v = (-dx * r->sin_yaw + dy * r->cos_yaw) / r->resolution_m;
+    if (r->sin_yaw == 0.0 && r->cos_yaw == 1.0) { /* an unrotated map: the same values without the rotation */
+        *u = dx * r->inv_resolution_m;
+        *v = dy * r->inv_resolution_m;
+        return;
+    }
+    *u = (dx * r->cos_yaw + dy * r->sin_yaw) * r->inv_resolution_m;
+    *v = (-dx * r->sin_yaw + dy * r->cos_yaw) * r->inv_resolution_m;
 }
 
 /* The two neighbour indices along one axis, floor(a) and floor(a) + 1, each clamped to

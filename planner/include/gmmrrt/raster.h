@@ -40,6 +40,7 @@ typedef struct gmmrrt_raster {
     int32_t max_cells, max_side; /* capacity fixed at init */
     int32_t width, height;       /* cells */
     double resolution_m;         /* cell edge, m */
+    double inv_resolution_m;     /* 1 / resolution_m, set with it: world to cells by a product */
     double origin_x, origin_y, origin_yaw; /* m, m, rad: world pose of cell (0, 0)'s lower-left corner */
     double cos_yaw, sin_yaw;
     int32_t unknown_blocked;     /* 1: unknown cells (and the outside) block; 0: they are free */

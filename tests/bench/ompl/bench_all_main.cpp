@@ -33,13 +33,19 @@
  * Ours reads the map through its raster layer (the distance field, conservative by up to about a
  * cell); OMPL gets raster_exact.hpp's exact disc-against-blocked-squares state and motion
  * validators over the same raster, and every returned path of both sides is re-checked with
- * them. The blocked cells mean the same on both sides; OMPL's free space is the larger one.
+ * them. The blocked cells mean the same on both sides; OMPL's free space is the larger one. The
+ * map is loaded once before every run, outside both clocks, with its distance field (one transform
+ * per map load, docs/world.md): a robot pays it when a map arrives, not per plan; OMPL's validators
+ * read the same cells and need nothing built.
  *
  * With --arena DIR, one ompl::tools::Benchmark-format log per problem and budget,
  * DIR/<problem>_<budget>ms.log (arena_log.hpp), for Planner Arena.
  *
+ * With --planners gmmrrt,ABITstar,... only those planners run, in that order (profiling one side,
+ * or a quick two-planner comparison); by default all of them.
+ *
  * Usage: gmmrrt-bench-all --problems DIR [--trials N] [--budgets 1,10,100,1000] [--json FILE]
- *        [--model FILE] [--approach-model FILE] [--map FILE.yaml] [--arena DIR]
+ *        [--planners LIST] [--model FILE] [--approach-model FILE] [--map FILE.yaml] [--arena DIR]
  * Prints a markdown table per problem (medians over trials).
  */
 #include <algorithm>
@@ -525,7 +531,7 @@ int main(int argc, char **argv)
     std::string dir = "tests/data/bench_problems", json, model_path, approach_path, map_path, arena_dir;
     int trials = 3;
     std::vector<double> budgets = {1, 10, 100, 1000};
-    std::vector<std::string> only;
+    std::vector<std::string> only, chosen;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--problems" && i + 1 < argc)
@@ -540,6 +546,12 @@ int main(int argc, char **argv)
                 budgets.push_back(std::atof(t.c_str()));
         } else if (a == "--only" && i + 1 < argc)
             only.push_back(argv[++i]);
+        else if (a == "--planners" && i + 1 < argc) {
+            std::stringstream ss(argv[++i]);
+            std::string t;
+            while (std::getline(ss, t, ','))
+                chosen.push_back(t);
+        }
         else if (a == "--json" && i + 1 < argc)
             json = argv[++i];
         else if (a == "--model" && i + 1 < argc)
@@ -552,8 +564,8 @@ int main(int argc, char **argv)
             arena_dir = argv[++i];
         else {
             std::fprintf(stderr, "usage: gmmrrt-bench-all [--problems DIR] [--trials N] [--budgets 1,10,100,1000] "
-                                 "[--only PROBLEM] [--json FILE] [--model FILE] [--approach-model FILE] "
-                                 "[--map FILE.yaml] [--arena DIR]\n");
+                                 "[--only PROBLEM] [--planners gmmrrt,RRTConnect,...] [--json FILE] [--model FILE] "
+                                 "[--approach-model FILE] [--map FILE.yaml] [--arena DIR]\n");
             return 2;
         }
     }
@@ -562,9 +574,18 @@ int main(int argc, char **argv)
         return 2;
     }
     ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-    const std::vector<std::string> planners = {"gmmrrt",    "RRTConnect", "RRTstar", "InformedRRTstar",
-                                               "SORRTstar", "RRTsharp",   "RRTXstatic", "LBTRRT",
-                                               "BITstar",   "ABITstar",   "AITstar", "FMT"};
+    const std::vector<std::string> all_planners = {"gmmrrt",    "RRTConnect", "RRTstar", "InformedRRTstar",
+                                                   "SORRTstar", "RRTsharp",   "RRTXstatic", "LBTRRT",
+                                                   "BITstar",   "ABITstar",   "AITstar", "FMT"};
+    std::vector<std::string> planners = all_planners;
+    if (!chosen.empty()) {
+        for (const std::string &name : chosen)
+            if (std::find(all_planners.begin(), all_planners.end(), name) == all_planners.end()) {
+                std::fprintf(stderr, "gmmrrt-bench-all: --planners: unknown planner '%s'\n", name.c_str());
+                return 2;
+            }
+        planners = chosen; /* in the order given */
+    }
     std::FILE *jf = json.empty() ? nullptr : std::fopen(json.c_str(), "w");
     std::vector<unsigned char> block;
     static gmmrrt_model_t model;
