@@ -562,7 +562,9 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     std::mt19937_64 crng = rng;
     crng.discard(draws * static_cast<uint64_t>(r));
     KMeansResult km;
-    Status st = KMeans(screen_xt, angle_mask, ko, &crng, &km);
+    KMeansOptions cko = ko;
+    cko.threads = cs.threads;
+    Status st = KMeans(screen_xt, angle_mask, cko, &crng, &km);
     if (!st.ok()) {
       failures[r] = st;
       return;

@@ -249,10 +249,14 @@ void test_any_thread_count_gives_the_same_bits(void** state) {
       blobs.push_back({mu, Eigen::MatrixXd::Identity(d, d) * (0.6 + 0.1 * b), 6000});
     }
     const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 21);
+    // 8 candidates run side by side, one thread each; 1 candidate runs its k-means and EM on
+    // all the threads.
+    for (int restarts : {8, 1}) {
     Mixture ref;
     FitSummary sref;
     for (int threads : {1, 2, 3, 5}) {
       FitOptions o = Quiet(4, 8);
+      o.restarts = restarts;
       o.threads = threads;
       o.max_iterations = 40;
       o.screen_points = 0;  // the candidates on all points too
@@ -270,6 +274,7 @@ void test_any_thread_count_gives_the_same_bits(void** state) {
       assert_true(m.means == ref.means);
       for (int i = 0; i < m.k(); ++i) assert_true(m.chol[i] == ref.chol[i]);
       assert_true(s.log_likelihood == sref.log_likelihood);
+    }
     }
   }
 }
