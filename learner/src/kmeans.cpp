@@ -298,6 +298,9 @@ double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* l
   const int k = static_cast<int>(centers.cols());
   labels->resize(l.n);
   best->resize(l.n);
+  std::vector<double> by_dim(static_cast<size_t>(l.d) * k);  // center c's coordinate j at [j k + c]
+  for (int j = 0; j < l.d; ++j)
+    for (int c = 0; c < k; ++c) by_dim[static_cast<size_t>(j) * k + c] = centers(j, c);
   l.ForGroups([&](Eigen::Index g) {
     double lower[64], d2[kGroupPoints];
     std::vector<double> lower_big;  // more than 64 centers (GMMRRT_MAX_K is below that)
@@ -307,10 +310,29 @@ double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* l
       low = lower_big.data();
     }
     double threshold = std::numeric_limits<double>::infinity();
-    for (int c = 0; c < k; ++c) {
-      double upper;
-      BoxBounds(l, g, centers.col(c).data(), &low[c], &upper);
-      threshold = std::min(threshold, upper);
+    if (l.mask == 0u && k <= 64) {
+      // BoxBounds for all centers at once, dimension by dimension (the same operations in the
+      // same order, so the same values; a loop over centers that vectorises).
+      double up[64];
+      for (int c = 0; c < k; ++c) low[c] = up[c] = 0.0;
+      for (int j = 0; j < l.d; ++j) {
+        const double lo = l.lo(j, g), hi = l.hi(j, g);
+        const double* cj = by_dim.data() + static_cast<size_t>(j) * k;
+        for (int c = 0; c < k; ++c) {
+          const double a = lo - cj[c], b = hi - cj[c];
+          const double near = a > 0.0 ? a : (b < 0.0 ? -b : 0.0);
+          const double far = -a > b ? -a : b;
+          low[c] += near * near;
+          up[c] += far * far;
+        }
+      }
+      for (int c = 0; c < k; ++c) threshold = std::min(threshold, up[c]);
+    } else {
+      for (int c = 0; c < k; ++c) {
+        double upper;
+        BoxBounds(l, g, centers.col(c).data(), &low[c], &upper);
+        threshold = std::min(threshold, upper);
+      }
     }
     threshold = l.prune ? threshold * (1.0 + kBoundMargin) : std::numeric_limits<double>::infinity();
     const Eigen::Index first = l.First(g);
