@@ -534,6 +534,14 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   }
   const Eigen::MatrixXd& screen_xt = *screen.xt;
   const Eigen::Index n_screen = screen_xt.rows();
+  // On a sample, the candidates' steps leave at least a quarter of the iteration cap (at least
+  // one step) to the kept candidate on all points: a mixture fitted to the sample alone fits its
+  // noise too, about p / (2 n_sample) nats per point below the fit to all points (0.003 for
+  // K = 19 in 2-D on 20 000 points), which steps on all points remove. With the default cap
+  // (500) this leaves screen_iterations as it is.
+  int screen_until = options.screen_iterations;
+  if (screen.xt != s.xt)
+    screen_until = std::min(screen_until, std::max(0, options.max_iterations - std::max(1, options.max_iterations / 4)));
   summary->screened_on = n_screen;
   KMeansOptions ko;
   ko.k = options.k;
@@ -562,7 +570,9 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     std::mt19937_64 crng = rng;
     crng.discard(draws * static_cast<uint64_t>(r));
     KMeansResult km;
-    Status st = KMeans(screen_xt, angle_mask, ko, &crng, &km);
+    KMeansOptions cko = ko;
+    cko.threads = cs.threads;
+    Status st = KMeans(screen_xt, angle_mask, cko, &crng, &km);
     if (!st.ok()) {
       failures[r] = st;
       return;
@@ -588,7 +598,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
       run.score[c] = -delta.squaredNorm();
     }
     MStep(cs, run.stats, km.centers, run.score, 0, &run.m);
-    if (run.m.k() > 0) Advance(cs, &run, options.screen_iterations);
+    if (run.m.k() > 0) Advance(cs, &run, screen_until);
   });
   rng.discard(draws * static_cast<uint64_t>(options.restarts));
   int best = -1;
@@ -615,7 +625,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     run.restart = r;
     run.m = start;
     WrapAngleRows(angle_mask, &run.m.means);
-    Advance(screen, &run, options.screen_iterations);
+    Advance(screen, &run, screen_until);
     if (run.m.k() > 0 && (best < 0 || run.ll.back() > runs[best].ll.back())) best = r;
     if (options.progress && run.m.k() > 0) options.progress(r, static_cast<int>(run.ll.size()) - 1, run.ll.back());
   }

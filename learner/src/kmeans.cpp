@@ -1,6 +1,19 @@
 // kmeans.cpp - greedy k-means++ seeding and Lloyd iterations with restarts, seam-safe for angle
 // dimensions (the update moves a center by the mean wrapped difference, then wraps it).
 // Seeds EM (em.cpp); see kmeans.hpp. Points are rows (N x D) so distances are vector ops.
+//
+// Both the seeding and the assignment step skip work by bounds, without changing a result: the
+// points are taken in groups of kGroupPoints consecutive ones (EM's callers put them in spatial
+// order, so a group's bounding box is small), and a center is left out of a group when the
+// smallest squared distance from it to the group's box exceeds what the computed distances it
+// would compete with can be (the bound pruning of Moore's mrkd-tree EM, NIPS 1999, and of
+// Pelleg and Moore's k-means, KDD 1999, on one level of the ordered points). The bounds take
+// the same floating-point operations as the point distances on the box's corners, which are
+// monotone in each coordinate, so a skipped center is farther than the kept one from every
+// point in the group as computed, not only in exact arithmetic; a relative margin of 1e-12
+// covers a compiler that contracts the sums differently. The work runs on up to
+// KMeansOptions::threads threads in tasks of a fixed number of groups, and everything that is
+// summed is summed per group and then in group order, so any thread count gives the same bits.
 #include "gmmrrt_learner/kmeans.hpp"
 
 #include <algorithm>
@@ -10,6 +23,7 @@
 
 #include "gmmrrt/features.h"
 #include "gmmrrt_learner/mixture.hpp"
+#include "parallel.hpp"
 
 namespace gmmrrt {
 namespace learn {
@@ -18,6 +32,7 @@ bool KMeansOptions::IsValid(std::string* error) const {
   if (k < 1) { *error = "k must be >= 1"; return false; }
   if (restarts < 1) { *error = "restarts must be >= 1"; return false; }
   if (max_iterations < 1) { *error = "max_iterations must be >= 1"; return false; }
+  if (threads < 1) { *error = "threads must be >= 1"; return false; }
   return true;
 }
 
@@ -38,6 +53,8 @@ namespace {
 // One angle difference per point, centre and iteration: the core's wrap, inline (features.h).
 inline double Wrap(double v) { return gmmrrt_wrap_angle_inline(v); }
 
+inline bool IsAngle(uint32_t mask, Eigen::Index c) { return c < 32 && ((mask >> c) & 1u); }
+
 }  // namespace
 
 void SquaredDistances(const Eigen::MatrixXd& points, const Eigen::VectorXd& center,
@@ -53,7 +70,7 @@ void SquaredDistances(const Eigen::MatrixXd& points, const Eigen::VectorXd& cent
   Eigen::ArrayXd diff(n);
   for (Eigen::Index c = 0; c < points.cols(); ++c) {
     diff = points.col(c).array() - center[c];
-    if (c < 32 && ((angle_mask >> c) & 1u))
+    if (IsAngle(angle_mask, c))
       for (Eigen::Index p = 0; p < n; ++p) diff[p] = Wrap(diff[p]);
     *d2 += diff.square();
   }
@@ -61,131 +78,338 @@ void SquaredDistances(const Eigen::MatrixXd& points, const Eigen::VectorXd& cent
 
 namespace {
 
+// Points per group (bounding box) and groups per task. 64 points: the E-step's culling groups
+// (estep_2d.cpp) for the same reason; 128 groups = 8192 points per task, the E-step's split.
+constexpr Eigen::Index kGroupPoints = 64;
+constexpr Eigen::Index kTaskGroups = 128;
+// A center is skipped for a group only when its lower bound exceeds the competing value by
+// this relative margin (see the file comment).
+constexpr double kBoundMargin = 1e-12;
+
+// The points' columns and groups: what every pass below reads.
+struct Layout {
+  const Eigen::MatrixXd* x = nullptr;
+  Eigen::Index n = 0;
+  int d = 0;
+  uint32_t mask = 0;
+  Eigen::Index groups = 0;
+  Eigen::MatrixXd lo, hi;  // D x groups: each group's bounding box
+  int threads = 1;
+  bool prune = true;
+
+  Eigen::Index First(Eigen::Index g) const { return g * kGroupPoints; }
+  int Size(Eigen::Index g) const { return static_cast<int>(std::min(kGroupPoints, n - g * kGroupPoints)); }
+  long Tasks() const { return static_cast<long>((groups + kTaskGroups - 1) / kTaskGroups); }
+  template <typename F>
+  void ForGroups(const F& f) const {  // f(g) for every group, tasks of kTaskGroups on the threads
+    detail::ParallelFor(threads, Tasks(), [&](long t) {
+      const Eigen::Index end = std::min<Eigen::Index>(groups, (t + 1) * kTaskGroups);
+      for (Eigen::Index g = t * kTaskGroups; g < end; ++g) f(g);
+    });
+  }
+};
+
+void MakeLayout(const Eigen::MatrixXd& x, uint32_t mask, const KMeansOptions& o, Layout* l) {
+  l->x = &x;
+  l->n = x.rows();
+  l->d = static_cast<int>(x.cols());
+  l->mask = mask;
+  l->threads = o.threads;
+  l->prune = o.prune;
+  l->groups = (l->n + kGroupPoints - 1) / kGroupPoints;
+  l->lo.resize(l->d, l->groups);
+  l->hi.resize(l->d, l->groups);
+  for (int c = 0; c < l->d; ++c) {
+    const double* xc = x.col(c).data();
+    for (Eigen::Index g = 0; g < l->groups; ++g) {
+      const Eigen::Index first = l->First(g), last = first + l->Size(g);
+      double lo = xc[first], hi = lo;
+      for (Eigen::Index p = first + 1; p < last; ++p) {
+        lo = std::min(lo, xc[p]);
+        hi = std::max(hi, xc[p]);
+      }
+      l->lo(c, g) = lo;
+      l->hi(c, g) = hi;
+    }
+  }
+}
+
+// Bounds of the squared (wrapped) distance from center to any point of group g, as the point
+// distances compute it: *lower <= GroupDistances' values <= *upper. Per dimension, the
+// difference x - c is monotone in x, so over the box it lies between the corners' differences
+// (computed with the same rounding); an angle dimension whose corner differences are both in
+// (-pi, pi], where the wrap is the identity, is bounded the same way, any other by [0, pi].
+inline void BoxBounds(const Layout& l, Eigen::Index g, const double* center, double* lower, double* upper) {
+  double lo_sum = 0.0, hi_sum = 0.0;
+  for (int c = 0; c < l.d; ++c) {
+    const double a = l.lo(c, g) - center[c], b = l.hi(c, g) - center[c];
+    double near, far;
+    if (IsAngle(l.mask, c) && !(a > -M_PI && b <= M_PI)) {
+      near = 0.0;
+      far = M_PI;
+    } else {
+      near = a > 0.0 ? a : (b < 0.0 ? -b : 0.0);
+      far = std::max(-a, b);
+    }
+    lo_sum += near * near;
+    hi_sum += far * far;
+  }
+  *lower = lo_sum;
+  *upper = hi_sum;
+}
+
+// Squared distances of group g's points to center into d2 (Size(g) values): the operations
+// and order of SquaredDistances (0 + a^2 = a^2 exactly).
+inline void GroupDistances(const Layout& l, Eigen::Index g, const double* center, double* d2) {
+  const Eigen::Index first = l.First(g);
+  const int size = l.Size(g);
+  for (int c = 0; c < l.d; ++c) {
+    const double* xc = l.x->col(c).data() + first;
+    const double cc = center[c];
+    if (IsAngle(l.mask, c)) {
+      for (int q = 0; q < size; ++q) {
+        const double v = Wrap(xc[q] - cc);
+        d2[q] = c == 0 ? v * v : d2[q] + v * v;
+      }
+    } else if (c == 0) {
+      for (int q = 0; q < size; ++q) d2[q] = (xc[q] - cc) * (xc[q] - cc);
+    } else {
+      for (int q = 0; q < size; ++q) d2[q] += (xc[q] - cc) * (xc[q] - cc);
+    }
+  }
+}
+
+// The sum of a group's values in a fixed order: eight interleaved partial sums (independent
+// chains, which vectorise), then added pairwise.
+inline double GroupSum(const double* v, int size) {
+  double acc[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  int q = 0;
+  for (; q + 8 <= size; q += 8)
+    for (int j = 0; j < 8; ++j) acc[j] += v[q + j];
+  for (int j = 0; q < size; ++q, ++j) acc[j] += v[q];
+  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+}
+
 Eigen::Index UniformIndex(Eigen::Index n, std::mt19937_64* rng) {
   return std::min<Eigen::Index>(static_cast<Eigen::Index>(Uniform01(rng) * static_cast<double>(n)), n - 1);
 }
 
-// Index drawn with probability proportional to weight (cumulative sums in cum, total > 0).
-Eigen::Index DrawProportional(const Eigen::ArrayXd& cum, std::mt19937_64* rng) {
-  const double u = Uniform01(rng) * cum[cum.size() - 1];
-  const double* first = cum.data();
-  const double* it = std::upper_bound(first, first + cum.size(), u);
-  return std::min<Eigen::Index>(it - first, cum.size() - 1);
+// Index drawn with probability proportional to closest (total > 0): the group by the running
+// sums of the group sums (cum), then the point by the running sum inside it.
+Eigen::Index DrawProportional(const Layout& l, const Eigen::ArrayXd& closest, const std::vector<double>& cum,
+                              std::mt19937_64* rng) {
+  const double u = Uniform01(rng) * cum.back();
+  const Eigen::Index g = std::min<Eigen::Index>(std::upper_bound(cum.begin(), cum.end(), u) - cum.begin(),
+                                                l.groups - 1);
+  const Eigen::Index first = l.First(g), last = first + l.Size(g);
+  double s = g > 0 ? cum[g - 1] : 0.0;
+  Eigen::Index pick = last - 1;
+  for (Eigen::Index p = first; p < last; ++p) {
+    if (closest[p] > 0.0) pick = p;  // rounding left u past every running sum: the last one with weight
+    s += closest[p];
+    if (s > u && closest[p] > 0.0) return p;
+  }
+  return pick;
 }
 
-void SeedPlusPlus(const Eigen::MatrixXd& x, uint32_t mask, int k, std::mt19937_64* rng,
-                  Eigen::MatrixXd* centers) {
-  const Eigen::Index n = x.rows();
-  centers->resize(x.cols(), k);
+// Greedy k-means++: each new center is the best (lowest potential sum_p min(closest_p, d2_p)) of
+// SeedTrials candidates drawn with probability proportional to closest. A group whose box is
+// farther from a candidate than its largest closest value keeps its closest values, so its
+// part of the potential is its sum of them (gsum), the same bits as computing it point by point.
+void SeedPlusPlus(const Layout& l, int k, std::mt19937_64* rng, Eigen::MatrixXd* centers) {
+  const Eigen::MatrixXd& x = *l.x;
+  const Eigen::Index n = l.n, ng = l.groups;
+  const int d = l.d;
+  centers->resize(d, k);
   centers->col(0) = x.row(UniformIndex(n, rng)).transpose();
-  Eigen::ArrayXd closest, d2, best_d2, cum(n);
-  SquaredDistances(x, centers->col(0), mask, &closest);
+  Eigen::ArrayXd closest(n);
+  std::vector<double> gsum(ng), gmax(ng), cum(ng);
+  auto refresh = [&](Eigen::Index g) {  // gsum and gmax of group g from closest
+    const Eigen::Index first = l.First(g);
+    const int size = l.Size(g);
+    gsum[g] = GroupSum(closest.data() + first, size);
+    double m = 0.0;
+    for (int q = 0; q < size; ++q) m = std::max(m, closest[first + q]);
+    gmax[g] = m;
+  };
+  {
+    const Eigen::VectorXd c0 = centers->col(0);
+    l.ForGroups([&](Eigen::Index g) {
+      GroupDistances(l, g, c0.data(), closest.data() + l.First(g));
+      refresh(g);
+    });
+  }
   const int trials = SeedTrials(k);
+  Eigen::MatrixXd cand(d, trials);
+  std::vector<double> part(static_cast<size_t>(ng) * trials);
   for (int c = 1; c < k; ++c) {
-    std::partial_sum(closest.data(), closest.data() + n, cum.data());
-    double best_potential = std::numeric_limits<double>::infinity();
-    Eigen::Index best = 0;
+    std::partial_sum(gsum.begin(), gsum.end(), cum.begin());
     for (int t = 0; t < trials; ++t) {
-      const Eigen::Index cand = cum[n - 1] > 0.0 ? DrawProportional(cum, rng) : UniformIndex(n, rng);
-      SquaredDistances(x, x.row(cand).transpose(), mask, &d2);
-      const double potential = closest.min(d2).sum();
+      const Eigen::Index p = cum.back() > 0.0 ? DrawProportional(l, closest, cum, rng) : UniformIndex(n, rng);
+      cand.col(t) = x.row(p).transpose();
+    }
+    l.ForGroups([&](Eigen::Index g) {
+      double d2[kGroupPoints];
+      const Eigen::Index first = l.First(g);
+      const int size = l.Size(g);
+      for (int t = 0; t < trials; ++t) {
+        double lower, upper;
+        BoxBounds(l, g, cand.col(t).data(), &lower, &upper);
+        double& out = part[static_cast<size_t>(g) * trials + t];
+        if (l.prune && lower > gmax[g] * (1.0 + kBoundMargin)) {
+          out = gsum[g];
+          continue;
+        }
+        GroupDistances(l, g, cand.col(t).data(), d2);
+        for (int q = 0; q < size; ++q) d2[q] = std::min(closest[first + q], d2[q]);
+        out = GroupSum(d2, size);
+      }
+    });
+    int best = 0;
+    double best_potential = std::numeric_limits<double>::infinity();
+    for (int t = 0; t < trials; ++t) {
+      double potential = 0.0;
+      for (Eigen::Index g = 0; g < ng; ++g) potential += part[static_cast<size_t>(g) * trials + t];
       if (potential < best_potential) {
         best_potential = potential;
-        best = cand;
-        best_d2 = d2;
+        best = t;
       }
     }
-    centers->col(c) = x.row(best).transpose();
-    closest = closest.min(best_d2);
+    centers->col(c) = cand.col(best);
+    const double* bc = cand.col(best).data();
+    l.ForGroups([&](Eigen::Index g) {
+      double lower, upper;
+      BoxBounds(l, g, bc, &lower, &upper);
+      if (l.prune && lower > gmax[g] * (1.0 + kBoundMargin)) return;
+      double d2[kGroupPoints];
+      const Eigen::Index first = l.First(g);
+      GroupDistances(l, g, bc, d2);
+      for (int q = 0; q < l.Size(g); ++q) closest[first + q] = std::min(closest[first + q], d2[q]);
+      refresh(g);
+    });
   }
 }
 
-// Assigns every point to its nearest center (ties: the lower index); returns the inertia.
-// Compiled twice on x86-64, for the baseline and for AVX2 (4 distances per instruction instead
-// of 2), chosen when the program loads: the same operations lane by lane (no FMA), so the same
-// labels and bits; it was a tenth of the benchmark fit's time, in the candidates' Lloyd steps.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__linux__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-double Assign(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::MatrixXd& centers,
-              Eigen::ArrayXi* labels, Eigen::ArrayXd* best) {
-  const Eigen::Index n = x.rows();
-  if (x.cols() == 2 && (mask == 0u || mask == 2u)) {
-    // D = 2, plain or with the angle on dimension 1 (the benchmark's and the planner's (d, theta)
-    // features): one pass over the points per center, no temporaries; the same distances and
-    // ties (strict <: the lower index wins) as below.
-    const bool angle = mask == 2u;
-    labels->resize(n);
-    best->resize(n);
-    const double* x0 = x.col(0).data();
-    const double* x1 = x.col(1).data();
-    int* lab = labels->data();
-    double* bst = best->data();
-    {
-      const double c0 = centers(0, 0), c1 = centers(1, 0);
-      for (Eigen::Index p = 0; p < n; ++p) {
-        const double a = x0[p] - c0, b = angle ? Wrap(x1[p] - c1) : x1[p] - c1;
-        bst[p] = a * a + b * b;
-        lab[p] = 0;
+// Assigns every point to its nearest center (ties: the lower index); returns the inertia. Per
+// group, only the centers whose lower bound is within the smallest upper bound can hold a
+// nearest center; they are visited in index order, so labels and distances are those of a scan
+// over all centers.
+double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* labels, Eigen::ArrayXd* best) {
+  const int k = static_cast<int>(centers.cols());
+  labels->resize(l.n);
+  best->resize(l.n);
+  std::vector<double> by_dim(static_cast<size_t>(l.d) * k);  // center c's coordinate j at [j k + c]
+  for (int j = 0; j < l.d; ++j)
+    for (int c = 0; c < k; ++c) by_dim[static_cast<size_t>(j) * k + c] = centers(j, c);
+  l.ForGroups([&](Eigen::Index g) {
+    double lower[64], d2[kGroupPoints];
+    std::vector<double> lower_big;  // more than 64 centers (GMMRRT_MAX_K is below that)
+    double* low = lower;
+    if (k > 64) {
+      lower_big.resize(k);
+      low = lower_big.data();
+    }
+    double threshold = std::numeric_limits<double>::infinity();
+    if (l.mask == 0u && k <= 64) {
+      // BoxBounds for all centers at once, dimension by dimension (the same operations in the
+      // same order, so the same values; a loop over centers that vectorises).
+      double up[64];
+      for (int c = 0; c < k; ++c) low[c] = up[c] = 0.0;
+      for (int j = 0; j < l.d; ++j) {
+        const double lo = l.lo(j, g), hi = l.hi(j, g);
+        const double* cj = by_dim.data() + static_cast<size_t>(j) * k;
+        for (int c = 0; c < k; ++c) {
+          const double a = lo - cj[c], b = hi - cj[c];
+          const double near = a > 0.0 ? a : (b < 0.0 ? -b : 0.0);
+          const double far = -a > b ? -a : b;
+          low[c] += near * near;
+          up[c] += far * far;
+        }
+      }
+      for (int c = 0; c < k; ++c) threshold = std::min(threshold, up[c]);
+    } else {
+      for (int c = 0; c < k; ++c) {
+        double upper;
+        BoxBounds(l, g, centers.col(c).data(), &low[c], &upper);
+        threshold = std::min(threshold, upper);
       }
     }
-    for (Eigen::Index c = 1; c < centers.cols(); ++c) {
-      const double c0 = centers(0, c), c1 = centers(1, c);
-      const int ci = static_cast<int>(c);
-      for (Eigen::Index p = 0; p < n; ++p) {
-        const double a = x0[p] - c0, b = angle ? Wrap(x1[p] - c1) : x1[p] - c1;
-        const double d = a * a + b * b;
-        const bool closer = d < bst[p];
-        bst[p] = closer ? d : bst[p];
-        lab[p] = closer ? ci : lab[p];
+    threshold = l.prune ? threshold * (1.0 + kBoundMargin) : std::numeric_limits<double>::infinity();
+    const Eigen::Index first = l.First(g);
+    const int size = l.Size(g);
+    double* bst = best->data() + first;
+    int* lab = labels->data() + first;
+    bool started = false;
+    for (int c = 0; c < k; ++c) {
+      if (low[c] > threshold) continue;
+      if (!started) {
+        GroupDistances(l, g, centers.col(c).data(), bst);
+        for (int q = 0; q < size; ++q) lab[q] = c;
+        started = true;
+        continue;
+      }
+      GroupDistances(l, g, centers.col(c).data(), d2);
+      for (int q = 0; q < size; ++q) {
+        const bool closer = d2[q] < bst[q];
+        bst[q] = closer ? d2[q] : bst[q];
+        lab[q] = closer ? c : lab[q];
       }
     }
-    return best->sum();
-  }
-  Eigen::ArrayXd d2;
-  SquaredDistances(x, centers.col(0), mask, best);
-  labels->setZero(n);
-  for (Eigen::Index c = 1; c < centers.cols(); ++c) {
-    SquaredDistances(x, centers.col(c), mask, &d2);
-    const auto closer = d2 < *best;
-    *labels = closer.select(static_cast<int>(c), *labels);
-    *best = closer.select(d2, *best);
-  }
+  });
   return best->sum();
 }
 
-// Moves the centers to their clusters' means; returns the summed squared center shift.
-double Update(const Eigen::MatrixXd& x, uint32_t mask, const Eigen::ArrayXi& labels,
-              const Eigen::ArrayXd& best, Eigen::MatrixXd* centers) {
-  const Eigen::Index k = centers->cols(), n = x.rows();
-  Eigen::MatrixXd shift = Eigen::MatrixXd::Zero(x.cols(), k);
-  Eigen::VectorXd count = Eigen::VectorXd::Zero(k);
-  // Each cluster's sums in point order, as one += per point would give them; but a run of points
-  // with the same label (most of them: EM's callers order the points spatially) adds into a
-  // register, not through memory, whose store-to-load round trip per point was most of k-means'
-  // own time. The same additions in the same order: the same bits.
-  for (Eigen::Index c = 0; c < x.cols(); ++c) {
-    const bool angle = c < 32 && ((mask >> c) & 1u);
-    const double* xc = x.col(c).data();
-    for (Eigen::Index p = 0; p < n;) {
-      const int l = labels[p];
-      const double center = (*centers)(c, l);
-      double acc = shift(c, l);
-      const Eigen::Index run_start = p;
-      if (angle) {
-        do {
-          acc += Wrap(xc[p] - center);
-          ++p;
-        } while (p < n && labels[p] == l);
-      } else {  // no call in this loop: acc stays in a register (with one, GCC kept it on the stack)
-        do {
-          acc += xc[p] - center;
-          ++p;
-        } while (p < n && labels[p] == l);
+// Moves the centers to their clusters' means; returns the summed squared center shift. The
+// sums of x - center per cluster are taken per task (in group order; a group whose points all
+// have one label, most of them in spatial order, by GroupSum's independent partial sums rather
+// than one dependent chain of additions per point) and the tasks' sums are added in task order.
+double Update(const Layout& l, const Eigen::ArrayXi& labels, const Eigen::ArrayXd& best, Eigen::MatrixXd* centers) {
+  const Eigen::MatrixXd& x = *l.x;
+  const uint32_t mask = l.mask;
+  const Eigen::Index k = centers->cols(), n = l.n;
+  const long tasks = l.Tasks();
+  std::vector<Eigen::MatrixXd> task_shift(static_cast<size_t>(tasks));
+  std::vector<Eigen::VectorXd> task_count(static_cast<size_t>(tasks));
+  detail::ParallelFor(l.threads, tasks, [&](long t) {
+    Eigen::MatrixXd& shift = task_shift[static_cast<size_t>(t)];
+    Eigen::VectorXd& count = task_count[static_cast<size_t>(t)];
+    shift.setZero(l.d, k);
+    count.setZero(k);
+    double diff[kGroupPoints];
+    const Eigen::Index end = std::min<Eigen::Index>(l.groups, (t + 1) * kTaskGroups);
+    for (Eigen::Index g = t * kTaskGroups; g < end; ++g) {
+      const Eigen::Index first = l.First(g);
+      const int size = l.Size(g);
+      const int* lab = labels.data() + first;
+      const int one = lab[0];
+      bool same = true;
+      for (int q = 1; q < size; ++q) same = same && lab[q] == one;
+      if (same) count[one] += static_cast<double>(size);  // integers: exact in any grouping
+      else
+        for (int q = 0; q < size; ++q) count[lab[q]] += 1.0;
+      for (int c = 0; c < l.d; ++c) {
+        const bool angle = IsAngle(mask, c);
+        const double* xc = x.col(c).data() + first;
+        if (same) {
+          const double center = (*centers)(c, one);
+          for (int q = 0; q < size; ++q) diff[q] = xc[q] - center;
+          if (angle)
+            for (int q = 0; q < size; ++q) diff[q] = Wrap(diff[q]);
+          shift(c, one) += GroupSum(diff, size);
+        } else {
+          for (int q = 0; q < size; ++q) {
+            const double v = xc[q] - (*centers)(c, lab[q]);
+            shift(c, lab[q]) += angle ? Wrap(v) : v;
+          }
+        }
       }
-      shift(c, l) = acc;
-      if (c == 0) count[l] += static_cast<double>(p - run_start);  // integers: exact in any grouping
     }
+  });
+  Eigen::MatrixXd shift = Eigen::MatrixXd::Zero(l.d, k);
+  Eigen::VectorXd count = Eigen::VectorXd::Zero(k);
+  for (long t = 0; t < tasks; ++t) {
+    shift += task_shift[static_cast<size_t>(t)];
+    count += task_count[static_cast<size_t>(t)];
   }
   std::vector<bool> taken(n, false);
   Eigen::MatrixXd previous = *centers;
@@ -221,19 +445,21 @@ Status KMeans(const Eigen::MatrixXd& points, uint32_t angle_mask, const KMeansOp
   // scikit-learn's tolerance: 1e-4 of the mean per-dimension variance.
   const Eigen::RowVectorXd mean = points.colwise().mean();
   const double shift_tol = 1e-4 * (points.rowwise() - mean).array().square().colwise().mean().mean();
+  Layout layout;
+  MakeLayout(points, angle_mask, options, &layout);
   result->inertia = std::numeric_limits<double>::infinity();
   Eigen::MatrixXd centers;
   Eigen::ArrayXi labels, previous;
   Eigen::ArrayXd best;
   for (int r = 0; r < options.restarts; ++r) {
-    SeedPlusPlus(points, angle_mask, options.k, rng, &centers);
-    double inertia = Assign(points, angle_mask, centers, &labels, &best);
+    SeedPlusPlus(layout, options.k, rng, &centers);
+    double inertia = Assign(layout, centers, &labels, &best);
     int it = 0;
     while (it < options.max_iterations) {
       ++it;
       previous = labels;
-      const double shift = Update(points, angle_mask, labels, best, &centers);
-      inertia = Assign(points, angle_mask, centers, &labels, &best);
+      const double shift = Update(layout, labels, best, &centers);
+      inertia = Assign(layout, centers, &labels, &best);
       if ((labels == previous).all() || shift <= shift_tol) break;
     }
     if (inertia < result->inertia) {

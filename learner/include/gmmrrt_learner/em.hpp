@@ -55,7 +55,10 @@ struct FitOptions {
   int restarts = 8;             // candidate starts: k-means++ seeding + Lloyd + screen_iterations
                                 // EM steps each; the highest log-likelihood continues (short-EM
                                 // selection, Biernacki et al. 2003)
-  int screen_iterations = 20;   // EM steps per candidate before choosing (when restarts > 1)
+  int screen_iterations = 20;   // EM steps per candidate before choosing (when restarts > 1);
+                                // on a sample (screen_points) at most max_iterations minus
+                                // max(1, max_iterations / 4), so the kept candidate gets a
+                                // quarter of the cap on all points
   int64_t screen_points = 20000;  // when N is larger, the candidates (k-means++, Lloyd and the
                                 // screening steps) run on this many points drawn without
                                 // replacement (seeded), and only the kept candidate runs on all

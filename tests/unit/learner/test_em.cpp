@@ -2,6 +2,7 @@
 // weights), monotone log-likelihood, determinism (also across thread counts), SQUAREM against
 // plain EM, degenerate components, the +-pi seam, BIC
 // choosing the generating K, bad input, and the Eigen density against the C gmm.h density.
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -90,6 +91,110 @@ void test_kmeans_draws_what_kmeans_random_draws_says(void** state) {
   }
 }
 
+// Data for the pruned k-means passes: rows (N x D) in strips of 0.25 along dimension 0, each
+// strip in order of dimension 1, so consecutive points are close (as FitMixture's spatial order
+// makes them) and the 64-point boxes are small, which is where centers get skipped.
+Eigen::MatrixXd StripOrdered(const Eigen::MatrixXd& x) {
+  std::vector<Eigen::Index> idx(static_cast<size_t>(x.cols()));
+  for (size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<Eigen::Index>(i);
+  std::sort(idx.begin(), idx.end(), [&x](Eigen::Index a, Eigen::Index b) {
+    const double sa = std::floor(4.0 * x(0, a)), sb = std::floor(4.0 * x(0, b));
+    return sa < sb || (sa == sb && (x(1, a) < x(1, b) || (x(1, a) == x(1, b) && a < b)));
+  });
+  Eigen::MatrixXd rows(x.cols(), x.rows());
+  for (size_t i = 0; i < idx.size(); ++i) rows.row(static_cast<Eigen::Index>(i)) = x.col(idx[i]).transpose();
+  return rows;
+}
+
+// The k-means test cases: overlapping blobs in D = 2 and D = 3, a lattice (equidistant points:
+// ties between centers), and blobs across the +-pi seam of an angle on dimension 1.
+struct KMeansCase {
+  Eigen::MatrixXd rows;
+  uint32_t mask;
+  int k;
+};
+
+std::vector<KMeansCase> KMeansCases() {
+  std::vector<KMeansCase> cases;
+  std::vector<Blob> blobs2, blobs3, seam;
+  for (int b = 0; b < 6; ++b) {
+    blobs2.push_back({Vec({1.5 * (b % 3), 2.0 * (b / 3)}), Diag({0.5 + 0.1 * b, 0.6}), 4000});
+    blobs3.push_back({Vec({1.5 * (b % 3), 2.0 * (b / 3), 0.5 * b}), Diag({0.5, 0.6, 0.4}), 3000});
+  }
+  seam = {{Vec({1.0, 3.0}), Diag({0.3, 0.25}), 6000},
+          {Vec({2.0, -3.0}), Diag({0.3, 0.25}), 6000},
+          {Vec({1.5, 0.0}), Diag({0.4, 0.5}), 6000}};
+  cases.push_back({StripOrdered(test_support::Sample(blobs2, 0, 31)), 0u, 9});
+  cases.push_back({test_support::Sample(blobs3, 0, 32).transpose(), 0u, 7});
+  Eigen::MatrixXd lattice(2, 41 * 41);
+  for (int i = 0; i < 41; ++i)
+    for (int j = 0; j < 41; ++j) lattice.col(41 * i + j) << i, j;
+  cases.push_back({lattice.transpose(), 0u, 4});
+  cases.push_back({StripOrdered(test_support::Sample(seam, 2u, 33)), 2u, 5});
+  return cases;
+}
+
+// The assignment step skips centers by box bounds: its labels and distances must be those of a
+// scan over every center (ties to the lower index), and the inertia their sum.
+void test_kmeans_pruned_assignment_equals_a_full_scan(void** state) {
+  (void)state;
+  for (const KMeansCase& c : KMeansCases()) {
+    KMeansOptions o;
+    o.k = c.k;
+    o.restarts = 1;
+    std::mt19937_64 rng(5);
+    KMeansResult r;
+    assert_true(KMeans(c.rows, c.mask, o, &rng, &r).ok());
+    Eigen::ArrayXd best, d2;
+    SquaredDistances(c.rows, r.centers.col(0), c.mask, &best);
+    std::vector<int> labels(static_cast<size_t>(c.rows.rows()), 0);
+    for (int j = 1; j < c.k; ++j) {
+      SquaredDistances(c.rows, r.centers.col(j), c.mask, &d2);
+      for (Eigen::Index p = 0; p < c.rows.rows(); ++p)
+        if (d2[p] < best[p]) {
+          best[p] = d2[p];
+          labels[static_cast<size_t>(p)] = j;
+        }
+    }
+    assert_true(labels == r.labels);
+    assert_true(best.sum() == r.inertia);
+  }
+}
+
+// Pruning (the seeding's and the assignment's) changes no bit, and neither does the number of
+// threads: centers, labels and inertia are the same for pruned or full passes on 1, 2 or 3
+// threads (N up to 24 000: several tasks of 8192 points).
+void test_kmeans_is_the_same_pruned_or_not_on_any_thread_count(void** state) {
+  (void)state;
+  for (const KMeansCase& c : KMeansCases()) {
+    for (int iterations : {1, 100}) {  // one Lloyd step: the centers still show the seeding's picks
+    KMeansResult ref;
+    bool have_ref = false;
+    for (bool prune : {false, true})
+      for (int threads : {1, 2, 3}) {
+        KMeansOptions o;
+        o.k = c.k;
+        o.restarts = 2;
+        o.max_iterations = iterations;
+        o.prune = prune;
+        o.threads = threads;
+        std::mt19937_64 rng(9);
+        KMeansResult r;
+        assert_true(KMeans(c.rows, c.mask, o, &rng, &r).ok());
+        if (!have_ref) {
+          ref = r;
+          have_ref = true;
+          continue;
+        }
+        assert_true(r.centers == ref.centers);
+        assert_true(r.labels == ref.labels);
+        assert_true(r.inertia == ref.inertia);
+        assert_int_equal(r.iterations, ref.iterations);
+      }
+    }
+  }
+}
+
 void test_em_recovers_means_and_weights(void** state) {
   (void)state;
   const auto blobs = ThreeBlobs();
@@ -144,10 +249,14 @@ void test_any_thread_count_gives_the_same_bits(void** state) {
       blobs.push_back({mu, Eigen::MatrixXd::Identity(d, d) * (0.6 + 0.1 * b), 6000});
     }
     const Eigen::MatrixXd x = test_support::Sample(blobs, 0, 21);
+    // 8 candidates run side by side, one thread each; 1 candidate runs its k-means and EM on
+    // all the threads.
+    for (int restarts : {8, 1}) {
     Mixture ref;
     FitSummary sref;
     for (int threads : {1, 2, 3, 5}) {
       FitOptions o = Quiet(4, 8);
+      o.restarts = restarts;
       o.threads = threads;
       o.max_iterations = 40;
       o.screen_points = 0;  // the candidates on all points too
@@ -166,12 +275,14 @@ void test_any_thread_count_gives_the_same_bits(void** state) {
       for (int i = 0; i < m.k(); ++i) assert_true(m.chol[i] == ref.chol[i]);
       assert_true(s.log_likelihood == sref.log_likelihood);
     }
+    }
   }
 }
 
 // --max-iter N is N EM steps however the candidates were screened: on all points (whose
 // screening steps are the fit's first ones) and on a sample (the kept candidate then continues
-// on all points), with plain EM and SQUAREM (each E-step counts, refused extrapolations too).
+// on all points, at least a quarter of the cap), with plain EM and SQUAREM (each E-step counts,
+// refused extrapolations too).
 void test_iteration_cap_is_exact(void** state) {
   (void)state;
   std::vector<Blob> blobs = {{Vec({0.0, 0.0}), Diag({1.0, 1.0}), 3000},
@@ -195,6 +306,9 @@ void test_iteration_cap_is_exact(void** state) {
           if (!accelerate) {
             assert_int_equal(s.iterations, cap);
             if (screen_points == 0) assert_int_equal(s.log_likelihood.size(), cap + 1);
+            // On a sample, a quarter of the cap (at least one step) is left to all points.
+            const int on_all = cap == 0 ? 0 : cap == 1 ? 1 : cap == 5 ? 1 : cap == 16 ? 4 : 6;
+            if (screen_points > 0) assert_int_equal(s.log_likelihood.size(), on_all + 1);
           } else {
             assert_true(s.iterations <= cap);
             // Every E-step counts, the refused extrapolations' included: on all points the
@@ -458,6 +572,8 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_kmeans_finds_separated_centers),
       cmocka_unit_test(test_kmeans_draws_what_kmeans_random_draws_says),
+      cmocka_unit_test(test_kmeans_pruned_assignment_equals_a_full_scan),
+      cmocka_unit_test(test_kmeans_is_the_same_pruned_or_not_on_any_thread_count),
       cmocka_unit_test(test_em_recovers_means_and_weights),
       cmocka_unit_test(test_em_log_likelihood_never_decreases),
       cmocka_unit_test(test_same_seed_gives_the_same_mixture),

@@ -11,12 +11,14 @@
 #include <cstring>
 #include <vector>
 #include <random>
+#include <thread>
 
 #include "component_terms.hpp"
 #include "estep_2d.hpp"
 #include "gmmrrt/features.h"
 #include "gmmrrt_learner/em.hpp"
 #include "gmmrrt_learner/mixture.hpp"
+#include "parallel.hpp"
 #include "spatial_order.hpp"
 #include "test_support.hpp"
 
@@ -431,8 +433,38 @@ void test_screening_on_a_sample_is_deterministic_and_recovers_the_mixture(void**
 
 }  // namespace
 
+// ParallelFor keeps its helper threads between passes: every task runs exactly once per pass,
+// for passes in a row, a pass started from inside a task, and passes from two threads at once
+// (the pool serves one; the other takes its own threads).
+void test_parallel_for_runs_every_task_once(void** state) {
+  (void)state;
+  auto pass = [](int threads, long n, std::vector<int>* hits) {
+    hits->assign(static_cast<size_t>(n), 0);
+    gmmrrt::learn::detail::ParallelFor(threads, n, [hits](long t) { ++(*hits)[static_cast<size_t>(t)]; });
+  };
+  std::vector<int> hits;
+  for (int threads : {1, 2, 3, 5})
+    for (long n : {1L, 2L, 7L, 100L}) {
+      pass(threads, n, &hits);
+      for (int h : hits) assert_int_equal(h, 1);
+    }
+  std::vector<std::vector<int>> inner(6);
+  gmmrrt::learn::detail::ParallelFor(3, 6, [&](long t) { pass(2, 50, &inner[static_cast<size_t>(t)]); });
+  for (const std::vector<int>& v : inner)
+    for (int h : v) assert_int_equal(h, 1);
+  std::vector<int> a, b;
+  std::thread other([&] {
+    for (int r = 0; r < 200; ++r) pass(2, 33, &a);
+  });
+  for (int r = 0; r < 200; ++r) pass(3, 41, &b);
+  other.join();
+  for (int h : a) assert_int_equal(h, 1);
+  for (int h : b) assert_int_equal(h, 1);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_parallel_for_runs_every_task_once),
       cmocka_unit_test(test_vector_exp_matches_std_exp),
       cmocka_unit_test(test_vector_log_matches_std_log),
       cmocka_unit_test(test_fused_estep_matches_the_density_and_direct_moments),
