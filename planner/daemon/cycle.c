@@ -101,12 +101,6 @@ static void publish_plan(gmmrrtd_t *d, const gmmrrt_path_t *path, int status)
     m->status = (int32_t)status;
     gmmrrt_waypoints_t_publish(d->lcm_out, d->set.ch_plan, m);
     d->status.plans_published++;
-    /* Live: the CPU goes to whoever delivers and reads the plan before this cycle polishes on. A
-     * cycle that kept it (anytime plans search on for the rest of the budget) held the kernel's
-     * loopback delivery of its own datagram and the consumer's wake-up behind it for a scheduler
-     * slice, ~8 ms on a busy 2-core host (docs/daemon.md, "Where a slow plan's time goes"). */
-    if (d->clock_mode == GMMRRTD_CLOCK_LIVE)
-        (void)sched_yield();
 }
 
 static void clear_stats(gmmrrtd_t *d)
@@ -492,6 +486,12 @@ static int run_budget(gmmrrtd_t *d, int64_t now_us, int escaping, const gmmrrt_b
                     if (r < 0)
                         return -1;
                     *published += r;
+                    /* Live, a plan is out and the cycle polishes on: the CPU first goes to whoever
+                     * delivers and reads it. A cycle that kept it held the kernel's loopback delivery
+                     * of its own datagram and the consumer's wake-up behind it for a scheduler slice,
+                     * ~8 ms on a busy 2-core host (docs/daemon.md, "Where a slow plan's time goes"). */
+                    if (r > 0 && d->clock_mode == GMMRRTD_CLOCK_LIVE && *published < d->set.anytime_max_plans)
+                        (void)sched_yield();
                 }
             }
             if (*st == GMMRRT_POOL_FULL || *published >= d->set.anytime_max_plans)
