@@ -46,6 +46,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, ".."))
 import lcm  # noqa: E402
 from gmmrrt import nav_goal_t, obstacles_t, people_t, planner_status_t, pose2d_t, waypoints_t  # noqa: E402
+from gmmrrt_tools.lcm_url import private_url  # noqa: E402
 from gmmrrt_tools.scenario_models import write_models  # noqa: E402
 
 TYPES = {"ROBOT_POSE": pose2d_t, "PEOPLE": people_t, "NAV_GOAL": nav_goal_t, "OBSTACLES": obstacles_t}
@@ -89,8 +90,7 @@ def rss_kb(pid):
 
 def soak(args):
     scenarios = load_inputs(args.scenarios)
-    port = 7600 + os.getpid() % 90
-    url = "udpm://239.255.76.67:%d?ttl=0" % port
+    url = private_url()  # a port no socket of this host holds: another run's daemon cannot mix in
     tmp = tempfile.mkdtemp(prefix="gmmrrt-soak-")
     models = write_models(tmp)
     err_path = os.path.join(tmp, "gmmrrtd.stderr")

@@ -16,6 +16,7 @@
  */
 #include <math.h>
 #include <poll.h>
+#include <sched.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -30,6 +31,11 @@
  * found, long enough that the per-call overhead of gmmrrt_planner_run stays small. */
 #define GMMRRTD_ANYTIME_SLICE_MS 1.0
 #define GMMRRTD_ANYTIME_SLICE_ITERATIONS 50
+/* Until a cycle on a time budget has published, its slices also end after this many samples:
+ * the first path (often there at once, from the warm start's seed) is then published within a
+ * few samples of existing instead of at the end of a 1 ms slice, which was most of the pose-to-
+ * plan time of an event-triggered cycle (docs/daemon.md, "Where a slow plan's time goes"). */
+#define GMMRRTD_ANYTIME_FIRST_SLICE_ITERATIONS 4
 
 /* build_problem() copies wire counts (checked against the messages' MAX_*) into the core's
  * arrays (sized by limits.h, which a build may override), and publish_plan() copies a path
@@ -454,6 +460,8 @@ static int run_budget(gmmrrtd_t *d, int64_t now_us, int escaping, const gmmrrt_b
                 if (left_ms <= 0.0)
                     break;
                 slice.time_ms = fmin(GMMRRTD_ANYTIME_SLICE_MS, left_ms);
+                if (*published == 0 && budget->max_iterations <= 0)
+                    slice.max_iterations = GMMRRTD_ANYTIME_FIRST_SLICE_ITERATIONS;
             }
             if (budget->max_iterations > 0) {
                 if (iterations_left <= 0)
@@ -478,6 +486,12 @@ static int run_budget(gmmrrtd_t *d, int64_t now_us, int escaping, const gmmrrt_b
                     if (r < 0)
                         return -1;
                     *published += r;
+                    /* Live, a plan is out and the cycle polishes on: the CPU first goes to whoever
+                     * delivers and reads it. A cycle that kept it held the kernel's loopback delivery
+                     * of its own datagram and the consumer's wake-up behind it for a scheduler slice,
+                     * ~8 ms on a busy 2-core host (docs/daemon.md, "Where a slow plan's time goes"). */
+                    if (r > 0 && d->clock_mode == GMMRRTD_CLOCK_LIVE && *published < d->set.anytime_max_plans)
+                        (void)sched_yield();
                 }
             }
             if (*st == GMMRRT_POOL_FULL || *published >= d->set.anytime_max_plans)

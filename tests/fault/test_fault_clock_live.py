@@ -13,7 +13,6 @@ Each case runs a few seconds, bounded; the pose timeout is raised to 1.5 s so th
 stalled by a loaded machine is not mistaken for the effect (a dragged clock makes poses stale by
 far more: 114 s for the ratchet). Run: ctest --test-dir build -R '^fault\\.clock_live'
 """
-import os
 import select
 import signal
 import subprocess
@@ -23,13 +22,10 @@ import lcm
 import pytest
 
 from gmmrrt import nav_goal_t, people_t, planner_status_t, pose2d_t
+from gmmrrt_tools.lcm_url import private_url
 
 R = planner_status_t
 HOUR_US = 3600 * 10**6
-
-
-def url():
-    return "udpm://239.255.76.67:%d?ttl=0" % (7700 + os.getpid() % 200)
 
 
 def wait_running(err_path, timeout_s=10.0):
@@ -43,14 +39,17 @@ def wait_running(err_path, timeout_s=10.0):
 
 def play(gmmrrtd, tmp_path, seconds, stamp, extra_goals=(), first_goal=None):
     """Runs the daemon; publishes poses (20 Hz), people (10 Hz) and the goal (5 Hz) for `seconds`;
-    stamp(channel, t_s, now_us) gives each message's utime. extra_goals: (t_s, [utimes]) bursts of
-    the same goal. Returns the statuses received."""
+    stamp(channel, t_s, now_us) gives each message's utime. extra_goals: (t_s, [offsets_us]) bursts
+    of the same goal, each stamped its offset after the wall clock when the burst starts (not when
+    the test starts: the daemon's start-up on a loaded machine would eat into the offsets).
+    Returns the statuses received."""
     err_path = str(tmp_path / "gmmrrtd.stderr")
+    url = private_url()
     with open(err_path, "w") as err:
-        daemon = subprocess.Popen([gmmrrtd, "--lcm-url", url(), "--planner", "rrt-star", "--budget-ms", "30",
+        daemon = subprocess.Popen([gmmrrtd, "--lcm-url", url, "--planner", "rrt-star", "--budget-ms", "30",
                                    "--pose-timeout-ms", "1500", "--people-timeout-ms", "1500",
                                    "--log-level", "info"], stderr=err)
-    lc = lcm.LCM(url())
+    lc = lcm.LCM(url)
     statuses = []
     lc.subscribe("PLANNER_STATUS", lambda ch, data: statuses.append(planner_status_t.decode(data)))
     try:
@@ -87,8 +86,9 @@ def play(gmmrrtd, tmp_path, seconds, stamp, extra_goals=(), first_goal=None):
             if k % 4 == 0:
                 goal(stamp("NAV_GOAL", t, now))
             if bursts and t >= bursts[0][0]:
-                for u in bursts.pop(0)[1]:
-                    goal(u)
+                burst_us = int(time.time() * 1e6)
+                for offset_us in bursts.pop(0)[1]:
+                    goal(burst_us + offset_us)
                     time.sleep(0.13 / 60)
             k += 1
             end = time.monotonic() + 0.05
@@ -111,8 +111,9 @@ def honest(channel, t, now):
 
 
 def test_ratchet_live(gmmrrtd, tmp_path):
-    base = int(time.time() * 1e6) + 1_500_000
-    st = play(gmmrrtd, tmp_path, 4.0, honest, extra_goals=[(1.5, [base + k * 1_900_000 for k in range(1, 61)])])
+    """Each re-send 1.9 s later than the one before (the first 1.9 s ahead: within max_future_ms, taken
+    as stamped now); the other 59 are refused as from the future and none moves the goal's clock."""
+    st = play(gmmrrtd, tmp_path, 4.0, honest, extra_goals=[(1.5, [k * 1_900_000 for k in range(1, 61)])])
     last = st[-1]
     assert last.stops[R.STOP_POSE_STALE] == 0, list(last.stops)
     assert last.rejected[R.REJECT_CLOCK_RESYNC] == 0 and last.rejected[R.REJECT_TIME_FUTURE] >= 55, list(last.rejected)

@@ -25,13 +25,9 @@ import pytest
 from tests.common.daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, assert_clean, daemon_env
 
 from gmmrrt import nav_goal_t, obstacles_t, people_t, person_t, planner_status_t, pose2d_t, waypoints_t
+from gmmrrt_tools.lcm_url import private_url
 
 R = planner_status_t
-
-
-def private_url():
-    # Not LCM's default port, and not the replay tests' range (7700-7899).
-    return "udpm://239.255.76.67:%d?ttl=0" % (7900 + os.getpid() % 90)
 
 
 class Live:

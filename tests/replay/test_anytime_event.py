@@ -19,6 +19,7 @@ import daemon_fixture
 from daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, SCENARIOS, assert_clean, daemon_env
 
 from gmmrrt import nav_goal_t, people_t, person_t, pose2d_t, waypoints_t
+from gmmrrt_tools.lcm_url import private_url
 
 ANYTIME = ["--anytime-max-plans", "4", "--anytime-improvement", "0.02"]
 COLD = ["--warm-robot-offset", "0"]  # every cycle from scratch: its first path is rarely its best
@@ -60,10 +61,6 @@ def test_anytime_plans_of_a_cycle_share_the_pose_and_never_rise_in_cost(gmmrrtd,
     second = [(e.channel, e.data) for e in lcm.EventLog(outs[1], "r")]
     status_free = lambda evs: [(c, d) for c, d in evs if c == "PLAN"]  # noqa: E731  (status has wall times)
     assert status_free(first) == status_free(second), "two replays differ"
-
-
-def private_url():
-    return "udpm://239.255.76.67:%d?ttl=0" % (7990 + os.getpid() % 9)
 
 
 def poses_planned(gmmrrtd, models, tmp_path, trigger, n_poses=20, spacing_s=0.15):

@@ -26,6 +26,7 @@ from daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, assert_clean, daemon_env
 
 from gmmrrt import nav_goal_t, people_t, person_t, planner_status_t, pose2d_t, waypoints_t
 from gmmrrt_tools.scenario_models import write_approach_set
+from gmmrrt_tools.lcm_url import private_url
 
 ESCAPE = 43                 # GMMRRT_ESCAPE (planner/include/gmmrrt/status.h), the plan's status code
 TIGHT_TURNS = 45            # GMMRRT_TIGHT_TURNS: a plan with a corner tighter than the radius
@@ -40,10 +41,6 @@ DT = 0.1                    # s, simulation step = pose rate
 # 16-26 degrees at arrival on this scene; the failure this test guards against was 75 degrees).
 PLAN_YAW_TOLERANCE_DEG = 15
 FOLLOWER_YAW_ALLOWANCE_DEG = 20
-
-
-def private_url():
-    return "udpm://239.255.76.67:%d?ttl=0" % (7900 + os.getpid() % 90)
 
 
 def wrap(a):

@@ -189,7 +189,8 @@ def test_systemd_notify_ready_watchdog_reloading_stopping(gmmrrtd, models, tmp_p
     sock.bind(path)
     sock.settimeout(0.2)
     env = dict(os.environ, NOTIFY_SOCKET=path, WATCHDOG_USEC="2000000")
-    daemon = subprocess.Popen([gmmrrtd, "--lcm-url", private_url(), "--model-avoid", models["avoid"],
+    url = private_url()
+    daemon = subprocess.Popen([gmmrrtd, "--lcm-url", url, "--model-avoid", models["avoid"],
                                "--log-level", "warn"], env=env)
     got = []
 
@@ -206,7 +207,7 @@ def test_systemd_notify_ready_watchdog_reloading_stopping(gmmrrtd, models, tmp_p
         # A goal and a pose: each cycle now sets a problem up (the world may be rebuilt), and
         # the watchdog interval is stretched around that step too.
         from gmmrrt import nav_goal_t, pose2d_t
-        lc = lcm.LCM(private_url())
+        lc = lcm.LCM(url)
         for _ in range(5):
             now = int(time.time() * 1e6)
             p = pose2d_t()

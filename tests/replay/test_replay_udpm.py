@@ -20,17 +20,13 @@ from tests.common.daemon_fixture import PERSON_RADIUS, ROBOT_RADIUS, SCENARIOS, 
 
 from gmmrrt import waypoints_t
 from gmmrrt_tools import replay_check
+from gmmrrt_tools.lcm_url import private_url
 
 GMMRRT_STOP_POSE_STALE = 50  # gmmrrtd's stop code (planner/daemon/stop.h)
 # Longer than the 0.5 s of the log-clock tests: on a loaded shared machine lcm-logplayer itself can
 # stall for a few hundred ms, which a 0.5 s limit would count as an extra pose gap. The planted gap
 # is 1.5 s, so it still counts exactly once.
 POSE_TIMEOUT_MS = 1000
-
-
-def private_url():
-    # A port of our own (not LCM's default 7667) so other LCM traffic on the host cannot mix in.
-    return "udpm://239.255.76.67:%d?ttl=0" % (7700 + os.getpid() % 200)
 
 
 def wait_for_line(proc_err_path, text, timeout_s=10.0):
