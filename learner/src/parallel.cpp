@@ -15,6 +15,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <exception>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -55,12 +56,22 @@ class Pool {
     ++generation_;
     lock.unlock();
     wake_.notify_all();
+    // A task that throws on this thread ends only this thread's share: the helpers still hold
+    // `task` (the caller's) and the pass's counters, so the exception waits for them before it
+    // leaves, and the pool is whole for the next pass. (A throw on a helper ends the process,
+    // as it did from a std::thread.)
+    std::exception_ptr failed;
     in_pool_task = true;
-    RunTasks(&next_, n_tasks, task);
+    try {
+      RunTasks(&next_, n_tasks, task);
+    } catch (...) {
+      failed = std::current_exception();
+    }
     in_pool_task = false;
     lock.lock();
     done_.wait(lock, [this] { return active_ == 0; });
     task_ = nullptr;
+    if (failed) std::rethrow_exception(failed);
     return true;
   }
 
@@ -114,8 +125,14 @@ void ParallelFor(int threads, long n_tasks, const std::function<void(long task)>
   std::vector<std::thread> pool;
   pool.reserve(static_cast<size_t>(workers - 1));
   for (long w = 1; w < workers; ++w) pool.emplace_back(work);
-  work();
+  std::exception_ptr failed;  // as in the pool: a throw here waits for the other threads
+  try {
+    work();
+  } catch (...) {
+    failed = std::current_exception();
+  }
   for (std::thread& t : pool) t.join();
+  if (failed) std::rethrow_exception(failed);
 }
 
 int AvailableCores() {

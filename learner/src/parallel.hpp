@@ -14,6 +14,9 @@ namespace detail {
 // Runs task(0) .. task(n_tasks - 1), each exactly once, on up to `threads` threads (the
 // calling thread is one of them; threads <= 1 or n_tasks <= 1 runs them in order on the caller).
 // Tasks are handed out in order from a shared counter. Returns when all have finished.
+// A task that throws on the calling thread (bad_alloc) ends the caller's share only: the other
+// threads run the remaining tasks, then the exception leaves ParallelFor. A task that throws on
+// another thread ends the process (std::terminate), as from any std::thread.
 void ParallelFor(int threads, long n_tasks, const std::function<void(long task)>& task);
 
 // CPUs this process may run on (sched_getaffinity), at least 1: the default thread count.
