@@ -145,7 +145,10 @@ static int extend_from(struct gmmrrt_planner *p, int goal_tree, int32_t n, doubl
     /* No separate point test of the steered end: the edge test refuses every edge whose end the
      * point test refuses (its test of the ends is the same clearance bound, or the closed forms and
      * the people with the edge margin added: stricter), so that test would only compute the end's
-     * bound a second time; the answers, and so the trees, are the same. */
+     * bound a second time. One exception, up to the exact test's margin (EXACT_MARGIN_M, 1e-9 m):
+     * on a map with circles or boxes the edge's end bound stops at the map's, and the walk's
+     * clearance proof then covers the end with exact clearance >= 0 where the point test asks
+     * for > 1e-9 m. Within that nanometre the trees could differ; nowhere else. */
     if (!gmmrrt_planner_edge_allowed(p, nx, ny, qx, qy))
         return TRAPPED;
     const int32_t i = goal_tree ? GMMRRT_CONNECT_MAX_NODES - 1 - c->n_goal++ : c->n_start++;
