@@ -174,6 +174,8 @@ def chosen_tdm(test, left) -> float:
     out = []
     for e, (pl, pr), lf in zip(test.episodes, test.paths, left):
         p = (pl if lf else pr) or (pr if lf else pl)
+        if not p:
+            raise EpisodeError(f"episode {e.episode_id}: no path on either side, so no rule has a TDM there")
         out.append(M.tdm_pair(e.xy, np.array(p)))
     return float(np.mean(out))
 

@@ -51,8 +51,10 @@ def scores(costs: Sequence[Tuple[float, float]], kind: str) -> np.ndarray:
 
 
 def choose(score: np.ndarray, bias: float = 0.0) -> np.ndarray:
-    """True (left) where score < bias: the left is cheaper after the bias."""
-    return np.asarray(score, dtype=float) < bias
+    """True (left) where score <= bias: the left is at most as dear after the bias. With bias 0 this is
+    gmmrrt-plan --side either's own pick (planner/cli/gmmrrt_plan.c): the right only when it has a path
+    and is strictly cheaper, so a tie, or no path on either side, is the left."""
+    return np.asarray(score, dtype=float) <= bias
 
 
 def fit_bias(score: np.ndarray, left: np.ndarray) -> float:

@@ -28,8 +28,9 @@ def test_a_side_without_a_path_is_never_chosen_whatever_the_bias():
 
 
 def test_cheaper_side_is_the_zero_bias():
-    s = SC.scores([(1.0, 2.0), (2.0, 1.0), (1.0, 1.0)], "ratio")
-    assert SC.choose(s).tolist() == [True, False, False]  # a tie is not 'left is cheaper'
+    s = SC.scores([(1.0, 2.0), (2.0, 1.0), (1.0, 1.0), (math.inf, math.inf)], "ratio")
+    # as gmmrrt-plan --side either: the right only when strictly cheaper; a tie, or no path at all, is the left
+    assert SC.choose(s).tolist() == [True, False, True, True]
 
 
 def test_bias_is_learned_by_agreement():

@@ -125,3 +125,8 @@ def test_chosen_tdm_scores_the_picked_sides_path():
     assert SR.chosen_tdm(sc, [True, True]) == pytest.approx(0.5 * SR.chosen_tdm(sc, [False, False]))
     # the second episode has no left path: its right path counts whatever the rule says
     assert SR.chosen_tdm(sc, [True, False]) == pytest.approx(SR.chosen_tdm(sc, [True, True]))
+    # an episode with no path on either side has no TDM: named, not a NaN in the mean
+    from gmmrrt_tools.episodes import EpisodeError
+    none = SideCosts([human], np.array([np.inf]), np.array([np.inf]), np.array([True]), ["g"], [([], [])])
+    with pytest.raises(EpisodeError, match=f"episode {human.episode_id}: no path on either side"):
+        SR.chosen_tdm(none, [True])
