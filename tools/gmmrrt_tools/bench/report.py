@@ -128,10 +128,15 @@ def evaluate_targets(res: dict) -> List[dict]:
         p99 = max(r["latency_ms"]["p99"] for r in rows)
         missed = sum(r["missed_deadlines"] for r in rows)
         loads = [x for r in rows for x in r.get("load_1min", [])]
-        t.append(_target(f"daemon pose -> first plan at {rate:g} Hz (event trigger, demo scenarios, learned models; "
-                         f"load {min(loads):.1f}-{max(loads):.1f} on {rows[0].get('cpus')} CPUs)",
+        # The plan counts as there when the host's kernel has it (its receive stamp); the benchmark
+        # script's own wake-up after that is the consumer's, shown beside it as the client's p99.
+        client = [r["latency_client_ms"]["p99"] for r in rows if r.get("latency_client_ms")]
+        t.append(_target(f"daemon pose -> first plan received at {rate:g} Hz (kernel receive stamp; event trigger, "
+                         f"demo scenarios, learned models; load {min(loads):.1f}-{max(loads):.1f} on "
+                         f"{rows[0].get('cpus')} CPUs)",
                          "p50 <= 3 ms, p99 <= 10 ms" + (", no missed deadline" if rate >= 20 else ""), p99,
-                         f"p50 {p50:g} ms, p99 {p99:g} ms, missed {missed}",
+                         f"p50 {p50:g} ms, p99 {p99:g} ms, missed {missed}"
+                         + (f" (the benchmark script's own handler: p99 {max(client):g} ms)" if client else ""),
                          p50 <= 3.0 and p99 <= 10.0 and (missed == 0 or rate < 20)))
     return t
 
