@@ -1,7 +1,6 @@
 """tools/side_rules.py: the person-frame geometry it learns the side from, its scoring on hand-made
 episodes whose side the straight line decides (so every rule can be checked against the truth), and a
 run on the real data (skipped, with the reason, without ../shared/data/real)."""
-import importlib.util
 import math
 import os
 import subprocess
@@ -11,19 +10,13 @@ from pathlib import Path
 import pytest
 
 from gmmrrt_tools.episodes import Episode
+from tool_script import load_tool_script
 
 ROOT = Path(__file__).resolve().parents[3]
 REAL = Path(os.environ.get("GMMRRT_REAL_DATA", ROOT.parent / "shared" / "data" / "real"))
 
 
-def _load():
-    spec = importlib.util.spec_from_file_location("side_rules", ROOT / "tools" / "side_rules.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
-
-
-SR = _load()
+SR = load_tool_script("side_rules")
 
 
 def ep(eid, xy, person=(0.0, 0.0, 0.0), meta=None):

@@ -1,26 +1,18 @@
 """tools/walkers_ucy.py: the UCY replay's pieces on hand-made tracks (interpolation, the crowd a plan
 sees, replaying a path against where people really were), and one end-to-end closed loop through
 gmmrrt-plan with a walker crossing the robot's line."""
-import importlib.util
 import math
 import os
 from pathlib import Path
 
 import numpy as np
 import pytest
+from tool_script import load_tool_script
 
-ROOT = Path(__file__).resolve().parents[3]
 BIN = Path(os.environ.get("GMMRRT_BIN_DIR", "build/bin")) / "gmmrrt-plan"
 
 
-def _load():
-    spec = importlib.util.spec_from_file_location("walkers_ucy", ROOT / "tools" / "walkers_ucy.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
-
-
-W = _load()
+W = load_tool_script("walkers_ucy")
 
 
 def test_position_interpolates_and_is_none_outside_the_track():
