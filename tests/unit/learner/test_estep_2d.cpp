@@ -41,6 +41,17 @@ bool Close(double got, double want, double rel, double abs_floor) {
   return std::fabs(got - want) <= rel * std::fabs(want) + abs_floor;
 }
 
+// Component i of a 2-D mixture without an angle, alone with weight 1: its own density.
+Mixture ComponentAlone(const Mixture& m, int i) {
+  Mixture one;
+  one.dim = 2;
+  one.angle_mask = 0;
+  one.weights = Eigen::VectorXd::Ones(1);
+  one.means = m.means.col(i);
+  one.chol = {m.chol[i]};
+  return one;
+}
+
 void test_vector_exp_matches_std_exp(void** state) {
   (void)state;
   double worst = 0.0;
@@ -126,14 +137,8 @@ void test_fused_estep_matches_the_density_and_direct_moments(void** state) {
 
   // Responsibilities from one-component densities: r_i = w_i N_i / p.
   for (int i = 0; i < k; ++i) {
-    Mixture one;
-    one.dim = 2;
-    one.angle_mask = 0;
-    one.weights = Eigen::VectorXd::Ones(1);
-    one.means = m.means.col(i);
-    one.chol = {m.chol[i]};
     Eigen::VectorXd li;
-    LogDensity(one, pts, &li);
+    LogDensity(ComponentAlone(m, i), pts, &li);
     double nk = 0, m0 = 0, m1 = 0, s00 = 0, s01 = 0, s11 = 0;
     for (Eigen::Index c = 0; c < n; ++c) {
       const double r = std::exp(std::log(m.weights[i]) + li[c] - want_ll[c]);
@@ -331,13 +336,7 @@ void test_culling_components_gives_the_same_bits(void** state) {
     Eigen::VectorXd one(1);
     double top = -HUGE_VAL, mine = 0.0;
     for (int i = 0; i < 19; ++i) {
-      Mixture c;
-      c.dim = 2;
-      c.angle_mask = 0;
-      c.weights = Eigen::VectorXd::Ones(1);
-      c.means = m.means.col(i);
-      c.chol = {m.chol[i]};
-      LogDensity(c, x, &one);
+      LogDensity(ComponentAlone(m, i), x, &one);
       const double term = std::log(m.weights[i]) + one[0];
       top = std::max(top, term);
       if (i == j) mine = term;
