@@ -139,6 +139,13 @@ void MakeLayout(const Eigen::MatrixXd& x, uint32_t mask, const KMeansOptions& o,
 // difference x - c is monotone in x, so over the box it lies between the corners' differences
 // (computed with the same rounding); an angle dimension whose corner differences are both in
 // (-pi, pi], where the wrap is the identity, is bounded the same way, any other by [0, pi].
+// One plain dimension of those bounds, from the corners' differences a <= b: the nearest and
+// farthest |x - c| over [a, b] (branch-free, so a loop over centers of it vectorises).
+inline void DimensionBounds(double a, double b, double* near, double* far) {
+  *near = a > 0.0 ? a : (b < 0.0 ? -b : 0.0);
+  *far = -a > b ? -a : b;
+}
+
 inline void BoxBounds(const Layout& l, Eigen::Index g, const double* center, double* lower, double* upper) {
   double lo_sum = 0.0, hi_sum = 0.0;
   for (int c = 0; c < l.d; ++c) {
@@ -148,8 +155,7 @@ inline void BoxBounds(const Layout& l, Eigen::Index g, const double* center, dou
       near = 0.0;
       far = M_PI;
     } else {
-      near = a > 0.0 ? a : (b < 0.0 ? -b : 0.0);
-      far = std::max(-a, b);
+      DimensionBounds(a, b, &near, &far);
     }
     lo_sum += near * near;
     hi_sum += far * far;
@@ -319,9 +325,8 @@ double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* l
         const double lo = l.lo(j, g), hi = l.hi(j, g);
         const double* cj = by_dim.data() + static_cast<size_t>(j) * k;
         for (int c = 0; c < k; ++c) {
-          const double a = lo - cj[c], b = hi - cj[c];
-          const double near = a > 0.0 ? a : (b < 0.0 ? -b : 0.0);
-          const double far = -a > b ? -a : b;
+          double near, far;
+          DimensionBounds(lo - cj[c], hi - cj[c], &near, &far);
           low[c] += near * near;
           up[c] += far * far;
         }
