@@ -231,31 +231,76 @@ def ucy_walkers(tracks_path: str, index_path: str, episodes,
     return out
 
 
+def _situations(episodes, group_of):
+    """Each episode's situation: (start and goal in the person frame, the side it passed on, its group)."""
+    import numpy as np
+    from . import core
+
+    out = []
+    for e in episodes:
+        s = core.world_to_person(tuple(e.person), *e.xy[0])
+        g = core.world_to_person(tuple(e.person), *e.xy[-1])
+        out.append((np.array(s), np.array(g), side_of_sweep(e.xy, e.person), group_of(e)))
+    return out
+
+
+def _situation_distance(a, b) -> float:
+    """How far apart two situations are: start-to-start plus goal-to-goal, in the person frame [m]."""
+    import numpy as np
+
+    return float(np.linalg.norm(a[0] - b[0]) + np.linalg.norm(a[1] - b[1]))
+
+
 def human_side_agreement(episodes, group_of) -> Tuple[float, float, int]:
     """How often two humans in nearly the same situation pass on the same side: for each episode,
     the episode of another group (recording / standing person, so not the same event) whose start
     and goal in the person frame are nearest (sum of the two distances); returns (fraction passing
     on the same side by side_of_sweep, median start+goal distance of the pairs [m], pairs)."""
     import numpy as np
-    from . import core
 
     if len(episodes) < 2:
         return math.nan, math.nan, 0
-    ends = []
-    for e in episodes:
-        s = core.world_to_person(tuple(e.person), *e.xy[0])
-        g = core.world_to_person(tuple(e.person), *e.xy[-1])
-        ends.append((np.array(s), np.array(g), side_of_sweep(e.xy, e.person), group_of(e)))
+    ends = _situations(episodes, group_of)
     same, dists = [], []
-    for i, (s, g, side, grp) in enumerate(ends):
+    for i, a in enumerate(ends):
         best, bd = None, math.inf
-        for j, (s2, g2, _, grp2) in enumerate(ends):
-            if j == i or grp2 == grp:
+        for j, b in enumerate(ends):
+            if j == i or b[3] == a[3]:
                 continue
-            d = float(np.linalg.norm(s - s2) + np.linalg.norm(g - g2))
+            d = _situation_distance(a, b)
             if d < bd:
                 best, bd = j, d
         if best is not None:
-            same.append(side == ends[best][2])
+            same.append(a[2] == ends[best][2])
             dists.append(bd)
     return (float(np.mean(same)) if same else math.nan, float(np.median(dists)) if dists else math.nan, len(same))
+
+
+# The pair distances (start + goal, person frame) at which the humans' agreement is reported.
+AGREEMENT_RADII_M = (0.5, 1.0, 2.0)
+
+
+def side_agreement_within(episodes, group_of, radii=AGREEMENT_RADII_M) -> List[Tuple[float, int, float]]:
+    """[(r, pairs, fraction passing on the same side)] over every pair of episodes of different groups
+    whose situations lie within r of each other (_situation_distance): whether humans agree more as
+    their situations get closer, i.e. whether the situation decides the side."""
+    ends = _situations(episodes, group_of)
+    out = []
+    for r in radii:
+        same = [a[2] == b[2] for i, a in enumerate(ends) for b in ends[i + 1:]
+                if a[3] != b[3] and _situation_distance(a, b) < r]
+        out.append((float(r), len(same), sum(same) / len(same) if same else math.nan))
+    return out
+
+
+def side_ceiling(agreement: float) -> float:
+    """The most often any rule on the situation can pass on the human's side, given how often two
+    humans in the same situation agree (the situation being whatever the agreement was measured over,
+    e.g. start and goal in the person frame; a rule that sees more is not bound by it). If a situation makes a human pass on one side with probability p
+    and two humans choose independently, they agree with probability q = p^2 + (1 - p)^2, and the best rule
+    (always the likelier side) agrees with one with probability m = max(p, 1 - p) = (1 + sqrt(2q - 1)) / 2.
+    m is concave in q, so over a mix of situations the mean of m is at most this value at the mean q
+    (Jensen's inequality). Agreement below one half (no pair of humans does that) gives one half."""
+    if not math.isfinite(agreement):
+        return math.nan
+    return (1.0 + math.sqrt(max(0.0, 2.0 * agreement - 1.0))) / 2.0

@@ -151,6 +151,36 @@ def test_human_agreement_pairs_nearest_situations_of_other_groups():
     assert dist == pytest.approx(0.0, abs=1e-12)  # three pairs share their ends exactly; d's is 3.8 m off
 
 
+def test_agreement_within_counts_pairs_of_other_groups_by_distance():
+    person = (0, 0, 0)
+    left = [(-3, 0.1), (0, -1), (3, 0.1)]
+    right = [(-3, 0.1), (0, 1), (3, 0.1)]
+    far_right = [(-3, 0.9), (0, 1.5), (3, 0.9)]  # start and goal each 0.8 m from the others': 1.6 m apart
+    eps = [ep("a", person, left, meta={"g": "1"}), ep("b", person, left, meta={"g": "2"}),
+           ep("c", person, right, meta={"g": "3"}), ep("d", person, far_right, meta={"g": "3"})]
+    bands = RD.side_agreement_within(eps, lambda e: e.meta["g"], radii=(0.5, 2.0))
+    # within 0.5 m: a-b agree, a-c and b-c disagree (c-d share a group and never pair)
+    assert bands[0] == (0.5, 3, pytest.approx(1 / 3))
+    # within 2 m: also a-d and b-d, both disagree
+    assert bands[1] == (2.0, 5, pytest.approx(1 / 5))
+    assert RD.side_agreement_within(eps[:1], lambda e: e.meta["g"], radii=(1.0,))[0][1] == 0
+
+
+def test_side_ceiling_bounds_the_best_rule_over_any_mix_of_situations():
+    import random
+
+    assert RD.side_ceiling(1.0) == 1.0
+    assert RD.side_ceiling(0.5) == 0.5 and RD.side_ceiling(0.3) == 0.5
+    assert RD.side_ceiling(0.9 ** 2 + 0.1 ** 2) == pytest.approx(0.9)  # one situation: exact
+    assert math.isnan(RD.side_ceiling(math.nan))
+    rnd = random.Random(7)
+    for _ in range(200):  # the best rule (the likelier side everywhere) never beats the bound of the mean
+        ps = [rnd.random() for _ in range(rnd.randint(1, 20))]
+        q = sum(p * p + (1 - p) ** 2 for p in ps) / len(ps)
+        best = sum(max(p, 1 - p) for p in ps) / len(ps)
+        assert best <= RD.side_ceiling(q) + 1e-12, (ps, best, q)
+
+
 def test_missing_split_and_missing_person_are_named(tmp_path):
     idx = tmp_path / "idx.csv"
     idx.write_text("episode_id,split\na,train\n")

@@ -78,6 +78,7 @@ class RealSet:
     planners: List[Tuple[str, str, Optional[Path], Tuple[str, ...]]]  # label, planner, model, extra args
     approach: bool = False
     agreement: Tuple[float, float, int] = (math.nan, math.nan, 0)
+    agreement_within: Optional[List[Tuple[float, int, float]]] = None  # realdata.side_agreement_within
     walkers: Optional[List[list]] = None  # per episode: (x, y, yaw, vx, vy) of the people walking at its start
     repeats: str = ""  # the episodes left out as repeats of an event listed before (realdata.distinct_events)
 
@@ -154,7 +155,8 @@ def real_upo_avoid(ctx: Ctx) -> RealSet:
                    "its own person first, and compared with what the human drove.",
                    eps, [multi_person_scene(e, people[e.episode_id]) for e in eps],
                    _avoid_planners(mdl, one_person=True),
-                   agreement=RD.human_side_agreement(every, lambda e: e.meta["scene"]), repeats=repeats)
+                   agreement=RD.human_side_agreement(every, lambda e: e.meta["scene"]),
+                   agreement_within=RD.side_agreement_within(every, lambda e: e.meta["scene"]), repeats=repeats)
 
 
 def real_ucy_avoid(ctx: Ctx) -> RealSet:
@@ -191,6 +193,7 @@ def real_ucy_avoid(ctx: Ctx) -> RealSet:
                    "the annotated gaze when an episode is about them, else towards the walker.",
                    eps, scenes, planners,
                    agreement=RD.human_side_agreement(every, lambda e: (e.meta["scene"], e.meta["person_track"])),
+                   agreement_within=RD.side_agreement_within(every, lambda e: (e.meta["scene"], e.meta["person_track"])),
                    walkers=[walkers[e.episode_id] for e in eps], repeats=repeats)
 
 
@@ -363,6 +366,7 @@ def _real_report(ctx: Ctx, rs: RealSet, results) -> None:
                f"nearly the same situation (each episode of the whole data set and the episode of another "
                f"recording/person with the nearest start and goal in the person frame, median {dist:.2f} m apart; "
                f"{pairs} pairs) pass on the same side in {100 * a:.0f} %.\n")
+        md += _agreement_ceiling(rs)
         md += _side_limit(rs, per, labels)
     # per-episode table
     ep_lines = ["| episode | people | human side | human length / straight distance | " + " | ".join(f"{l}: TDM (m){'' if rs.approach else ', side'}"
@@ -392,6 +396,24 @@ def _real_report(ctx: Ctx, rs: RealSet, results) -> None:
 # The project's TDM targets for the avoid studies (docs/experiments.md, "Targets"): an absolute TDM,
 # or a fraction of plain RRT*'s TDM on the same episodes.
 TDM_TARGETS = {"real_upo_avoid": ("m", 0.30), "real_ucy_avoid": ("x RRT*", 0.9)}
+
+
+def _agreement_ceiling(rs: RealSet) -> str:
+    """Whether closer situations make humans agree more, and the most any side rule on the start and goal
+    in the person frame alone can agree with them at each distance (realdata.side_ceiling). A planner that
+    sees more (the other people) is not bound by it."""
+    from gmmrrt_tools import realdata as RD
+
+    bands = [(r, n, q) for r, n, q in (rs.agreement_within or []) if n > 0]
+    if not bands:
+        return ""
+    return ("\nWhether the situation decides the side: pairs of humans of different recordings/persons whose "
+            "start and goal (summed distances in the person frame) lie within "
+            + "; ".join(f"{r:g} m agree in {100 * q:.0f} % ({n} pairs; a rule on the start and goal alone agrees "
+                        f"with them at most {100 * RD.side_ceiling(q):.0f} %)" for r, n, q in bands)
+            + ". The bound assumes a start and goal make a human pass on one side with some probability and two "
+            "humans choose independently (realdata.side_ceiling); a planner that also sees the other people is not "
+            "bound by it.\n")
 
 
 def _side_limit(rs: RealSet, per, labels) -> str:
