@@ -226,7 +226,10 @@ def main(argv=None) -> int:
         ep_file, idx_file, group_of = SETS[name]
         ep_path, idx_path = os.path.join(a.real_data, ep_file), os.path.join(a.real_data, idx_file)
         try:
-            every = RD.distinct_events(ep_path, read_episodes(ep_path, index=idx_path), sys.stderr)
+            said: list = []
+            every = read_episodes(ep_path, index=idx_path, warnings=said)
+            for w in said:
+                print(w, file=sys.stderr)
             RD._require_person(ep_path, every)
             RD.require_split(idx_path, a.train_split, every)
             RD.require_split(idx_path, a.split, every)

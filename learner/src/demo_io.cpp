@@ -23,6 +23,7 @@
 #include <cstring>
 #include <fstream>
 #include <locale>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -563,6 +564,39 @@ void EstimateHeadingsFromMotion(std::vector<PoseSample>* samples, double min_ste
     }
 }
 
+// An event listed twice, the same person and positions at the same times, is read once: a data set can
+// list a walker who loops round the person once per homotopy label (a loop has no one side), and counting
+// both would weigh that walker twice in a fit and in an evaluation. The first listing is kept; each repeat
+// is left out with a warning that names the file, both episodes and their labels when they differ.
+static void DropRepeatedEvents(const std::string& path, std::vector<Episode>* episodes,
+                               std::vector<std::string>* warnings) {
+    std::map<std::string, size_t> first_of;  // the samples' bytes -> index of the kept listing
+    std::vector<Episode> kept;
+    kept.reserve(episodes->size());
+    for (Episode& e : *episodes) {
+        std::string key;
+        key.reserve(e.samples.size() * 6 * sizeof(double));
+        for (const PoseSample& s : e.samples)
+            for (double v : {s.t_s, s.robot_x, s.robot_y, s.person_x, s.person_y, s.person_yaw})
+                key.append(reinterpret_cast<const char*>(&v), sizeof v);
+        auto found = first_of.find(key);
+        if (found == first_of.end()) {
+            first_of.emplace(std::move(key), kept.size());
+            kept.push_back(std::move(e));
+            continue;
+        }
+        const Episode& first = kept[found->second];
+        std::string labels;
+        if (first.homotopy != e.homotopy)
+            labels = std::string(" with opposite homotopy labels (") + HomotopyName(first.homotopy) + ", " +
+                     HomotopyName(e.homotopy) + ")";
+        warnings->push_back(path + ": episodes " + first.id + " and " + e.id +
+                            " are one event (the same person and positions at the same times)" + labels +
+                            "; counted once, as " + first.id);
+    }
+    *episodes = std::move(kept);
+}
+
 ReadResult ReadEpisodeCsv(const std::string& path, std::vector<Episode>* out) {
     std::ifstream in(path);
     if (!in)
@@ -641,6 +675,7 @@ ReadResult ReadEpisodeCsv(const std::string& path, std::vector<Episode>* out) {
         return Fail(path + ": read error after line " + std::to_string(line_no));
     if (episodes.empty())
         return Fail(path + ": no episodes (only a header)");
+    DropRepeatedEvents(path, &episodes, &result.warnings);
     for (Episode& e : episodes)
         EstimateHeadingsFromMotion(&e.samples);
     for (Episode& e : episodes)

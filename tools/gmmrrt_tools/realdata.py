@@ -59,32 +59,6 @@ def _require_person(path: str, episodes) -> None:
             raise EpisodeError(f"{path}: episode {e.episode_id}: no standing person (person_x/y/yaw missing)")
 
 
-def distinct_events(path: str, episodes, log=None) -> list:
-    """The episodes with every event once. Two episodes are one event when they hold the same person and
-    the same positions at the same times (a data set can list a circling walker twice, once per homotopy
-    label, since a loop round the person has no one side); counting both would weigh that walker twice.
-    Keeps the first listed; each one left out is named on `log` (a stream), with its file and whether the
-    two carry different homotopy labels."""
-    import numpy as np
-
-    seen: Dict[tuple, object] = {}
-    out = []
-    for e in episodes:
-        key = tuple(np.asarray(a, dtype=float).tobytes()
-                    for a in (e.t, e.robot_x, e.robot_y, e.person_x, e.person_y, e.person_yaw))
-        first = seen.get(key)
-        if first is None:
-            seen[key] = e
-            out.append(e)
-            continue
-        if log is not None:
-            labels = (f" with opposite homotopy labels ({first.homotopy}, {e.homotopy})"
-                      if first.homotopy != e.homotopy else "")
-            print(f"{path}: episodes {first.episode_id} and {e.episode_id} are one event (the same person and "
-                  f"positions at the same times){labels}; counted once, as {first.episode_id}", file=log)
-    return out
-
-
 def require_split(index_path: str, split: str, episodes) -> None:
     """Raises EpisodeError naming the index file when no episode of `episodes` is in `split`. The
     splits are the ones the learner's reader gave the episodes from that index (read_episodes with

@@ -34,11 +34,15 @@ def read_index(path: str) -> Dict[str, Dict[str, str]]:
 
 
 def read_episodes(path: str, index: Optional[str] = None, split: Optional[str] = None,
-                  task: Optional[str] = None) -> List[Episode]:
+                  task: Optional[str] = None, warnings: Optional[List[str]] = None) -> List[Episode]:
     """Episodes of an episode CSV (or demonstration log), in file order, read by the learner's reader
-    (gmmrrt_tools.episodes.read_episodes); with `index`, each gets its split and index row and `split`
-    filters. Raises EpisodeError (a ValueError) naming the file and line on a malformed row."""
-    eps, _ = episodes.read_episodes(path, index=index)
+    (gmmrrt_tools.episodes.read_episodes; an event listed twice is read once, with a warning); with
+    `index`, each gets its split and index row and `split` filters. The reader's warnings are appended
+    to `warnings` when given. Raises EpisodeError (a ValueError) naming the file and line on a malformed
+    row."""
+    eps, said = episodes.read_episodes(path, index=index)
+    if warnings is not None:
+        warnings.extend(said)
     idx = read_index(index) if index else {}
     out = []
     for e in eps:

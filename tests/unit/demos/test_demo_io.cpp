@@ -455,6 +455,38 @@ void test_csv_good_file_reads_episodes_and_estimates_heading(void** state) {
     assert_true(std::isnan(eps[2].samples[0].robot_yaw));  // a single sample: no motion
 }
 
+void test_csv_event_listed_twice_is_read_once_and_named(void** state) {
+    (void)state;
+    const std::string path = TempPath("repeats.csv");
+    // a and b: one walker listed with both labels; c and d: c again with its label; e differs from c in
+    // one position, so it is an event of its own.
+    WriteText(path, kHeader +
+                        "a,avoid,left,0.0,0.0,1.0,0.0,0.0,0.0\n"
+                        "a,avoid,left,0.4,1.0,1.2,0.0,0.0,0.0\n"
+                        "b,avoid,right,0.0,0.0,1.0,0.0,0.0,0.0\n"
+                        "b,avoid,right,0.4,1.0,1.2,0.0,0.0,0.0\n"
+                        "c,avoid,left,0.0,0.0,1.0,0.0,0.0,0.0\n"
+                        "c,avoid,left,0.4,1.0,1.3,0.0,0.0,0.0\n"
+                        "d,avoid,left,0.0,0.0,1.0,0.0,0.0,0.0\n"
+                        "d,avoid,left,0.4,1.0,1.3,0.0,0.0,0.0\n"
+                        "e,avoid,left,0.0,0.0,1.0,0.0,0.0,0.0\n"
+                        "e,avoid,left,0.4,1.0,1.3,0.0,0.0,0.1\n");
+    std::vector<Episode> eps;
+    ReadResult r = gmmrrt::learn::ReadEpisodes(path, &eps);
+    assert_true(r.ok);
+    assert_int_equal(eps.size(), 3);
+    assert_string_equal(eps[0].id.c_str(), "a");
+    assert_string_equal(eps[1].id.c_str(), "c");
+    assert_string_equal(eps[2].id.c_str(), "e");
+    assert_int_equal(r.warnings.size(), 2);
+    assert_string_equal(r.warnings[0].c_str(),
+                        (path + ": episodes a and b are one event (the same person and positions at the same "
+                                "times) with opposite homotopy labels (left, right); counted once, as a")
+                            .c_str());
+    assert_true(Contains(r.warnings[1], path + ": episodes c and d are one event"));
+    assert_false(Contains(r.warnings[1], "labels"));
+}
+
 void ExpectCsvError(const std::string& name, const std::string& body, const std::string& expect) {
     const std::string path = TempPath(name);
     WriteText(path, body);
@@ -637,6 +669,7 @@ int main(int argc, char** argv) {
             cmocka_unit_test(test_log_garbage_file_is_not_a_log),
             cmocka_unit_test(test_csv_good_file_reads_episodes_and_estimates_heading),
             cmocka_unit_test(test_csv_errors_name_the_line),
+            cmocka_unit_test(test_csv_event_listed_twice_is_read_once_and_named),
             cmocka_unit_test(test_read_episodes_picks_the_reader_by_content),
             cmocka_unit_test(test_split_index_reads_and_rejects_duplicates),
             cmocka_unit_test(test_repository_demo_logs_read_with_their_labels),

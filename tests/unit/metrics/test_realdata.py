@@ -220,21 +220,3 @@ def test_side_limit_counts_the_other_side_plans_a_target_allows():
     assert "RRT* takes the other side too in 1 of its 2" in text
     rs.name = "real_ucy_approach"
     assert RE._side_limit(rs, {}, []) == ""
-
-
-def test_an_event_listed_twice_is_counted_once_and_named():
-    import io
-
-    a = ep("a", (0, 0, 0), [(-3, 1), (0, 1.2), (3, 1)])
-    b = ep("b", (0, 0, 0), [(-3, 1), (0, 1.2), (3, 1)])
-    b.homotopy = "right"  # the same walker with the other label (a loop round the person has no one side)
-    c = ep("c", (0, 0, 0), [(-3, 1), (0, 1.3), (3, 1)])  # another event: one position differs
-    d = ep("d", (0, 0, 0), [(-3, 1), (0, 1.3), (3, 1)])  # c again with the same label
-    log = io.StringIO()
-    kept = RD.distinct_events("eps.csv", [a, b, c, d], log)
-    assert [e.episode_id for e in kept] == ["a", "c"]
-    lines = log.getvalue().splitlines()
-    assert lines[0] == ("eps.csv: episodes a and b are one event (the same person and positions at the same times) "
-                        "with opposite homotopy labels (left, right); counted once, as a")
-    assert lines[1].startswith("eps.csv: episodes c and d are one event") and "labels" not in lines[1]
-    assert RD.distinct_events("eps.csv", [a, c]) == [a, c]  # nothing repeated: nothing left out

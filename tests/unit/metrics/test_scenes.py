@@ -44,6 +44,20 @@ def test_read_episodes_groups_rows_and_filters_by_split(files):
     assert [e.episode_id for e in scenes.read_episodes(c, task="avoid")] == ["e1"]
 
 
+def test_an_event_listed_twice_is_read_once_and_its_warning_passed_on(tmp_path):
+    c = tmp_path / "ep.csv"
+    # a and b: one walker listed with both labels (a loop round the person has no one side)
+    rows = CSV.format(yaw=0.0).replace("e1,", "a,")
+    rows += "".join(f"b,avoid,right,{r}\n" for r in ("0.0,4.0,0.0,1.0,1.0,0.0", "0.1,1.0,3.0,1.0,1.0,0.0"))
+    c.write_text(rows)
+    said = []
+    eps = scenes.read_episodes(str(c), warnings=said)
+    assert [e.episode_id for e in eps] == ["a", "e2"]
+    assert said == [f"{c}: episodes a and b are one event (the same person and positions at the same times) "
+                    "with opposite homotopy labels (left, right); counted once, as a"]
+    assert [e.episode_id for e in scenes.read_episodes(str(c), task="avoid")] == ["a"]
+
+
 def test_bad_rows_name_file_and_line(tmp_path):
     bad = tmp_path / "bad.csv"
     bad.write_text(CSV.format(yaw="nan"))

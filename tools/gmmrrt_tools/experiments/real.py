@@ -80,7 +80,7 @@ class RealSet:
     agreement: Tuple[float, float, int] = (math.nan, math.nan, 0)
     agreement_within: Optional[List[Tuple[float, int, float]]] = None  # realdata.side_agreement_within
     walkers: Optional[List[list]] = None  # per episode: (x, y, yaw, vx, vy) of the people walking at its start
-    repeats: str = ""  # the episodes left out as repeats of an event listed before (realdata.distinct_events)
+    repeats: str = ""  # the reader's warnings: the episodes left out as repeats of an event listed before
 
 
 # GMM-RRT* runs name their task cost (--task-cost) so a table does not depend on the CLI's default;
@@ -117,22 +117,20 @@ def _k_suffix(ctx: Ctx) -> str:
 
 
 def _study_episodes(ctx: Ctx, ep_csv: str, idx: str) -> Tuple[list, str]:
-    """Every episode of a study, with its split and index row (the learner's reader), each event once
-    (realdata.distinct_events: an episode listed twice is counted once, and named), after checking that
-    each has a standing person and that the training and evaluation splits exist. Returns the episodes
-    and the notes on the repeats left out (also printed on stderr), for the report."""
-    import io
-
+    """Every episode of a study, with its split and index row (the learner's reader, which reads an event
+    listed twice once and names the repeat), after checking that each has a standing person and that the
+    training and evaluation splits exist. Returns the episodes and the reader's warnings (also printed on
+    stderr), for the report."""
     from gmmrrt_tools import realdata as RD
 
-    notes = io.StringIO()
-    every = RD.distinct_events(ep_csv, S.read_episodes(ep_csv, index=idx), notes)
-    if notes.getvalue():
-        print(notes.getvalue(), end="", file=sys.stderr)
+    said: List[str] = []
+    every = S.read_episodes(ep_csv, index=idx, warnings=said)
+    for w in said:
+        print(w, file=sys.stderr)
     RD._require_person(ep_csv, every)
     RD.require_split(idx, ctx.train_split, every)
     RD.require_split(idx, ctx.split, every)
-    return every, notes.getvalue()
+    return every, "".join(w + "\n" for w in said)
 
 
 def real_upo_avoid(ctx: Ctx) -> RealSet:
@@ -349,9 +347,9 @@ def _real_report(ctx: Ctx, rs: RealSet, results) -> None:
                     f"{PERSON_RADIUS_M} m = 0.55 m is contact).")
     ppl = [len(sc.people) for sc in rs.scenes]
     if rs.repeats:
-        md += ("Each event is counted once: an episode that repeats an earlier one (the same person and positions "
-               "at the same times) is left out of the models' evaluation, the side rules and the humans' agreement "
-               "(realdata.distinct_events):\n\n" + "".join(f"- {l}\n" for l in portable(rs.repeats).splitlines())
+        md += ("Each event is counted once: the learner's reader leaves out an episode that repeats an earlier one "
+               "(the same person and positions at the same times), so it is in neither the models' fit nor their "
+               "evaluation, the side rules or the humans' agreement:\n\n" + "".join(f"- {l}\n" for l in portable(rs.repeats).splitlines())
                + "\n")
     md += (f"People per episode: {min(ppl)}–{max(ppl)} (mean {np.mean(ppl):.1f}); {sum(p > 1 for p in ppl)} of {n} "
            "episodes have more than one.\n\n")
