@@ -4,6 +4,7 @@
  * per log_interval_ms, with the number suppressed in between. Nothing is silent: every stop
  * and every rejection is counted, and the first of each kind in an interval is logged.
  */
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <time.h>
@@ -21,6 +22,11 @@ int64_t gmmrrtd_mono_us(void)
 int64_t gmmrrtd_now_us(const gmmrrtd_t *d)
 {
     return d->clock_mode == GMMRRTD_CLOCK_LOG ? d->log_now_us : gmmrrtd_mono_us();
+}
+
+int64_t gmmrrtd_min_period_us(const gmmrrtd_t *d)
+{
+    return (int64_t)llround(d->set.min_period_ms * 1e3);
 }
 
 const char *gmmrrtd_stop_str(int code)

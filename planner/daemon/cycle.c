@@ -552,7 +552,7 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
 {
     d->cycles++;
     d->event_pending = 0; /* this cycle takes every input so far */
-    d->last_cycle_us = now_us;
+    gmmrrtd_pacing_spend(&d->pacing, now_us, gmmrrtd_min_period_us(d));
     d->status.plan_time_ms = 0.0;
     d->status.setup_time_ms = 0.0;
     clear_stats(d);

@@ -25,6 +25,7 @@
 #include "gmmrrt/raster.h"
 #include "gmmrrt/planner.h"
 #include "log.h"
+#include "pacing.h"
 #include "settings.h"
 #include "clock.h"
 #include "stop.h"
@@ -119,7 +120,7 @@ typedef struct {
     int64_t next_tick_us;        /* log mode: the next cycle's local time */
     int32_t stale_mask;          /* STALE_* bits of the last cycle */
     int event_pending;           /* live, trigger = event: an input arrived that should start a cycle */
-    int64_t last_cycle_us;       /* local time the last cycle started */
+    gmmrrtd_pacing_t pacing;     /* live, trigger = event: how soon the next cycle may start */
 
     /* Models by task; loaded at start, replaced on SIGHUP only when the new file is good. */
     gmmrrt_model_t model_avoid, model_approach, model_scratch;
@@ -198,6 +199,9 @@ int64_t gmmrrtd_mono_us(void);
 
 /* The local time now: CLOCK_MONOTONIC live, the log time in log mode. */
 int64_t gmmrrtd_now_us(const gmmrrtd_t *d);
+
+/* min_period_ms in microseconds: the event trigger's refill period (pacing.h). */
+int64_t gmmrrtd_min_period_us(const gmmrrtd_t *d);
 
 /* dispatch.c: subscribes the six input channels. 0 or -1 (logged). */
 int gmmrrtd_subscribe(gmmrrtd_t *d);

@@ -213,10 +213,12 @@ static int run(gmmrrtd_t *d, int argc, char **argv)
         int timeout_ms;
         int64_t now = gmmrrtd_mono_us();
         if (d->clock_mode == GMMRRTD_CLOCK_LIVE) {
-            /* trigger = event: new input starts a cycle at once, at most one per min_period_ms; the
-             * ticks stay as the fallback (staleness, status) and restart a period after it. */
+            /* trigger = event: new input starts a cycle at once, at most event_burst back to back and
+             * one per min_period_ms on average (pacing.h); the ticks stay as the fallback
+             * (staleness, status) and restart a period after it. */
             const int event = d->event_pending && !strcmp(d->set.trigger, "event");
-            const int64_t earliest = d->last_cycle_us + (int64_t)llround(d->set.min_period_ms * 1e3);
+            const int64_t earliest =
+                gmmrrtd_pacing_earliest_us(&d->pacing, gmmrrtd_min_period_us(d), d->set.event_burst);
             if (event && now >= earliest && now < next_tick) {
                 gmmrrtd_cycle(d, now);
                 gmmrrtd_watchdog_ping(d);
@@ -241,7 +243,8 @@ static int run(gmmrrtd_t *d, int argc, char **argv)
             }
             int64_t wake = next_tick;
             if (d->event_pending && !strcmp(d->set.trigger, "event")) {
-                const int64_t earliest_next = d->last_cycle_us + (int64_t)llround(d->set.min_period_ms * 1e3);
+                const int64_t earliest_next =
+                    gmmrrtd_pacing_earliest_us(&d->pacing, gmmrrtd_min_period_us(d), d->set.event_burst);
                 if (earliest_next < wake)
                     wake = earliest_next > now ? earliest_next : now;
             }

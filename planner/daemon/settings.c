@@ -65,7 +65,9 @@ static const key_t_ k_keys[] = {
     NUM("timing", "budget_ms", "budget-ms", K_F64, budget_ms, 0, 1e6, "planning time per cycle, ms (0: none)"),
     STR("timing", "trigger", "trigger", trigger, "tick | event: cycles at rate_hz only, or also on new input (live)"),
     NUM("timing", "min_period_ms", "min-period-ms", K_F64, min_period_ms, 0, 1e6,
-        "event trigger: shortest time between cycle starts, ms"),
+        "event trigger: one cycle start per this long on average, ms"),
+    NUM("timing", "event_burst", "event-burst", K_I32, event_burst, 1, 64,
+        "event trigger: cycle starts allowed back to back (1: min_period_ms after every start)"),
     NUM("timing", "anytime_max_plans", "anytime-max-plans", K_I32, anytime_max_plans, 1, 64,
         "plans published per cycle at most (the first at once, then better ones)"),
     NUM("timing", "anytime_improvement", "anytime-improvement", K_F64, anytime_improvement, 0, 0.99,
@@ -182,6 +184,7 @@ void gmmrrtd_settings_default(gmmrrtd_settings_t *s)
     s->budget_iterations = 0;
     snprintf(s->trigger, sizeof s->trigger, "tick");
     s->min_period_ms = 20.0;
+    s->event_burst = 2;
     s->anytime_max_plans = 1;
     s->anytime_improvement = 0.05;
     s->pose_timeout_ms = 500.0;

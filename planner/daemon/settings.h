@@ -36,7 +36,8 @@ typedef struct {
     double rate_hz;              /* cycles per second, (0, 1000] */
     double budget_ms;            /* planning time per cycle, >= 0, < period; 0 = no time limit */
     char trigger[16];            /* "tick": cycles at rate_hz only; "event": also on new input (live clock) */
-    double min_period_ms;        /* event trigger: at least this long between cycle starts */
+    double min_period_ms;        /* event trigger: one cycle start per this long on average */
+    int32_t event_burst;         /* event trigger: cycle starts allowed back to back (pacing.h) */
     int32_t anytime_max_plans;   /* plans published per cycle at most, >= 1 (1: one at the end) */
     double anytime_improvement;  /* a further plan of the cycle only when its cost fell by this fraction */
     int64_t budget_iterations;   /* samples per cycle, >= 0; 0 = no cap. Deterministic replays use this */
