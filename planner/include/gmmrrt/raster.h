@@ -107,12 +107,14 @@ gmmrrt_status_t gmmrrt_raster_update_distance_window(gmmrrt_raster_t *r, int64_t
 int gmmrrt_raster_distance_ready(const gmmrrt_raster_t *r);
 
 /* A lower bound (m) of the distance from world point q = (x, y) to the nearest blocked cell's
- * square (the outside's too when it blocks), 1-Lipschitz in q: max over the four corners v of
- * q's cell (clamped to the raster, and inside the field's valid window) of dist(v) - |q - v|
- * (the distance is 1-Lipschitz, so each term is a lower bound); -inf when none of them is valid.
- * Exact at the corners (to float rounding); elsewhere short by at most twice the distance to
- * the nearest corner (a cell's diagonal at its centre), by |q - v| - (the part of q - v along
- * the distance's gradient) beside a straight wall. Four loads; for the planning loop. */
+ * square (the outside's too when it blocks): max over the four corners v of q's cell (clamped to
+ * the raster, and inside the field's valid window) of dist(v) - |q - v| (the distance is
+ * 1-Lipschitz, so each term is a lower bound); -inf when none of them is valid. Exact at the
+ * corners (to float rounding); elsewhere short by at most twice the distance to the nearest
+ * corner (a cell's diagonal at its centre). 1-Lipschitz inside a cell, not across its edges
+ * (the four corners change there, and so may the maximum): a caller that steps by it relies
+ * on the clearance it bounds being 1-Lipschitz, not on the bound. Four loads; for the planning
+ * loop. */
 double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double y);
 
 /* Exact distance (m) from world point (x, y) to the nearest blocked cell's square (0 inside
