@@ -26,6 +26,11 @@
 /* The field goes through floats (squared, then the distance): each rounding is relative
  * 2^-24; the stored distance is shrunk by this factor so it stays a lower bound. */
 #define FIELD_SHRINK (1.0 - 1e-6)
+/* The union's candidate points carry the rounding of a few products and square roots of
+ * numbers of at most UNION_MAX_CELLS: a point counts as covered by a disc only when it is this
+ * far (relative) inside it, and the result is lowered by as much. */
+#define UNION_MARGIN 1e-9
+#define UNION_MAX_CELLS 1e6
 
 
 typedef struct {
@@ -368,6 +373,97 @@ double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double 
         if (ok[k] && lb[k] > best)
             best = lb[k];
     return best;
+}
+
+/* 1 when point (px, py) lies inside the open disc (cx, cy, rad) by more than the rounding
+ * margin (rad_in = rad less the margin, > 0: compared squared). */
+static int inside_disc(double px, double py, double cx, double cy, double rad_in)
+{
+    const double dx = px - cx, dy = py - cy;
+    return dx * dx + dy * dy < rad_in * rad_in;
+}
+
+double gmmrrt_raster_clearance_union(const gmmrrt_raster_t *r, double x, double y)
+{
+    double u, v;
+    to_cells(r, x, y, &u, &v);
+    int32_t ia, ib, ja, jb;
+    neighbours(u, r->width + 1, &ia, &ib);
+    neighbours(v, r->height + 1, &ja, &jb);
+    const size_t w = (size_t)r->width + 1u;
+    const int32_t ci[4] = {ia, ib, ia, ib}, cj[4] = {ja, ja, jb, jb};
+    /* The valid corners' circles, relative to the point, in cells. */
+    double cx[4], cy[4], rad[4], rad_in[4], dist[4];
+    int n = 0;
+    double single = -INFINITY;
+    for (int k = 0; k < 4; ++k) {
+        if (!(ci[k] >= r->valid_i0 && ci[k] < r->valid_i1 && cj[k] >= r->valid_j0 && cj[k] < r->valid_j1))
+            continue;
+        if ((k == 1 && ib == ia) || (k == 2 && jb == ja) || (k == 3 && (ib == ia || jb == ja)))
+            continue; /* a clamped corner counted already */
+        cx[n] = (double)ci[k] - u;
+        cy[n] = (double)cj[k] - v;
+        rad[n] = (double)r->dist[(size_t)cj[k] * w + (size_t)ci[k]] * r->inv_resolution_m;
+        rad_in[n] = rad[n] - UNION_MARGIN * (1.0 + rad[n]);
+        dist[n] = sqrt(cx[n] * cx[n] + cy[n] * cy[n]);
+        if (rad[n] - dist[n] > single)
+            single = rad[n] - dist[n];
+        ++n;
+    }
+    /* Not inside any disc, or inside one so large that the union is not needed (the field's
+     * "nothing blocks"): the single discs' bound. */
+    if (!(single > 0.0) || !(single < UNION_MAX_CELLS))
+        return single * r->resolution_m;
+    double best = INFINITY;
+    /* The nearest point of each circle: along the ray from its centre through the point. */
+    for (int k = 0; k < n; ++k) {
+        double px, py;
+        if (dist[k] > 0.0) {
+            px = cx[k] - cx[k] / dist[k] * rad[k];
+            py = cy[k] - cy[k] / dist[k] * rad[k];
+        } else { /* the point is the centre: every point of the circle is as near; take any */
+            px = cx[k] + rad[k];
+            py = cy[k];
+        }
+        int covered = 0;
+        for (int j = 0; j < n && !covered; ++j)
+            covered = j != k && rad_in[j] > 0.0 && inside_disc(px, py, cx[j], cy[j], rad_in[j]);
+        const double e = fabs(rad[k] - dist[k]);
+        if (!covered && e < best)
+            best = e;
+        if (dist[k] == 0.0 && rad[k] < best)
+            best = rad[k]; /* any point of the circle is as near: the whole circle counts */
+    }
+    /* The circles' crossings (the ends of the union's boundary arcs). A crossing lies on both
+     * circles, so it is at least each circle's nearest distance from the point: a pair whose
+     * larger one is not below the best so far cannot lower it. */
+    for (int a = 0; a < n; ++a)
+        for (int b = a + 1; b < n; ++b) {
+            const double ea = fabs(rad[a] - dist[a]), eb = fabs(rad[b] - dist[b]);
+            if ((ea > eb ? ea : eb) >= best)
+                continue;
+            const double ex = cx[b] - cx[a], ey = cy[b] - cy[a];
+            const double dd = sqrt(ex * ex + ey * ey);
+            if (!(dd > 0.0) || !(dd < rad[a] + rad[b]) || !(dd > fabs(rad[a] - rad[b])))
+                continue; /* apart, or one inside the other: no crossing */
+            const double inv = 1.0 / dd, t = (rad[a] * rad[a] - rad[b] * rad[b] + dd * dd) * 0.5 * inv;
+            const double h2 = rad[a] * rad[a] - t * t;
+            const double h = h2 > 0.0 ? sqrt(h2) : 0.0;
+            const double ux = ex * inv, uy = ey * inv;
+            const double mx = cx[a] + ux * t, my = cy[a] + uy * t;
+            for (int sgn = -1; sgn <= 1; sgn += 2) {
+                const double px = mx - (double)sgn * uy * h, py = my + (double)sgn * ux * h;
+                int covered = 0;
+                for (int j = 0; j < n && !covered; ++j)
+                    covered = j != a && j != b && rad_in[j] > 0.0 && inside_disc(px, py, cx[j], cy[j], rad_in[j]);
+                const double e2 = px * px + py * py;
+                if (!covered && e2 < best * best)
+                    best = sqrt(e2);
+            }
+        }
+    if (!(best < INFINITY) || best < single)
+        best = single; /* rounding: never below the single discs' bound, which holds anyway */
+    return (best - UNION_MARGIN * (1.0 + best)) * r->resolution_m;
 }
 
 double gmmrrt_raster_distance_to_blocked(const gmmrrt_raster_t *r, double x, double y, double max_m)

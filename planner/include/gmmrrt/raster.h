@@ -117,6 +117,15 @@ int gmmrrt_raster_distance_ready(const gmmrrt_raster_t *r);
  * loop. */
 double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double y);
 
+/* A lower bound (m) of the same distance, at least gmmrrt_raster_clearance_bound and mostly
+ * much nearer the distance: the disc of radius dist(v) around each corner v of the point's cell
+ * (valid ones, as above) holds nothing blocked, so neither does their union, and the point's
+ * distance to the union's outside is a bound. That distance is the least over the union's
+ * boundary of the distance to the point, taken at each circle's nearest point to it and at the
+ * circles' crossings that no other disc covers. The same four loads as the four-corner bound
+ * and several times its arithmetic; for where that bound cannot decide. */
+double gmmrrt_raster_clearance_union(const gmmrrt_raster_t *r, double x, double y);
+
 /* Exact distance (m) from world point (x, y) to the nearest blocked cell's square (0 inside
  * one), looking only at cells within max_m; max_m when none is that close. Brute force over
  * those cells: an oracle for tests, not for the loop. */

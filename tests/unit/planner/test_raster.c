@@ -4,7 +4,8 @@
  * blocked cell's square found by scanning every cell (to float rounding, never above it), with
  * the outside blocking or not, scan marks active or decayed, whole or windowed; the bound the
  * collision world reads never exceeds the true distance to the squares and equals it at the
- * corners; scans mark their end
+ * corners, nor does the union of the corners' discs, which is never below it and mostly much
+ * nearer the distance; scans mark their end
  * cells, clear what the beams cross, ignore NaN / inf / out-of-range ranges, and their marks
  * decay; a collision world with a raster never calls a point free that is within the robot's
  * radius of a blocked cell (checked against the cells, not the field).
@@ -23,6 +24,7 @@
 #include "gmmrrt/raster.h"
 #include "gmmrrt/rng.h"
 #include "planner_fixtures.h"
+#include "planner_internal.h"
 
 typedef struct {
     void *mem;
@@ -175,7 +177,8 @@ static void test_clearance_bound_is_a_lower_bound(void **state)
     for (int round = 0; round < 12; ++round) {
         random_raster_at(&b.r, &g, 30, 20, 0.03, round % 2, round >= 8); /* the last four unrotated */
         assert_int_equal(gmmrrt_raster_update_distance(&b.r, 0, 0.0), GMMRRT_OK);
-        int loose = 0;
+        int loose = 0, tighter = 0;
+        double gap_corners = 0.0, gap_union = 0.0;
         for (int q = 0; q < 3000; ++q) {
             /* Points in and around the raster, in the raster frame, then to the world; every
              * fourth a corner of the raster. */
@@ -196,8 +199,23 @@ static void test_clearance_bound_is_a_lower_bound(void **state)
             if (u >= 0 && v >= 0 && u <= 30 && v <= 20 && !(lb >= best - 0.1 * M_SQRT2 - 1e-9))
                 fail_msg("bound %.9g short of the distance %.9g by more than a diagonal at (%g, %g)", lb, best, u, v);
             loose += !corner && lb < best - 1e-6;
+            /* The union of the corners' discs: a bound too, never below the four-corner one. */
+            const double lu = gmmrrt_raster_clearance_union(&b.r, x, y);
+            if (!(lu <= best + 1e-9))
+                fail_msg("union bound %.12g above the true distance %.12g at (%g, %g) cells", lu, best, u, v);
+            if (!(lu >= lb - 1e-8))
+                fail_msg("union bound %.12g below the four-corner bound %.12g at (%g, %g) cells", lu, lb, u, v);
+            if (u >= 0 && v >= 0 && u <= 30 && v <= 20 && isfinite(best) && lb > 0.0) {
+                gap_corners += best - lb;
+                gap_union += best - lu;
+                tighter += lu > lb + 1e-6;
+            }
         }
         assert_true(loose > 0); /* between the corners the bound is a bound, not the distance */
+        /* The union is the tighter bound at many points, and its loss a fraction of the other's. */
+        if (!(tighter > 300 && gap_union < 0.5 * gap_corners))
+            fail_msg("round %d: union tighter at %d points, total loss %.6g against %.6g", round, tighter, gap_union,
+                     gap_corners);
     }
     free(b.mem);
 }
@@ -372,6 +390,9 @@ static void test_world_with_raster_keeps_the_robot_radius(void **state)
     assert_int_equal(gmmrrt_world_build(&w, mem, size, cells, 0.05, robot, 0.3, &o), GMMRRT_OK);
     int free_seen = 0, blocked_seen = 0;
     for (int q = 0; q < 20000; ++q) {
+        /* Half the queries with the union of the corners' discs on (as the planner sets it once
+         * it has a path). */
+        gmmrrt_world_set_raster_union(w, q >= 10000);
         const double x = rnd(&g, -15, 15), y = rnd(&g, -15, 15);
         const int f = gmmrrt_world_point_free(w, x, y);
         const double exact = gmmrrt_world_exact_clearance(w, x, y);
