@@ -180,7 +180,7 @@ static gmmrrt_status_t check_size(int64_t w, int64_t h, const char *name, const 
         return gmmrrt_set_error(GMMRRT_ERR_BUFFER_TOO_SMALL, err, errcap,
                                 "%s: the map is %lld x %lld = %.0f cells (%.0f bytes of raster); the configured raster "
                                 "holds %d cells and %d a side",
-                                name, (long long)w, (long long)h, cells, cells * 9.0, (int)r->max_cells,
+                                name, (long long)w, (long long)h, cells, gmmrrt_raster_bytes((double)w, (double)h), (int)r->max_cells,
                                 (int)r->max_side);
     }
     return GMMRRT_OK;

@@ -79,11 +79,14 @@ struct gmmrrt_world {
     double near_px[GMMRRT_MAX_PEOPLE], near_py[GMMRRT_MAX_PEOPLE];
     double box_cos[GMMRRT_MAX_BOXES], box_sin[GMMRRT_MAX_BOXES]; /* of each box's yaw, for the closed forms */
     /* The occupancy raster of the problem (borrowed), its generation when the world was
-     * updated, and the distance its cells' corners add: clearance to a blocked cell's square
-     * >= distance to its centre - half its diagonal. */
+     * updated, and the slack its bound gets for the rounding of a world point into cells (the
+     * field itself is rounded down where it is stored). */
     const gmmrrt_raster_t *raster;
     uint32_t raster_generation;
     double raster_slack_m;
+    /* 1: where the four-corner bound cannot decide, the union of the corners' discs
+     * (gmmrrt_raster_clearance_union) may; set by the planner once it has a path. */
+    int32_t raster_union;
     gmmrrt_world_grid_stats_t stats;
     int64_t lazy_cells; /* cells filled by queries since the last update */
     int32_t exact_only; /* at most GMMRRT_EXACT_MAX_OBSTACLES statics: no grid, closed forms */
@@ -363,7 +366,8 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
     w->exact_queries_left = GMMRRT_EXACT_FIRST_QUERIES;
     w->raster = obstacles->raster;
     w->raster_generation = obstacles->raster ? obstacles->raster->generation : 0;
-    w->raster_slack_m = obstacles->raster ? 0.7071067811865476 * obstacles->raster->resolution_m + 1e-9 : 0.0;
+    w->raster_slack_m = obstacles->raster ? 1e-9 : 0.0;
+    w->raster_union = 0;
     set_people(w);
     for (int32_t k = 0; k < obstacles->num_boxes; ++k) {
         w->box_cos[k] = cos(obstacles->boxes[k].yaw);
@@ -572,15 +576,19 @@ static double static_clearance_obstacles(const struct gmmrrt_world *w, near_stat
 
 /* The clearance from everything static (obstacles and the raster's blocked cells) as
  * static_clearance_obstacles: a lower bound, 1-Lipschitz, at most `need` when that cannot be
- * proved. The raster's part is its distance field's bound (raster.h) less half a cell's
- * diagonal (the blocked cell is a square, the field measures to its centre) and the robot's
- * radius: exact to the cell, never closer to a blocked cell than the robot's radius. */
+ * proved. The raster's part is its distance field's bound (raster.h: to the blocked cells'
+ * squares, exact at the cells' corners) less the robot's radius: never closer to a blocked
+ * cell than the robot's radius. */
 static double static_clearance(const struct gmmrrt_world *w, near_statics_t *n, double x, double y, double need)
 {
     if (w->raster) {
         /* The raster's bound is the whole answer for the map: when it is at most `need`, so
          * is the minimum, and the caller refuses whatever the obstacles add. */
-        const double lm = gmmrrt_raster_clearance_bound(w->raster, x, y) - w->raster_slack_m - w->robot_radius_m;
+        double lm = gmmrrt_raster_clearance_bound(w->raster, x, y) - w->raster_slack_m - w->robot_radius_m;
+        if (!(lm > need) && w->raster_union) { /* near a wall: the corners' discs together prove more */
+            const double lu = gmmrrt_raster_clearance_union(w->raster, x, y) - w->raster_slack_m - w->robot_radius_m;
+            lm = lu > lm ? lu : lm;
+        }
         /* Without circles and boxes the obstacles' clearance is infinite: the map alone. */
         if (!(lm > need) || w->obstacles.num_circles + w->obstacles.num_boxes == 0)
             return lm;
@@ -790,6 +798,14 @@ void gmmrrt_world_set_edge_resolution(gmmrrt_world_t *world, double edge_resolut
 {
     if (world && isfinite(edge_resolution_m) && edge_resolution_m > 0.0)
         world->edge_resolution_m = edge_resolution_m;
+}
+
+/* Internal (declared in planner_internal.h): the planner turns the union bound on and off. */
+void gmmrrt_world_set_raster_union(gmmrrt_world_t *world, int on);
+void gmmrrt_world_set_raster_union(gmmrrt_world_t *world, int on)
+{
+    if (world)
+        world->raster_union = on != 0;
 }
 
 int64_t gmmrrt_world_lazy_cells(const gmmrrt_world_t *world) { return world ? world->lazy_cells : -1; }

@@ -4,8 +4,14 @@
  * pass along the columns then one along the rows, O(cells)), the bound the collision world
  * reads, and scan integration by ray casting (Amanatides & Woo 1987 cell traversal).
  *
- * The field measures from cell centre to cell centre in cells; the collision world turns it
- * into a clearance from blocked squares by subtracting half a cell's diagonal (collision.c).
+ * The field is sampled at the cells' corners, the (width + 1) x (height + 1) lattice points:
+ * for a lattice point v and a blocked cell's closed square, each coordinate of the square's
+ * nearest point to v is v's coordinate clamped to the cell's one-cell interval, which is a
+ * lattice coordinate again, so the nearest point is one of the square's corners. The distance
+ * from v to the union of blocked squares is therefore the distance to the nearest "blocked
+ * corner" (a corner of a blocked cell), which the transform computes exactly. The bound a
+ * point reads from its cell's four corners is then a lower bound of its distance to the
+ * squares themselves, with nothing to subtract for the squares' extent.
  */
 #include "gmmrrt/raster.h"
 
@@ -15,25 +21,39 @@
 
 #include "block_layout.h"
 
-/* "Nothing blocks" in squared cells: larger than any real squared distance (2 x 16384^2). */
+/* "Nothing blocks" in squared cells: larger than any real squared distance (2 x 16385^2). */
 #define FAR2 1e18
 /* The field goes through floats (squared, then the distance): each rounding is relative
  * 2^-24; the stored distance is shrunk by this factor so it stays a lower bound. */
 #define FIELD_SHRINK (1.0 - 1e-6)
+/* The union's candidate points carry the rounding of a few products and square roots of
+ * numbers of at most UNION_MAX_CELLS: a point counts as covered by a disc only when it is this
+ * far (relative) inside it, and the result is lowered by as much. */
+#define UNION_MARGIN 1e-9
+#define UNION_MAX_CELLS 1e6
 
 
 typedef struct {
     size_t cells, marks, dist, f, d, z, v, total;
 } layout_t;
 
+/* Corners of the largest raster the capacity admits: (w + 1)(h + 1) = wh + w + h + 1, where
+ * wh <= max_cells, each side <= max_side, and w + h <= wh + 1 (both sides >= 1). */
+static size_t max_corners(int32_t max_cells, int32_t max_side)
+{
+    const size_t n = (size_t)max_cells, two_sides = 2u * (size_t)max_side;
+    return n + (two_sides < n + 1u ? two_sides : n + 1u) + 1u;
+}
+
 static layout_t layout_of(int32_t max_cells, int32_t max_side)
 {
     layout_t l;
-    const size_t n = (size_t)max_cells, s = (size_t)max_side + 1;
+    /* A 1-D transform runs along at most max_side + 1 corners. */
+    const size_t n = (size_t)max_cells, s = (size_t)max_side + 2;
     size_t off = 0;
     l.cells = gmmrrt_block_take(&off, n);
     l.marks = gmmrrt_block_take(&off, n * sizeof(uint32_t));
-    l.dist = gmmrrt_block_take(&off, n * sizeof(float));
+    l.dist = gmmrrt_block_take(&off, max_corners(max_cells, max_side) * sizeof(float));
     l.f = gmmrrt_block_take(&off, s * sizeof(double));
     l.d = gmmrrt_block_take(&off, s * sizeof(double));
     l.z = gmmrrt_block_take(&off, (s + 1) * sizeof(double));
@@ -47,6 +67,12 @@ size_t gmmrrt_raster_mem_size(int32_t max_cells, int32_t max_side)
     if (max_cells < 1 || max_side < 1 || max_side > GMMRRT_MAX_RASTER_SIDE || max_cells > GMMRRT_MAX_RASTER_CELLS)
         return 0;
     return layout_of(max_cells, max_side).total;
+}
+
+double gmmrrt_raster_bytes(double width, double height)
+{
+    /* Per cell its value and a scan mark; per corner a float of the field. */
+    return width * height * (double)(1 + sizeof(uint32_t)) + (width + 1.0) * (height + 1.0) * (double)sizeof(float);
 }
 
 gmmrrt_status_t gmmrrt_raster_init(gmmrrt_raster_t *r, void *mem, size_t size, int32_t max_cells, int32_t max_side)
@@ -109,9 +135,8 @@ gmmrrt_status_t gmmrrt_raster_set_geometry(gmmrrt_raster_t *r, int32_t width, in
 int gmmrrt_raster_distance_ready(const gmmrrt_raster_t *r) { return r && r->width > 0 && r->distance_ready; }
 
 /* 1-D squared distance transform of f[0..n) (FAR2: no site) into d[0..n): the lower envelope
- * of the parabolas (q - p)^2 + f(p) over the sites p. With border_lo / border_hi, a site sits just outside
- * each end (at -1 and n). */
-static void edt_1d(const double *f, double *d, int32_t *v, double *z, int32_t n, int border_lo, int border_hi)
+ * of the parabolas (q - p)^2 + f(p) over the sites p. */
+static void edt_1d(const double *f, double *d, int32_t *v, double *z, int32_t n)
 {
     int32_t k = -1;
     for (int32_t q = 0; q < n; ++q) {
@@ -143,13 +168,6 @@ static void edt_1d(const double *f, double *d, int32_t *v, double *z, int32_t n,
             d[q] = t * t + f[v[j]];
         }
     }
-    if (border_lo || border_hi)
-        for (int32_t q = 0; q < n; ++q) {
-            const double a = border_lo ? (double)(q + 1) : INFINITY, b = border_hi ? (double)(n - q) : INFINITY;
-            const double m = a < b ? a : b;
-            if (m * m < d[q])
-                d[q] = m * m;
-        }
 }
 
 static int mark_active(const gmmrrt_raster_t *r, size_t c, double now_ms, double decay_ms)
@@ -165,30 +183,48 @@ static int blocks(const gmmrrt_raster_t *r, size_t c, double now_ms, double deca
            mark_active(r, c, now_ms, decay_ms);
 }
 
-/* The field over the cells [i0, i1) x [j0, j1) (write window), from the blocked cells of
- * [a0, a1) x [b0, b1) (a larger rectangle around it, clipped to the raster), each value at most
- * cap_m. The cells of the larger rectangle outside the write window are used as scratch. */
+/* The field over the corners [i0, i1) x [j0, j1) (write window), from the blocked corners of
+ * [a0, a1) x [b0, b1) (a larger rectangle of corners around it, clipped to the lattice of
+ * (width + 1) x (height + 1) corners), each value at most cap_m. A corner blocks when one of
+ * the (up to four) cells around it blocks, or when it lies on the raster's border while the
+ * outside (unknown) blocks. The corners of the larger rectangle outside the write window are
+ * used as scratch. */
 static void field_over(gmmrrt_raster_t *r, double now_ms, double decay_ms, int32_t a0, int32_t a1, int32_t b0,
                        int32_t b1, int32_t i0, int32_t i1, int32_t j0, int32_t j1, double cap_m)
 {
     const int32_t w = r->width, h = r->height;
+    const size_t cw = (size_t)w + 1u; /* corners per row */
     const int out = r->unknown_blocked; /* the outside is unknown */
     double *f = r->scratch_f, *d = r->scratch_d, *z = r->scratch_z;
     int32_t *v = r->scratch_v;
-    /* Columns: squared distance along y to the nearest blocked cell of the same column. */
+    /* Columns: squared distance along y to the nearest blocked corner of the same corner column. */
     for (int32_t i = a0; i < a1; ++i) {
+        /* d[k] (k = j - b0 + 1): 1 when cell row j has a blocked cell left or right of corner
+         * column i (cells i - 1 and i), for the cell rows b0 - 1 .. b1 - 1 the corners touch. */
+        for (int32_t j = b0 - 1; j < b1; ++j) {
+            int any = 0;
+            if (j >= 0 && j < h) {
+                const size_t row = (size_t)j * (size_t)w;
+                any = (i > 0 && blocks(r, row + (size_t)i - 1u, now_ms, decay_ms)) ||
+                      (i < w && blocks(r, row + (size_t)i, now_ms, decay_ms));
+            }
+            d[j - b0 + 1] = any ? 1.0 : 0.0;
+        }
+        const int border_column = out && (i == 0 || i == w);
+        for (int32_t j = b0; j < b1; ++j) {
+            const int blocked = border_column || (out && (j == 0 || j == h)) || d[j - b0] != 0.0 || d[j - b0 + 1] != 0.0;
+            f[j - b0] = blocked ? 0.0 : FAR2;
+        }
+        edt_1d(f, d, v, z, b1 - b0);
         for (int32_t j = b0; j < b1; ++j)
-            f[j - b0] = blocks(r, (size_t)j * (size_t)w + (size_t)i, now_ms, decay_ms) ? 0.0 : FAR2;
-        edt_1d(f, d, v, z, b1 - b0, out && b0 == 0, out && b1 == h);
-        for (int32_t j = b0; j < b1; ++j)
-            r->dist[(size_t)j * (size_t)w + (size_t)i] = (float)d[j - b0];
+            r->dist[(size_t)j * cw + (size_t)i] = (float)d[j - b0];
     }
     /* Rows: the 2-D squared distance, then the distance in metres, rounded down. */
     for (int32_t j = j0; j < j1; ++j) {
-        float *row = r->dist + (size_t)j * (size_t)w;
+        float *row = r->dist + (size_t)j * cw;
         for (int32_t i = a0; i < a1; ++i)
             f[i - a0] = (double)row[i] >= FAR2 * 0.5 ? FAR2 : (double)row[i];
-        edt_1d(f, d, v, z, a1 - a0, out && a0 == 0, out && a1 == w);
+        edt_1d(f, d, v, z, a1 - a0);
         for (int32_t i = i0; i < i1; ++i) {
             const double di = d[i - a0];
             double m = di >= FAR2 * 0.5 ? (double)FLT_MAX : sqrt(di) * r->resolution_m * FIELD_SHRINK;
@@ -218,15 +254,16 @@ gmmrrt_status_t gmmrrt_raster_update_distance(gmmrrt_raster_t *r, int64_t now_ut
 {
     if (!r || r->width < 1 || !isfinite(mark_decay_ms) || mark_decay_ms < 0.0)
         return GMMRRT_ERR_INVALID_ARGUMENT;
-    field_over(r, ms_since_epoch(r, now_utime), mark_decay_ms, 0, r->width, 0, r->height, 0, r->width, 0, r->height,
-               INFINITY);
+    const int32_t cw = r->width + 1, ch = r->height + 1; /* corners */
+    field_over(r, ms_since_epoch(r, now_utime), mark_decay_ms, 0, cw, 0, ch, 0, cw, 0, ch, INFINITY);
     return GMMRRT_OK;
 }
 
-/* Index range [lo, hi) of the cells along one raster axis that meet [t0, t1] (cells). */
-static void cell_range(double t0, double t1, int32_t n, int32_t *lo, int32_t *hi)
+/* Index range [lo, hi) of the n corners along one raster axis that a point in [t0, t1] (cells)
+ * reads (floor(t) and floor(t) + 1), and one more each side. */
+static void corner_range(double t0, double t1, int32_t n, int32_t *lo, int32_t *hi)
 {
-    const double a = floor(t0) - 1.0, b = floor(t1) + 2.0; /* a cell more each side: the bound's neighbours */
+    const double a = floor(t0) - 1.0, b = floor(t1) + 3.0;
     *lo = a < 0.0 ? 0 : (a > (double)n ? n : (int32_t)a);
     *hi = b < 0.0 ? 0 : (b > (double)n ? n : (int32_t)b);
 }
@@ -254,8 +291,9 @@ gmmrrt_status_t gmmrrt_raster_update_distance_window(gmmrrt_raster_t *r, int64_t
             vhi = fmax(vhi, v);
         }
     int32_t i0, i1, j0, j1;
-    cell_range(ulo, uhi, r->width, &i0, &i1);
-    cell_range(vlo, vhi, r->height, &j0, &j1);
+    const int32_t cw = r->width + 1, ch = r->height + 1; /* corners */
+    corner_range(ulo, uhi, cw, &i0, &i1);
+    corner_range(vlo, vhi, ch, &j0, &j1);
     if (i0 >= i1 || j0 >= j1) {
         /* The box misses the raster: an empty valid window, every bound "blocked" inside it. */
         r->valid_i0 = r->valid_i1 = r->valid_j0 = r->valid_j1 = 0;
@@ -263,12 +301,12 @@ gmmrrt_status_t gmmrrt_raster_update_distance_window(gmmrrt_raster_t *r, int64_t
         r->generation++;
         return GMMRRT_OK;
     }
-    /* Margin m cells: a blocked cell beyond it is more than m cells from every window cell, so
-     * capping the field at m cells keeps it a lower bound. */
+    /* Margin m cells: a blocked corner beyond it is more than m cells from every window corner,
+     * so capping the field at m cells keeps it a lower bound. */
     const double md = ceil(reach_m / r->resolution_m) + 1.0;
-    const int32_t m = md > (double)(r->width + r->height) ? r->width + r->height : (int32_t)md;
-    const int32_t a0 = i0 - m < 0 ? 0 : i0 - m, a1 = i1 + m > r->width ? r->width : i1 + m;
-    const int32_t b0 = j0 - m < 0 ? 0 : j0 - m, b1 = j1 + m > r->height ? r->height : j1 + m;
+    const int32_t m = md > (double)(cw + ch) ? cw + ch : (int32_t)md;
+    const int32_t a0 = i0 - m < 0 ? 0 : i0 - m, a1 = i1 + m > cw ? cw : i1 + m;
+    const int32_t b0 = j0 - m < 0 ? 0 : j0 - m, b1 = j1 + m > ch ? ch : j1 + m;
     field_over(r, ms_since_epoch(r, now_utime), mark_decay_ms, a0, a1, b0, b1, i0, i1, j0, j1,
                (double)m * r->resolution_m);
     return GMMRRT_OK;
@@ -308,21 +346,21 @@ double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double 
 {
     double u, v;
     to_cells(r, x, y, &u, &v);
-    /* Centres around the point: cells floor(u - 0.5) and the next, clamped. */
+    /* The corners of the point's cell: floor(u) and the next, clamped to the lattice. */
     int32_t ia, ib, ja, jb;
-    neighbours(u - 0.5, r->width, &ia, &ib);
-    neighbours(v - 0.5, r->height, &ja, &jb);
-    /* Offsets from the point to each neighbour's centre, in cells, squared. */
-    const double cua = (double)ia + 0.5 - u, cub = (double)ib + 0.5 - u;
-    const double cva = (double)ja + 0.5 - v, cvb = (double)jb + 0.5 - v;
+    neighbours(u, r->width + 1, &ia, &ib);
+    neighbours(v, r->height + 1, &ja, &jb);
+    /* Offsets from the point to each corner, in cells, squared. */
+    const double cua = (double)ia - u, cub = (double)ib - u;
+    const double cva = (double)ja - v, cvb = (double)jb - v;
     const double ua2 = cua * cua, ub2 = cub * cub, va2 = cva * cva, vb2 = cvb * cvb;
     const int ok_ia = ia >= r->valid_i0 && ia < r->valid_i1, ok_ib = ib >= r->valid_i0 && ib < r->valid_i1;
     const int ok_ja = ja >= r->valid_j0 && ja < r->valid_j1, ok_jb = jb >= r->valid_j0 && jb < r->valid_j1;
-    const size_t w = (size_t)r->width;
-    /* The four neighbours in the order (ia, ja), (ib, ja), (ia, jb), (ib, jb). Every index is
-     * clamped to the raster, so all four loads stay inside it; one outside the valid window is
+    const size_t w = (size_t)r->width + 1u;
+    /* The four corners in the order (ia, ja), (ib, ja), (ia, jb), (ib, jb). Every index is
+     * clamped to the lattice, so all four loads stay inside it; one outside the valid window is
      * loaded but left out. Loads and square roots first, then the maximum: four independent
-     * chains instead of four branches (the same values as neighbour by neighbour). */
+     * chains instead of four branches (the same values as corner by corner). */
     const int ok[4] = {ok_ia && ok_ja, ok_ib && ok_ja, ok_ia && ok_jb, ok_ib && ok_jb};
     const float f[4] = {r->dist[(size_t)ja * w + (size_t)ia], r->dist[(size_t)ja * w + (size_t)ib],
                         r->dist[(size_t)jb * w + (size_t)ia], r->dist[(size_t)jb * w + (size_t)ib]};
@@ -335,6 +373,97 @@ double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double 
         if (ok[k] && lb[k] > best)
             best = lb[k];
     return best;
+}
+
+/* 1 when point (px, py) lies inside the open disc (cx, cy, rad) by more than the rounding
+ * margin (rad_in = rad less the margin, > 0: compared squared). */
+static int inside_disc(double px, double py, double cx, double cy, double rad_in)
+{
+    const double dx = px - cx, dy = py - cy;
+    return dx * dx + dy * dy < rad_in * rad_in;
+}
+
+double gmmrrt_raster_clearance_union(const gmmrrt_raster_t *r, double x, double y)
+{
+    double u, v;
+    to_cells(r, x, y, &u, &v);
+    int32_t ia, ib, ja, jb;
+    neighbours(u, r->width + 1, &ia, &ib);
+    neighbours(v, r->height + 1, &ja, &jb);
+    const size_t w = (size_t)r->width + 1u;
+    const int32_t ci[4] = {ia, ib, ia, ib}, cj[4] = {ja, ja, jb, jb};
+    /* The valid corners' circles, relative to the point, in cells. */
+    double cx[4], cy[4], rad[4], rad_in[4], dist[4];
+    int n = 0;
+    double single = -INFINITY;
+    for (int k = 0; k < 4; ++k) {
+        if (!(ci[k] >= r->valid_i0 && ci[k] < r->valid_i1 && cj[k] >= r->valid_j0 && cj[k] < r->valid_j1))
+            continue;
+        if ((k == 1 && ib == ia) || (k == 2 && jb == ja) || (k == 3 && (ib == ia || jb == ja)))
+            continue; /* a clamped corner counted already */
+        cx[n] = (double)ci[k] - u;
+        cy[n] = (double)cj[k] - v;
+        rad[n] = (double)r->dist[(size_t)cj[k] * w + (size_t)ci[k]] * r->inv_resolution_m;
+        rad_in[n] = rad[n] - UNION_MARGIN * (1.0 + rad[n]);
+        dist[n] = sqrt(cx[n] * cx[n] + cy[n] * cy[n]);
+        if (rad[n] - dist[n] > single)
+            single = rad[n] - dist[n];
+        ++n;
+    }
+    /* Not inside any disc, or inside one so large that the union is not needed (the field's
+     * "nothing blocks"): the single discs' bound. */
+    if (!(single > 0.0) || !(single < UNION_MAX_CELLS))
+        return single * r->resolution_m;
+    double best = INFINITY;
+    /* The nearest point of each circle: along the ray from its centre through the point. */
+    for (int k = 0; k < n; ++k) {
+        double px, py;
+        if (dist[k] > 0.0) {
+            px = cx[k] - cx[k] / dist[k] * rad[k];
+            py = cy[k] - cy[k] / dist[k] * rad[k];
+        } else { /* the point is the centre: every point of the circle is as near; take any */
+            px = cx[k] + rad[k];
+            py = cy[k];
+        }
+        int covered = 0;
+        for (int j = 0; j < n && !covered; ++j)
+            covered = j != k && rad_in[j] > 0.0 && inside_disc(px, py, cx[j], cy[j], rad_in[j]);
+        const double e = fabs(rad[k] - dist[k]);
+        if (!covered && e < best)
+            best = e;
+        if (dist[k] == 0.0 && rad[k] < best)
+            best = rad[k]; /* any point of the circle is as near: the whole circle counts */
+    }
+    /* The circles' crossings (the ends of the union's boundary arcs). A crossing lies on both
+     * circles, so it is at least each circle's nearest distance from the point: a pair whose
+     * larger one is not below the best so far cannot lower it. */
+    for (int a = 0; a < n; ++a)
+        for (int b = a + 1; b < n; ++b) {
+            const double ea = fabs(rad[a] - dist[a]), eb = fabs(rad[b] - dist[b]);
+            if ((ea > eb ? ea : eb) >= best)
+                continue;
+            const double ex = cx[b] - cx[a], ey = cy[b] - cy[a];
+            const double dd = sqrt(ex * ex + ey * ey);
+            if (!(dd > 0.0) || !(dd < rad[a] + rad[b]) || !(dd > fabs(rad[a] - rad[b])))
+                continue; /* apart, or one inside the other: no crossing */
+            const double inv = 1.0 / dd, t = (rad[a] * rad[a] - rad[b] * rad[b] + dd * dd) * 0.5 * inv;
+            const double h2 = rad[a] * rad[a] - t * t;
+            const double h = h2 > 0.0 ? sqrt(h2) : 0.0;
+            const double ux = ex * inv, uy = ey * inv;
+            const double mx = cx[a] + ux * t, my = cy[a] + uy * t;
+            for (int sgn = -1; sgn <= 1; sgn += 2) {
+                const double px = mx - (double)sgn * uy * h, py = my + (double)sgn * ux * h;
+                int covered = 0;
+                for (int j = 0; j < n && !covered; ++j)
+                    covered = j != a && j != b && rad_in[j] > 0.0 && inside_disc(px, py, cx[j], cy[j], rad_in[j]);
+                const double e2 = px * px + py * py;
+                if (!covered && e2 < best * best)
+                    best = sqrt(e2);
+            }
+        }
+    if (!(best < INFINITY) || best < single)
+        best = single; /* rounding: never below the single discs' bound, which holds anyway */
+    return (best - UNION_MARGIN * (1.0 + best)) * r->resolution_m;
 }
 
 double gmmrrt_raster_distance_to_blocked(const gmmrrt_raster_t *r, double x, double y, double max_m)

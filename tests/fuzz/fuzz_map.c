@@ -9,7 +9,8 @@
  *   - a refusal always comes with a message, and leaves the raster as it was (generation);
  *   - an accepted YAML has a resolution > 0, finite origin and 0 <= free < occupied <= 1;
  *   - an accepted image fits the capacity, every cell is FREE, OCCUPIED, UNKNOWN or 1..99,
- *     and the distance field is ready and zero exactly on the blocked cells.
+ *     and the distance field is ready and zero exactly at the corners of blocked cells (and on
+ *     the border while the outside blocks).
  */
 #include <math.h>
 #include <stdint.h>
@@ -22,7 +23,8 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 #define CAP_SIDE 256
-static uint64_t g_mem[(CAP_SIDE * CAP_SIDE * 9 + 8 * 4 * (CAP_SIDE + 2)) / 8 + 64];
+/* Cells and marks (5 bytes a cell), the field (a float a corner), the transform's scratch. */
+static uint64_t g_mem[(CAP_SIDE * CAP_SIDE * 5 + (CAP_SIDE + 1) * (CAP_SIDE + 1) * 4 + 8 * 4 * (CAP_SIDE + 3)) / 8 + 64];
 static gmmrrt_raster_t g_raster;
 static int g_ready;
 static char g_text[1 << 16];
@@ -86,8 +88,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const uint8_t v = r->cells[c];
         check(v == GMMRRT_RASTER_FREE || v == GMMRRT_RASTER_OCCUPIED || v == GMMRRT_RASTER_UNKNOWN || (v >= 1 && v <= 99),
               "cell value out of range");
-        const int blocked = v == GMMRRT_RASTER_OCCUPIED || (v == GMMRRT_RASTER_UNKNOWN && r->unknown_blocked);
-        check(blocked == (r->dist[c] == 0.0f), "field is not zero exactly on the blocked cells");
     }
+    for (int32_t j = 0; j <= r->height; ++j)
+        for (int32_t i = 0; i <= r->width; ++i) {
+            int blocked = r->unknown_blocked && (i == 0 || j == 0 || i == r->width || j == r->height);
+            for (int32_t b = j - 1; b <= j; ++b)
+                for (int32_t a = i - 1; a <= i; ++a)
+                    if (a >= 0 && b >= 0 && a < r->width && b < r->height) {
+                        const uint8_t v = r->cells[b * r->width + a];
+                        blocked |= v == GMMRRT_RASTER_OCCUPIED || (v == GMMRRT_RASTER_UNKNOWN && r->unknown_blocked);
+                    }
+            check(blocked == (r->dist[j * (r->width + 1) + i] == 0.0f),
+                  "field is not zero exactly at the blocked cells' corners");
+        }
     return 0;
 }

@@ -158,8 +158,8 @@ double gmmrrt_world_exact_clearance(const gmmrrt_world_t *world, double x, doubl
  * Values above cap_m - robot radius come back as that (the cells looked at lie within cap_m > 0;
  * NAN for cap_m <= 0 or NaN). Brute force over those cells and no allocation: for set-up work such as the
  * escape from a start in collision, not for the planning loop. The same cells block here as in
- * gmmrrt_world_point_free, which is stricter (it may refuse points up to half a cell's diagonal
- * farther out). */
+ * gmmrrt_world_point_free, which is stricter (it reads the raster's bound, exact at the cells'
+ * corners and short by up to a cell's diagonal between them). */
 double gmmrrt_world_map_clearance(const gmmrrt_world_t *world, double x, double y, double cap_m);
 
 #ifdef __cplusplus

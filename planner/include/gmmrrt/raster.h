@@ -16,7 +16,9 @@
  * configuration allows; a larger one is refused (GMMRRT_ERR_BUFFER_TOO_SMALL), never cut.
  * Nothing here allocates. The distance field (Felzenszwalb & Huttenlocher 2012, "Distance
  * Transforms of Sampled Functions", exact squared Euclidean distance in two 1-D passes) is
- * O(width x height).
+ * O(width x height). It is sampled at the cells' corners, where the distance to the blocked
+ * cells' squares is the distance to the nearest corner of a blocked cell (raster.c says why),
+ * so it is exact there, not only to the cell.
  */
 #ifndef GMMRRT_RASTER_H
 #define GMMRRT_RASTER_H
@@ -48,18 +50,27 @@ typedef struct gmmrrt_raster {
     uint32_t generation;         /* changes with every edit of cells, marks or the field */
     int64_t mark_epoch_utime;    /* utime of mark value 1; -1 before the first scan */
     double field_now_ms, field_decay_ms; /* the time (ms since the epoch) and decay of the field */
-    int32_t valid_i0, valid_i1, valid_j0, valid_j1; /* cells where dist[] holds (exclusive ends) */
+    int32_t valid_i0, valid_i1, valid_j0, valid_j1; /* corners where dist[] holds (exclusive ends) */
     uint8_t *cells;              /* width x height: FREE, OCCUPIED, UNKNOWN or 1..99 */
     uint32_t *marks;             /* scan marks: ms since the epoch + 1 of the last hit, 0 none */
-    float *dist;                 /* m from each cell's centre to the nearest blocked cell's centre
-                                    (rounded down); a huge value when nothing blocks */
-    double *scratch_f, *scratch_d, *scratch_z; /* max_side + 1 each: the 1-D transform */
+    float *dist;                 /* (width + 1) x (height + 1), row-major j * (width + 1) + i: m
+                                    from corner (i, j) (raster-frame point (i res, j res)) to the
+                                    nearest blocked cell's square, the outside's too when it
+                                    blocks (rounded down); a huge value when nothing blocks */
+    double *scratch_f, *scratch_d, *scratch_z; /* max_side + 2 each (z one more): the 1-D transform */
     int32_t *scratch_v;
 } gmmrrt_raster_t;
 
-/* Bytes for a raster of at most max_cells cells and max_side cells a side; 0 when either is
- * < 1, max_side > GMMRRT_MAX_RASTER_SIDE or max_cells > GMMRRT_MAX_RASTER_CELLS. */
+/* Bytes for a raster of at most max_cells cells and max_side cells a side (the cells, their
+ * scan marks, the field at every corner of the largest such raster, and the transform's
+ * scratch); 0 when either is < 1, max_side > GMMRRT_MAX_RASTER_SIDE or max_cells >
+ * GMMRRT_MAX_RASTER_CELLS. */
 size_t gmmrrt_raster_mem_size(int32_t max_cells, int32_t max_side);
+
+/* Bytes the cells, marks and field of one width x height raster take (the figure a refusal of
+ * an oversize map names); doubles, so sides from a file's header that overflow any integer
+ * still give a figure. */
+double gmmrrt_raster_bytes(double width, double height);
 
 /* Lays an empty raster (0 x 0, nothing blocks, distance not ready) in mem[size] (8-byte
  * aligned). GMMRRT_ERR_INVALID_ARGUMENT: NULL, misaligned or a capacity out of range;
@@ -81,8 +92,8 @@ gmmrrt_status_t gmmrrt_raster_set_geometry(gmmrrt_raster_t *r, int32_t width, in
 gmmrrt_status_t gmmrrt_raster_update_distance(gmmrrt_raster_t *r, int64_t now_utime, double mark_decay_ms);
 
 /* The field only where a planning problem can read it, for a raster that scans change every
- * cycle: the cells meeting the world box [xmin, xmax] x [ymin, ymax] (a problem's bounds) and one
- * more each side, computed from the blocked cells within reach_m (m) around them and capped at
+ * cycle: the corners of the cells meeting the world box [xmin, xmax] x [ymin, ymax] (a problem's
+ * bounds) and one more each side, computed from the blocked cells within reach_m (m) around them and capped at
  * about reach_m (so it stays a lower bound). Cost O((window + 2 reach / res)^2) cells, whatever the
  * raster's size. Everywhere else the field is invalid and the bound below calls points blocked;
  * reach_m should exceed the robot's radius by a few cells (a smaller one blocks points near
@@ -95,11 +106,25 @@ gmmrrt_status_t gmmrrt_raster_update_distance_window(gmmrrt_raster_t *r, int64_t
 /* 1 when the field is ready for the collision world. */
 int gmmrrt_raster_distance_ready(const gmmrrt_raster_t *r);
 
-/* A lower bound (m) of the distance from world point (x, y) to the centre of the nearest
- * blocked cell, 1-Lipschitz in (x, y): max over the four cell centres c around the point
- * (clamped to the raster, and inside the field's valid window) of dist(c) - |q - c|; -inf when
- * none of them is valid. Four loads; for the planning loop. */
+/* A lower bound (m) of the distance from world point q = (x, y) to the nearest blocked cell's
+ * square (the outside's too when it blocks): max over the four corners v of q's cell (clamped to
+ * the raster, and inside the field's valid window) of dist(v) - |q - v| (the distance is
+ * 1-Lipschitz, so each term is a lower bound); -inf when none of them is valid. Exact at the
+ * corners (to float rounding); elsewhere short by at most twice the distance to the nearest
+ * corner (a cell's diagonal at its centre). 1-Lipschitz inside a cell, not across its edges
+ * (the four corners change there, and so may the maximum): a caller that steps by it relies
+ * on the clearance it bounds being 1-Lipschitz, not on the bound. Four loads; for the planning
+ * loop. */
 double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double y);
+
+/* A lower bound (m) of the same distance, at least gmmrrt_raster_clearance_bound and mostly
+ * much nearer the distance: the disc of radius dist(v) around each corner v of the point's cell
+ * (valid ones, as above) holds nothing blocked, so neither does their union, and the point's
+ * distance to the union's outside is a bound. That distance is the least over the union's
+ * boundary of the distance to the point, taken at each circle's nearest point to it and at the
+ * circles' crossings that no other disc covers. The same four loads as the four-corner bound
+ * and several times its arithmetic; for where that bound cannot decide. */
+double gmmrrt_raster_clearance_union(const gmmrrt_raster_t *r, double x, double y);
 
 /* Exact distance (m) from world point (x, y) to the nearest blocked cell's square (0 inside
  * one), looking only at cells within max_m; max_m when none is that close. Brute force over
