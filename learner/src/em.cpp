@@ -120,37 +120,46 @@ void ComputeDataInfo(const Eigen::MatrixXd& xt, uint32_t mask, const FitOptions&
   info->mean.resize(d);
   for (Eigen::Index j = 0; j < d; ++j)
     info->mean[j] = IsAngleDim(mask, j) ? std::atan2(sum[j] * inv_n, sum[d + j] * inv_n) : sum[j] * inv_n;
-  auto delta = [&](Eigen::Index p, Eigen::Index j) {
-    const double v = xt(p, j) - info->mean[j];
-    return IsAngleDim(mask, j) ? gmmrrt_wrap_angle(v) : v;
+  // Column j's difference to the mean at point p (wrapped for an angle column).
+  auto delta = [&](const double* xj, Eigen::Index p, double mj, bool angle) {
+    const double v = xj[p] - mj;
+    return angle ? gmmrrt_wrap_angle(v) : v;
   };
   detail::ParallelFor(threads, tasks, [&](long t) {
     Eigen::Index first, last;
     PassRange(t, n, &first, &last);
     for (Eigen::Index j = 0; j < d; ++j) {
+      const double* xj = xt.col(j).data();
+      const double mj = info->mean[j];
+      const bool angle = IsAngleDim(mask, j);
       double a = 0.0;
-      for (Eigen::Index p = first; p < last; ++p) a += delta(p, j);
+      for (Eigen::Index p = first; p < last; ++p) a += delta(xj, p, mj, angle);
       part(j, t) = a;
     }
   });
   Eigen::VectorXd dmean = Eigen::VectorXd::Zero(d);
   for (long t = 0; t < tasks; ++t) dmean += part.col(t).head(d);
   dmean *= inv_n;
-  std::vector<Eigen::MatrixXd> cov_part(static_cast<size_t>(tasks));
+  // Lower triangle, one pair of columns at a time (a loop over points that vectorises).
+  Eigen::MatrixXd cov_part(d * d, tasks);
   detail::ParallelFor(threads, tasks, [&](long t) {
     Eigen::Index first, last;
     PassRange(t, n, &first, &last);
-    Eigen::MatrixXd& c = cov_part[static_cast<size_t>(t)];
-    c.setZero(d, d);
-    Eigen::VectorXd e(d);
-    for (Eigen::Index p = first; p < last; ++p) {
-      for (Eigen::Index j = 0; j < d; ++j) e[j] = delta(p, j) - dmean[j];
-      for (Eigen::Index b = 0; b < d; ++b)
-        for (Eigen::Index a = b; a < d; ++a) c(a, b) += e[a] * e[b];
-    }
+    for (Eigen::Index b = 0; b < d; ++b)
+      for (Eigen::Index a = b; a < d; ++a) {
+        const double *xa = xt.col(a).data(), *xb = xt.col(b).data();
+        const double ma = info->mean[a], mb = info->mean[b], da = dmean[a], db = dmean[b];
+        const bool angle_a = IsAngleDim(mask, a), angle_b = IsAngleDim(mask, b);
+        double acc = 0.0;
+        for (Eigen::Index p = first; p < last; ++p)
+          acc += (delta(xa, p, ma, angle_a) - da) * (delta(xb, p, mb, angle_b) - db);
+        cov_part(b * d + a, t) = acc;
+      }
   });
   info->cov = Eigen::MatrixXd::Zero(d, d);
-  for (const Eigen::MatrixXd& c : cov_part) info->cov += c;
+  for (long t = 0; t < tasks; ++t)
+    for (Eigen::Index b = 0; b < d; ++b)
+      for (Eigen::Index a = b; a < d; ++a) info->cov(a, b) += cov_part(b * d + a, t);
   info->cov *= inv_n;
   info->cov = info->cov.selfadjointView<Eigen::Lower>();
   info->reg = (o.reg_relative * info->cov.diagonal().array()).max(o.reg_floor).matrix();
@@ -247,12 +256,13 @@ void HardAssignmentStats(const Eigen::MatrixXd& xt, uint32_t mask, const KMeansR
   const int d = static_cast<int>(xt.cols()), k = static_cast<int>(km.centers.cols());
   const long tasks = detail::PassTasks(static_cast<long>(n));
   score->resize(n);
-  std::vector<Stats> part(static_cast<size_t>(tasks));
+  // Per task: n_k, then s1 (D per component), then s2 (D x D per component, column-major).
+  const size_t stride = static_cast<size_t>(1 + d + d * d);
+  std::vector<double> part(static_cast<size_t>(tasks) * k * stride, 0.0);
   detail::ParallelFor(threads, tasks, [&](long t) {
     Eigen::Index first, last;
     PassRange(t, n, &first, &last);
-    Stats& ts = part[static_cast<size_t>(t)];
-    ts.Reset(d, k);
+    double* ts = part.data() + static_cast<size_t>(t) * k * stride;
     double delta[GMMRRT_MAX_DIM];
     for (Eigen::Index c = first; c < last; ++c) {
       const int l = km.labels[c];
@@ -262,21 +272,25 @@ void HardAssignmentStats(const Eigen::MatrixXd& xt, uint32_t mask, const KMeansR
         delta[j] = IsAngleDim(mask, j) ? gmmrrt_wrap_angle(v) : v;
         norm2 += delta[j] * delta[j];
       }
-      ts.nk[l] += 1.0;
-      Eigen::MatrixXd& s2 = ts.s2[l];
+      double* cs = ts + static_cast<size_t>(l) * stride;
+      cs[0] += 1.0;
       for (int b = 0; b < d; ++b) {
-        ts.s1(b, l) += delta[b];
-        for (int a = 0; a < d; ++a) s2(a, b) += delta[a] * delta[b];
+        cs[1 + b] += delta[b];
+        for (int a = 0; a < d; ++a) cs[1 + d + b * d + a] += delta[a] * delta[b];
       }
       (*score)[c] = -norm2;
     }
   });
   st->Reset(d, k);
-  for (const Stats& ts : part) {
-    st->nk += ts.nk;
-    st->s1 += ts.s1;
-    for (int i = 0; i < k; ++i) st->s2[i] += ts.s2[i];
-  }
+  for (long t = 0; t < tasks; ++t)
+    for (int i = 0; i < k; ++i) {
+      const double* cs = part.data() + (static_cast<size_t>(t) * k + i) * stride;
+      st->nk[i] += cs[0];
+      for (int b = 0; b < d; ++b) {
+        st->s1(b, i) += cs[1 + b];
+        for (int a = 0; a < d; ++a) st->s2[i](a, b) += cs[1 + d + b * d + a];
+      }
+    }
 }
 
 // Candidates for re-seeding: point indices from the lowest score upward.

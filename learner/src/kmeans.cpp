@@ -347,9 +347,7 @@ double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* l
     const Eigen::Index first = l.First(g);
     const int size = l.Size(g);
     double* bst = best->data() + first;
-    int* lab = labels->data() + first;
-    int before[kGroupPoints];
-    if (changed) std::copy(lab, lab + size, before);
+    int lab[kGroupPoints];  // copied out below, compared with the previous labels on the way
     bool started = false;
     for (int c = 0; c < k; ++c) {
       if (low[c] > threshold) continue;
@@ -367,7 +365,12 @@ double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* l
       }
     }
     group_sum[static_cast<size_t>(g)] = GroupSum(bst, size);
-    if (changed) group_changed[static_cast<size_t>(g)] = !std::equal(lab, lab + size, before);
+    int* out = labels->data() + first;
+    int differ = 0;
+    if (changed)
+      for (int q = 0; q < size; ++q) differ |= out[q] ^ lab[q];
+    for (int q = 0; q < size; ++q) out[q] = lab[q];
+    group_changed[static_cast<size_t>(g)] = differ != 0;
   });
   if (changed) *changed = std::find(group_changed.begin(), group_changed.end(), 1) != group_changed.end();
   double inertia = 0.0;

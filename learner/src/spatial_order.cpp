@@ -22,12 +22,18 @@ uint32_t Cell(double v, double lo, double scale) {
   return std::min<uint32_t>(static_cast<uint32_t>(c), kCells - 1);
 }
 
+// Bits of a cell index 0..63 spread to the even positions (bit b to bit 2 b).
+struct SpreadTable {
+  uint32_t v[kCells];
+  constexpr SpreadTable() : v() {
+    for (uint32_t x = 0; x < kCells; ++x)
+      for (int b = 0; b < kBits; ++b) v[x] |= ((x >> b) & 1u) << (2 * b);
+  }
+};
+constexpr SpreadTable kSpread;
+
 // Interleaves the bits of x (even positions) and y (odd positions).
-uint32_t Morton(uint32_t x, uint32_t y) {
-  uint32_t key = 0;
-  for (int b = 0; b < kBits; ++b) key |= ((x >> b) & 1u) << (2 * b) | ((y >> b) & 1u) << (2 * b + 1);
-  return key;
-}
+inline uint32_t Morton(uint32_t x, uint32_t y) { return kSpread.v[x] | kSpread.v[y] << 1; }
 
 }  // namespace
 
