@@ -597,7 +597,9 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
                       f"{fmt(si.get(f'speedup_vs_sklearn_1_cpu{tag}'), 1, 'x')}"]
             L += [f"- Armadillo's second core: {fmt(si.get('second_core_armadillo'), 2, 'x')} (wall; a loaded machine "
                   "has no free core to give)",
-                  f"- commands: `{((_get(si, 'ours_2', 'runs') or [{}])[0]).get('command')}`; "
+                  "- commands, shown for the first seed (seed S runs the same with `--seed S`, Armadillo's last "
+                  "argument S, scikit-learn's `random_state=S`): "
+                  f"`{((_get(si, 'ours_2', 'runs') or [{}])[0]).get('command')}`; "
                   f"`{((_get(si, 'ours_one_2', 'runs') or [{}])[0]).get('command')}`; "
                   f"`{((_get(si, 'armadillo_2', 'runs') or [{}])[0]).get('command')}`", ""]
         kr = le.get("k_recovery") or {}
