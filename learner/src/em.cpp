@@ -263,6 +263,46 @@ void HardAssignmentStats(const Eigen::MatrixXd& xt, uint32_t mask, const KMeansR
     Eigen::Index first, last;
     PassRange(t, n, &first, &last);
     double* ts = part.data() + static_cast<size_t>(t) * k * stride;
+    if (d == 2) {
+      // Points in spatial order come in runs of one label: a run's sums stay in registers and
+      // are added to its cluster's slot when the label changes (instead of a store and a load
+      // of the slot per point, a chain of dependent memory round trips).
+      const bool angle0 = IsAngleDim(mask, 0), angle1 = IsAngleDim(mask, 1);
+      const double* x0 = xt.col(0).data();
+      const double* x1 = xt.col(1).data();
+      int run = km.labels[first];
+      double r[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // count, s1 (2), s2 (00, 10, 11)
+      auto flush = [&]() {
+        double* cs = ts + static_cast<size_t>(run) * stride;  // layout: n, s1 0..1, s2 col-major
+        cs[0] += r[0];
+        cs[1] += r[1];
+        cs[2] += r[2];
+        cs[3] += r[3];
+        cs[4] += r[4];
+        cs[5] += r[4];
+        cs[6] += r[5];
+        for (double& v : r) v = 0.0;
+      };
+      for (Eigen::Index c = first; c < last; ++c) {
+        const int l = km.labels[c];
+        if (l != run) {
+          flush();
+          run = l;
+        }
+        double e0 = x0[c] - km.centers(0, l), e1 = x1[c] - km.centers(1, l);
+        if (angle0) e0 = gmmrrt_wrap_angle(e0);
+        if (angle1) e1 = gmmrrt_wrap_angle(e1);
+        r[0] += 1.0;
+        r[1] += e0;
+        r[2] += e1;
+        r[3] += e0 * e0;
+        r[4] += e1 * e0;
+        r[5] += e1 * e1;
+        (*score)[c] = -(e0 * e0 + e1 * e1);
+      }
+      flush();
+      return;
+    }
     double delta[GMMRRT_MAX_DIM];
     for (Eigen::Index c = first; c < last; ++c) {
       const int l = km.labels[c];
