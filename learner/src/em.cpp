@@ -96,7 +96,7 @@ void ComputeDataInfo(const Eigen::MatrixXd& xt, uint32_t mask, const FitOptions&
   const Eigen::Index d = xt.cols(), n = xt.rows();
   const long tasks = detail::PassTasks(static_cast<long>(n));
   const double inv_n = 1.0 / static_cast<double>(n);
-  Eigen::MatrixXd part(3 * d, tasks);  // per task: sums of x (or sin x), cos x; then of deltas
+  Eigen::MatrixXd part(2 * d, tasks);  // per task: sums of x (or sin x), of cos x; then of deltas
   detail::ParallelFor(threads, tasks, [&](long t) {
     Eigen::Index first, last;
     PassRange(t, n, &first, &last);
@@ -115,7 +115,7 @@ void ComputeDataInfo(const Eigen::MatrixXd& xt, uint32_t mask, const FitOptions&
       part(d + j, t) = b;
     }
   });
-  Eigen::VectorXd sum = Eigen::VectorXd::Zero(3 * d);
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(2 * d);
   for (long t = 0; t < tasks; ++t) sum += part.col(t);
   info->mean.resize(d);
   for (Eigen::Index j = 0; j < d; ++j)
