@@ -31,10 +31,11 @@ thread_local bool in_pool_task = false;
 
 // How long a pool thread polls before it sleeps: for the helpers, after a pass, for the next one;
 // for the caller, at the end of a pass, for the helpers' last tasks. A fit's passes follow one
-// another with little serial work between them (tens of microseconds), and waking a sleeping
-// thread through the scheduler costs about as much again on a virtual machine (an idle vCPU is
-// halted); the polling is bounded so that an idle pool costs nothing after it.
-constexpr auto kPollFor = std::chrono::microseconds(100);
+// another with little serial work between them (a few to tens of microseconds), and waking a
+// sleeping thread through the scheduler costs more on a virtual machine (an idle vCPU is
+// halted); the polling is bounded so that an idle pool costs nothing after it, and short (100 us
+// gave the same wall time on the benchmark fit for more CPU: docs/learner.md).
+constexpr auto kPollFor = std::chrono::microseconds(20);
 
 inline void CpuRelax() {
 #if defined(__x86_64__) || defined(__i386__)
