@@ -80,20 +80,88 @@ struct DataInfo {
   Eigen::VectorXd reg;        // D: added to each covariance diagonal
 };
 
-void ComputeDataInfo(const Eigen::MatrixXd& xt, uint32_t mask, const FitOptions& o, DataInfo* info) {
-  const Eigen::Index d = xt.cols();
-  info->mean = xt.colwise().mean().transpose();
-  for (Eigen::Index j = 0; j < d; ++j) {
-    if (!((mask >> j) & 1u)) continue;
-    const double s = xt.col(j).array().sin().mean(), c = xt.col(j).array().cos().mean();
-    info->mean[j] = std::atan2(s, c);
-  }
-  Eigen::MatrixXd delta = xt.transpose().colwise() - info->mean;
-  const Eigen::Index n = xt.rows();
-  WrapAngleRows(mask, &delta);
-  const Eigen::VectorXd dmean = delta.rowwise().mean();
-  delta.colwise() -= dmean;
-  info->cov = delta * delta.transpose() / static_cast<double>(n);
+// Points [*first, *last) of pass task t over n points (parallel.hpp).
+inline void PassRange(long t, Eigen::Index n, Eigen::Index* first, Eigen::Index* last) {
+  *first = static_cast<Eigen::Index>(t) * detail::kPassTaskPoints;
+  *last = std::min<Eigen::Index>(n, *first + detail::kPassTaskPoints);
+}
+
+inline bool IsAngleDim(uint32_t mask, Eigen::Index j) { return j < 32 && ((mask >> j) & 1u); }
+
+// The data's mean and covariance in three passes on up to `threads` threads (sums per task of
+// points, added in task order: the same bits for any thread count): the mean (angle columns:
+// the circular mean, from the sums of sine and cosine), the mean of the (wrapped) differences
+// to it, and the covariance of those differences about their mean (two-pass, no cancellation).
+void ComputeDataInfo(const Eigen::MatrixXd& xt, uint32_t mask, const FitOptions& o, int threads, DataInfo* info) {
+  const Eigen::Index d = xt.cols(), n = xt.rows();
+  const long tasks = detail::PassTasks(static_cast<long>(n));
+  const double inv_n = 1.0 / static_cast<double>(n);
+  Eigen::MatrixXd part(2 * d, tasks);  // per task: sums of x (or sin x), of cos x; then of deltas
+  detail::ParallelFor(threads, tasks, [&](long t) {
+    Eigen::Index first, last;
+    PassRange(t, n, &first, &last);
+    for (Eigen::Index j = 0; j < d; ++j) {
+      const double* xj = xt.col(j).data();
+      double a = 0.0, b = 0.0;
+      if (IsAngleDim(mask, j)) {
+        for (Eigen::Index p = first; p < last; ++p) {
+          a += std::sin(xj[p]);
+          b += std::cos(xj[p]);
+        }
+      } else {
+        for (Eigen::Index p = first; p < last; ++p) a += xj[p];
+      }
+      part(j, t) = a;
+      part(d + j, t) = b;
+    }
+  });
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(2 * d);
+  for (long t = 0; t < tasks; ++t) sum += part.col(t);
+  info->mean.resize(d);
+  for (Eigen::Index j = 0; j < d; ++j)
+    info->mean[j] = IsAngleDim(mask, j) ? std::atan2(sum[j] * inv_n, sum[d + j] * inv_n) : sum[j] * inv_n;
+  // Column j's difference to the mean at point p (wrapped for an angle column).
+  auto delta = [&](const double* xj, Eigen::Index p, double mj, bool angle) {
+    const double v = xj[p] - mj;
+    return angle ? gmmrrt_wrap_angle(v) : v;
+  };
+  detail::ParallelFor(threads, tasks, [&](long t) {
+    Eigen::Index first, last;
+    PassRange(t, n, &first, &last);
+    for (Eigen::Index j = 0; j < d; ++j) {
+      const double* xj = xt.col(j).data();
+      const double mj = info->mean[j];
+      const bool angle = IsAngleDim(mask, j);
+      double a = 0.0;
+      for (Eigen::Index p = first; p < last; ++p) a += delta(xj, p, mj, angle);
+      part(j, t) = a;
+    }
+  });
+  Eigen::VectorXd dmean = Eigen::VectorXd::Zero(d);
+  for (long t = 0; t < tasks; ++t) dmean += part.col(t).head(d);
+  dmean *= inv_n;
+  // Lower triangle, one pair of columns at a time (a loop over points that vectorises).
+  Eigen::MatrixXd cov_part(d * d, tasks);
+  detail::ParallelFor(threads, tasks, [&](long t) {
+    Eigen::Index first, last;
+    PassRange(t, n, &first, &last);
+    for (Eigen::Index b = 0; b < d; ++b)
+      for (Eigen::Index a = b; a < d; ++a) {
+        const double *xa = xt.col(a).data(), *xb = xt.col(b).data();
+        const double ma = info->mean[a], mb = info->mean[b], da = dmean[a], db = dmean[b];
+        const bool angle_a = IsAngleDim(mask, a), angle_b = IsAngleDim(mask, b);
+        double acc = 0.0;
+        for (Eigen::Index p = first; p < last; ++p)
+          acc += (delta(xa, p, ma, angle_a) - da) * (delta(xb, p, mb, angle_b) - db);
+        cov_part(b * d + a, t) = acc;
+      }
+  });
+  info->cov = Eigen::MatrixXd::Zero(d, d);
+  for (long t = 0; t < tasks; ++t)
+    for (Eigen::Index b = 0; b < d; ++b)
+      for (Eigen::Index a = b; a < d; ++a) info->cov(a, b) += cov_part(b * d + a, t);
+  info->cov *= inv_n;
+  info->cov = info->cov.selfadjointView<Eigen::Lower>();
   info->reg = (o.reg_relative * info->cov.diagonal().array()).max(o.reg_floor).matrix();
 }
 
@@ -176,6 +244,93 @@ double EStep(const Mixture& m, const Eigen::MatrixXd& xt, int threads, Stats* st
     for (int i = 0; i < m.k(); ++i) st->s2[i] += ts.s2[i];
   }
   return point_ll->mean();
+}
+
+// The statistics of k-means' hard assignment (each point's responsibility 1 for its cluster),
+// taken around the centres, and each point's score (minus its squared distance to its centre),
+// on up to `threads` threads: sums per task of points, added in task order, so the same bits
+// for any thread count.
+void HardAssignmentStats(const Eigen::MatrixXd& xt, uint32_t mask, const KMeansResult& km, int threads, Stats* st,
+                         Eigen::VectorXd* score) {
+  const Eigen::Index n = xt.rows();
+  const int d = static_cast<int>(xt.cols()), k = static_cast<int>(km.centers.cols());
+  const long tasks = detail::PassTasks(static_cast<long>(n));
+  score->resize(n);
+  // Per task: n_k, then s1 (D per component), then s2 (D x D per component, column-major).
+  const size_t stride = static_cast<size_t>(1 + d + d * d);
+  std::vector<double> part(static_cast<size_t>(tasks) * k * stride, 0.0);
+  detail::ParallelFor(threads, tasks, [&](long t) {
+    Eigen::Index first, last;
+    PassRange(t, n, &first, &last);
+    double* ts = part.data() + static_cast<size_t>(t) * k * stride;
+    if (d == 2) {
+      // Points in spatial order come in runs of one label: a run's sums stay in registers and
+      // are added to its cluster's slot when the label changes (instead of a store and a load
+      // of the slot per point, a chain of dependent memory round trips).
+      const bool angle0 = IsAngleDim(mask, 0), angle1 = IsAngleDim(mask, 1);
+      const double* x0 = xt.col(0).data();
+      const double* x1 = xt.col(1).data();
+      int run = km.labels[first];
+      double r[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // count, s1 (2), s2 (00, 10, 11)
+      auto flush = [&]() {
+        double* cs = ts + static_cast<size_t>(run) * stride;  // layout: n, s1 0..1, s2 col-major
+        cs[0] += r[0];
+        cs[1] += r[1];
+        cs[2] += r[2];
+        cs[3] += r[3];
+        cs[4] += r[4];
+        cs[5] += r[4];
+        cs[6] += r[5];
+        for (double& v : r) v = 0.0;
+      };
+      for (Eigen::Index c = first; c < last; ++c) {
+        const int l = km.labels[c];
+        if (l != run) {
+          flush();
+          run = l;
+        }
+        double e0 = x0[c] - km.centers(0, l), e1 = x1[c] - km.centers(1, l);
+        if (angle0) e0 = gmmrrt_wrap_angle(e0);
+        if (angle1) e1 = gmmrrt_wrap_angle(e1);
+        r[0] += 1.0;
+        r[1] += e0;
+        r[2] += e1;
+        r[3] += e0 * e0;
+        r[4] += e1 * e0;
+        r[5] += e1 * e1;
+        (*score)[c] = -(e0 * e0 + e1 * e1);
+      }
+      flush();
+      return;
+    }
+    double delta[GMMRRT_MAX_DIM];
+    for (Eigen::Index c = first; c < last; ++c) {
+      const int l = km.labels[c];
+      double norm2 = 0.0;
+      for (int j = 0; j < d; ++j) {
+        const double v = xt(c, j) - km.centers(j, l);
+        delta[j] = IsAngleDim(mask, j) ? gmmrrt_wrap_angle(v) : v;
+        norm2 += delta[j] * delta[j];
+      }
+      double* cs = ts + static_cast<size_t>(l) * stride;
+      cs[0] += 1.0;
+      for (int b = 0; b < d; ++b) {
+        cs[1 + b] += delta[b];
+        for (int a = 0; a < d; ++a) cs[1 + d + b * d + a] += delta[a] * delta[b];
+      }
+      (*score)[c] = -norm2;
+    }
+  });
+  st->Reset(d, k);
+  for (long t = 0; t < tasks; ++t)
+    for (int i = 0; i < k; ++i) {
+      const double* cs = part.data() + (static_cast<size_t>(t) * k + i) * stride;
+      st->nk[i] += cs[0];
+      for (int b = 0; b < d; ++b) {
+        st->s1(b, i) += cs[1 + b];
+        for (int a = 0; a < d; ++a) st->s2[i](a, b) += cs[1 + d + b * d + a];
+      }
+    }
 }
 
 // Candidates for re-seeding: point indices from the lowest score upward.
@@ -464,29 +619,63 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
                          std::to_string(n) + " points, but K = " + std::to_string(options.k) +
                              " components in D = " + std::to_string(d) + " need at least K (D + 1) = " +
                              std::to_string(needed));
-  for (Eigen::Index c = 0; c < n; ++c)
-    for (int j = 0; j < d; ++j)
-      if (!std::isfinite(points(j, c)))
-        return Status::Error(StatusCode::kBadInput, "point " + std::to_string(c) + ", dimension " +
-                                                        std::to_string(j) + " is not finite");
+  // The checks and copies below run on the fit's threads, in tasks of points (parallel.hpp).
+  const int threads = options.threads > 0 ? options.threads : detail::AvailableCores();
+  const long tasks = detail::PassTasks(static_cast<long>(n));
+  {
+    std::vector<Eigen::Index> first_bad(static_cast<size_t>(tasks), -1);  // c D + j, or -1
+    detail::ParallelFor(threads, tasks, [&](long t) {
+      Eigen::Index first, last;
+      PassRange(t, n, &first, &last);
+      for (Eigen::Index c = first; c < last; ++c)
+        for (int j = 0; j < d; ++j)
+          if (!std::isfinite(points(j, c))) {
+            first_bad[static_cast<size_t>(t)] = c * d + j;
+            return;
+          }
+    });
+    for (Eigen::Index bad : first_bad)  // the first bad value in the points' order
+      if (bad >= 0)
+        return Status::Error(StatusCode::kBadInput, "point " + std::to_string(bad / d) + ", dimension " +
+                                                        std::to_string(bad % d) + " is not finite");
+  }
 
   *summary = FitSummary();
   summary->n_points = n;
   summary->dim = d;
   summary->k_requested = options.k;
-  Eigen::MatrixXd x = points;
-  WrapAngleRows(angle_mask, &x);
-  // Points as rows (see component_terms.hpp). For the fused 2-D E-step they are put in spatial
-  // order first (spatial_order.hpp): its lanes then hold nearby points and skip far components
-  // together. The order is a function of the points only, so the fit stays deterministic.
+  // Points as rows (see component_terms.hpp), angle columns wrapped. For the fused 2-D E-step
+  // they are put in spatial order (spatial_order.hpp): its lanes then hold nearby points and skip
+  // far components together. The order is a function of the points only, so the fit stays
+  // deterministic.
+  Eigen::MatrixXd rows(n, d);
+  detail::ParallelFor(threads, tasks, [&](long t) {
+    Eigen::Index first, last;
+    PassRange(t, n, &first, &last);
+    for (int j = 0; j < d; ++j) {
+      double* out = rows.col(j).data();
+      if (IsAngleDim(angle_mask, j))
+        for (Eigen::Index c = first; c < last; ++c) out[c] = gmmrrt_wrap_angle(points(j, c));
+      else
+        for (Eigen::Index c = first; c < last; ++c) out[c] = points(j, c);
+    }
+  });
   std::vector<Eigen::Index> order;
   Eigen::MatrixXd xt;
   if (d == 2 && (angle_mask == 0u || angle_mask == 2u)) {
-    order = detail::SpatialOrder2d(x.transpose());
+    order = detail::SpatialOrder2d(rows, threads);
     xt.resize(n, d);
-    for (Eigen::Index p = 0; p < n; ++p) xt.row(p) = x.col(order[p]).transpose();
+    detail::ParallelFor(threads, tasks, [&](long t) {
+      Eigen::Index first, last;
+      PassRange(t, n, &first, &last);
+      for (int j = 0; j < d; ++j) {
+        const double* in = rows.col(j).data();
+        double* out = xt.col(j).data();
+        for (Eigen::Index p = first; p < last; ++p) out[p] = in[order[p]];
+      }
+    });
   } else {
-    xt = x.transpose();
+    xt = std::move(rows);
   }
 
   FitState s;
@@ -496,9 +685,9 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   s.options = &options;
   s.summary = summary;
   s.max_reseeds = options.max_reseeds < 0 ? 3 * options.k : options.max_reseeds;
-  s.threads = options.threads > 0 ? options.threads : detail::AvailableCores();
+  s.threads = threads;
   summary->threads = s.threads;
-  ComputeDataInfo(xt, angle_mask, options, &s.info);
+  ComputeDataInfo(xt, angle_mask, options, threads, &s.info);
   for (int j = 0; j < d; ++j)
     if (!(s.info.cov(j, j) > options.reg_floor))
       return Status::Error(StatusCode::kBadInput,
@@ -582,21 +771,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     run.kmeans_inertia = km.inertia;
     run.m.dim = d;
     run.m.angle_mask = angle_mask;
-    run.stats.Reset(d, options.k);
-    run.score.resize(n_screen);
-    Eigen::VectorXd delta(d);
-    for (Eigen::Index c = 0; c < n_screen; ++c) {
-      const int l = km.labels[c];
-      delta = screen_xt.row(c).transpose() - km.centers.col(l);
-      for (int j = 0; j < d; ++j)
-        if ((angle_mask >> j) & 1u) delta[j] = gmmrrt_wrap_angle(delta[j]);
-      run.stats.nk[l] += 1.0;
-      run.stats.s1.col(l) += delta;
-      Eigen::MatrixXd& s2 = run.stats.s2[l];
-      for (int b = 0; b < d; ++b)  // delta delta^T without a temporary matrix per point (malloc)
-        for (int a = 0; a < d; ++a) s2(a, b) += delta[a] * delta[b];
-      run.score[c] = -delta.squaredNorm();
-    }
+    HardAssignmentStats(screen_xt, angle_mask, km, cs.threads, &run.stats, &run.score);
     MStep(cs, run.stats, km.centers, run.score, 0, &run.m);
     if (run.m.k() > 0) Advance(cs, &run, screen_until);
   });

@@ -119,10 +119,10 @@ void MakeLayout(const Eigen::MatrixXd& x, uint32_t mask, const KMeansOptions& o,
   l->groups = (l->n + kGroupPoints - 1) / kGroupPoints;
   l->lo.resize(l->d, l->groups);
   l->hi.resize(l->d, l->groups);
-  for (int c = 0; c < l->d; ++c) {
-    const double* xc = x.col(c).data();
-    for (Eigen::Index g = 0; g < l->groups; ++g) {
-      const Eigen::Index first = l->First(g), last = first + l->Size(g);
+  l->ForGroups([l](Eigen::Index g) {
+    const Eigen::Index first = l->First(g), last = first + l->Size(g);
+    for (int c = 0; c < l->d; ++c) {
+      const double* xc = l->x->col(c).data();
       double lo = xc[first], hi = lo;
       for (Eigen::Index p = first + 1; p < last; ++p) {
         lo = std::min(lo, xc[p]);
@@ -131,7 +131,7 @@ void MakeLayout(const Eigen::MatrixXd& x, uint32_t mask, const KMeansOptions& o,
       l->lo(c, g) = lo;
       l->hi(c, g) = hi;
     }
-  }
+  });
 }
 
 // Bounds of the squared (wrapped) distance from center to any point of group g, as the point
@@ -296,14 +296,18 @@ void SeedPlusPlus(const Layout& l, int k, std::mt19937_64* rng, Eigen::MatrixXd*
   }
 }
 
-// Assigns every point to its nearest center (ties: the lower index); returns the inertia. Per
-// group, only the centers whose lower bound is within the smallest upper bound can hold a
-// nearest center; they are visited in index order, so labels and distances are those of a scan
-// over all centers.
-double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* labels, Eigen::ArrayXd* best) {
+// Assigns every point to its nearest center (ties: the lower index); returns the inertia (summed
+// per group, then in group order). Per group, only the centers whose lower bound is within the
+// smallest upper bound can hold a nearest center; they are visited in index order, so labels and
+// distances are those of a scan over all centers. changed (if not null; *labels then holds the
+// previous pass's labels): whether any label differs from before.
+double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* labels, Eigen::ArrayXd* best,
+              bool* changed) {
   const int k = static_cast<int>(centers.cols());
   labels->resize(l.n);
   best->resize(l.n);
+  std::vector<double> group_sum(static_cast<size_t>(l.groups));
+  std::vector<char> group_changed(static_cast<size_t>(l.groups), 0);
   std::vector<double> by_dim(static_cast<size_t>(l.d) * k);  // center c's coordinate j at [j k + c]
   for (int j = 0; j < l.d; ++j)
     for (int c = 0; c < k; ++c) by_dim[static_cast<size_t>(j) * k + c] = centers(j, c);
@@ -343,7 +347,7 @@ double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* l
     const Eigen::Index first = l.First(g);
     const int size = l.Size(g);
     double* bst = best->data() + first;
-    int* lab = labels->data() + first;
+    int lab[kGroupPoints];  // copied out below, compared with the previous labels on the way
     bool started = false;
     for (int c = 0; c < k; ++c) {
       if (low[c] > threshold) continue;
@@ -360,8 +364,18 @@ double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* l
         lab[q] = closer ? c : lab[q];
       }
     }
+    group_sum[static_cast<size_t>(g)] = GroupSum(bst, size);
+    int* out = labels->data() + first;
+    int differ = 0;
+    if (changed)
+      for (int q = 0; q < size; ++q) differ |= out[q] ^ lab[q];
+    for (int q = 0; q < size; ++q) out[q] = lab[q];
+    group_changed[static_cast<size_t>(g)] = differ != 0;
   });
-  return best->sum();
+  if (changed) *changed = std::find(group_changed.begin(), group_changed.end(), 1) != group_changed.end();
+  double inertia = 0.0;
+  for (double v : group_sum) inertia += v;
+  return inertia;
 }
 
 // Moves the centers to their clusters' means; returns the summed squared center shift. The
@@ -447,25 +461,50 @@ Status KMeans(const Eigen::MatrixXd& points, uint32_t angle_mask, const KMeansOp
     return Status::Error(StatusCode::kNotEnoughData,
                          "k-means: " + std::to_string(points.rows()) + " points for " +
                              std::to_string(options.k) + " clusters");
-  // scikit-learn's tolerance: 1e-4 of the mean per-dimension variance.
-  const Eigen::RowVectorXd mean = points.colwise().mean();
-  const double shift_tol = 1e-4 * (points.rowwise() - mean).array().square().colwise().mean().mean();
   Layout layout;
   MakeLayout(points, angle_mask, options, &layout);
+  // scikit-learn's tolerance: 1e-4 of the mean per-dimension variance (sums per task, then in
+  // task order).
+  const long tasks = layout.Tasks();
+  const int d = layout.d;
+  const double inv_n = 1.0 / static_cast<double>(layout.n);
+  Eigen::MatrixXd part(d, tasks);
+  auto for_tasks = [&](auto f) {  // f(task, first point, end point)
+    detail::ParallelFor(layout.threads, tasks, [&](long t) {
+      const Eigen::Index first = layout.First(t * kTaskGroups);
+      f(t, first, std::min<Eigen::Index>(layout.n, first + kTaskGroups * kGroupPoints));
+    });
+  };
+  for_tasks([&](long t, Eigen::Index first, Eigen::Index end) {
+    for (int c = 0; c < d; ++c) {
+      double sum = 0.0;
+      for (Eigen::Index p = first; p < end; ++p) sum += points(p, c);
+      part(c, t) = sum;
+    }
+  });
+  const Eigen::VectorXd mean = part.rowwise().sum() * inv_n;
+  for_tasks([&](long t, Eigen::Index first, Eigen::Index end) {
+    for (int c = 0; c < d; ++c) {
+      double sum = 0.0;
+      for (Eigen::Index p = first; p < end; ++p) sum += (points(p, c) - mean[c]) * (points(p, c) - mean[c]);
+      part(c, t) = sum;
+    }
+  });
+  const double shift_tol = 1e-4 * part.sum() * inv_n / d;
   result->inertia = std::numeric_limits<double>::infinity();
   Eigen::MatrixXd centers;
-  Eigen::ArrayXi labels, previous;
+  Eigen::ArrayXi labels;
   Eigen::ArrayXd best;
   for (int r = 0; r < options.restarts; ++r) {
     SeedPlusPlus(layout, options.k, rng, &centers);
-    double inertia = Assign(layout, centers, &labels, &best);
+    double inertia = Assign(layout, centers, &labels, &best, nullptr);
     int it = 0;
     while (it < options.max_iterations) {
       ++it;
-      previous = labels;
       const double shift = Update(layout, labels, best, &centers);
-      inertia = Assign(layout, centers, &labels, &best);
-      if ((labels == previous).all() || shift <= shift_tol) break;
+      bool changed = true;
+      inertia = Assign(layout, centers, &labels, &best, &changed);
+      if (!changed || shift <= shift_tol) break;
     }
     if (inertia < result->inertia) {
       result->inertia = inertia;

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
@@ -27,6 +28,33 @@ namespace detail {
 namespace {
 
 thread_local bool in_pool_task = false;
+
+// How long a pool thread polls before it sleeps: for the helpers, after a pass, for the next one;
+// for the caller, at the end of a pass, for the helpers' last tasks. A fit's passes follow one
+// another with little serial work between them (a few to tens of microseconds), and waking a
+// sleeping thread through the scheduler costs more on a virtual machine (an idle vCPU is
+// halted); the polling is bounded so that an idle pool costs nothing after it, and short (100 us
+// gave the same wall time on the benchmark fit for more CPU: docs/learner.md).
+constexpr auto kPollFor = std::chrono::microseconds(20);
+
+inline void CpuRelax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#else
+  std::this_thread::yield();
+#endif
+}
+
+// Polls done() for up to kPollFor; true when it held.
+template <typename F>
+bool PollUntil(const F& done) {
+  const auto until = std::chrono::steady_clock::now() + kPollFor;
+  for (unsigned i = 1;; ++i) {
+    if (done()) return true;
+    CpuRelax();
+    if (i % 64 == 0 && std::chrono::steady_clock::now() > until) return done();
+  }
+}
 
 void RunTasks(std::atomic<long>* next, long n_tasks, const std::function<void(long task)>& task) {
   for (long t = next->fetch_add(1); t < n_tasks; t = next->fetch_add(1)) task(t);
@@ -52,8 +80,8 @@ class Pool {
     n_tasks_ = n_tasks;
     next_.store(0);
     helpers_ = helpers;
-    active_ = helpers;
-    ++generation_;
+    active_.store(helpers);
+    generation_.store(generation_.load() + 1);
     lock.unlock();
     wake_.notify_all();
     // A task that throws on this thread ends only this thread's share: the helpers still hold
@@ -68,8 +96,9 @@ class Pool {
       failed = std::current_exception();
     }
     in_pool_task = false;
+    PollUntil([this] { return active_.load() == 0; });
     lock.lock();
-    done_.wait(lock, [this] { return active_ == 0; });
+    done_.wait(lock, [this] { return active_.load() == 0; });
     task_ = nullptr;
     if (failed) std::rethrow_exception(failed);
     return true;
@@ -79,17 +108,18 @@ class Pool {
   void Work(int id) {
     in_pool_task = true;
     uint64_t seen = 0;
-    std::unique_lock<std::mutex> lock(m_);
     for (;;) {
-      wake_.wait(lock, [this, seen] { return generation_ != seen; });
-      seen = generation_;
+      PollUntil([this, seen] { return generation_.load() != seen; });
+      std::unique_lock<std::mutex> lock(m_);
+      wake_.wait(lock, [this, seen] { return generation_.load() != seen; });
+      seen = generation_.load();
       if (id >= helpers_) continue;  // not wanted for this pass
       const std::function<void(long task)>* task = task_;
       const long n_tasks = n_tasks_;
       lock.unlock();
       RunTasks(&next_, n_tasks, *task);
       lock.lock();
-      if (--active_ == 0) done_.notify_one();
+      if (active_.fetch_sub(1) == 1) done_.notify_one();
     }
   }
 
@@ -102,8 +132,9 @@ class Pool {
   long n_tasks_ = 0;
   std::atomic<long> next_{0};
   int helpers_ = 0;
-  int active_ = 0;  // wanted helpers still running this pass
-  uint64_t generation_ = 0;
+  // Written under m_; also polled without it (PollUntil), hence atomic.
+  std::atomic<int> active_{0};  // wanted helpers still running this pass
+  std::atomic<uint64_t> generation_{0};
 };
 
 Pool& ThePool() {

@@ -19,6 +19,14 @@ namespace detail {
 // another thread ends the process (std::terminate), as from any std::thread.
 void ParallelFor(int threads, long n_tasks, const std::function<void(long task)>& task);
 
+// Points per task of the fit's passes over all points outside the E-step (the input's checks and
+// copies, the spatial order, the data moments, the hard assignment's sums): fixed, so what is
+// summed per task and then added in task order is the same bits for any thread count.
+constexpr long kPassTaskPoints = 8192;
+
+// Tasks of kPassTaskPoints points that cover n points.
+inline long PassTasks(long n) { return (n + kPassTaskPoints - 1) / kPassTaskPoints; }
+
 // CPUs this process may run on (sched_getaffinity), at least 1: the default thread count.
 int AvailableCores();
 

@@ -3,6 +3,9 @@
 #include "spatial_order.hpp"
 
 #include <algorithm>
+#include <memory>
+
+#include "parallel.hpp"
 
 namespace gmmrrt {
 namespace learn {
@@ -20,29 +23,98 @@ uint32_t Cell(double v, double lo, double scale) {
   return std::min<uint32_t>(static_cast<uint32_t>(c), kCells - 1);
 }
 
+// Bits of a cell index 0..63 spread to the even positions (bit b to bit 2 b).
+struct SpreadTable {
+  uint32_t v[kCells];
+  constexpr SpreadTable() : v() {
+    for (uint32_t x = 0; x < kCells; ++x)
+      for (int b = 0; b < kBits; ++b) v[x] |= ((x >> b) & 1u) << (2 * b);
+  }
+};
+constexpr SpreadTable kSpread;
+
 // Interleaves the bits of x (even positions) and y (odd positions).
-uint32_t Morton(uint32_t x, uint32_t y) {
-  uint32_t key = 0;
-  for (int b = 0; b < kBits; ++b) key |= ((x >> b) & 1u) << (2 * b) | ((y >> b) & 1u) << (2 * b + 1);
-  return key;
-}
+inline uint32_t Morton(uint32_t x, uint32_t y) { return kSpread.v[x] | kSpread.v[y] << 1; }
 
 }  // namespace
 
-std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt) {
+std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt, int threads) {
   const Eigen::Index n = xt.rows();
-  const double lo0 = xt.col(0).minCoeff(), lo1 = xt.col(1).minCoeff();
-  const double span0 = xt.col(0).maxCoeff() - lo0, span1 = xt.col(1).maxCoeff() - lo1;
-  const double scale0 = span0 > 0.0 ? kCells / span0 : 0.0, scale1 = span1 > 0.0 ? kCells / span1 : 0.0;
-  std::vector<uint32_t> key(n);
-  std::vector<Eigen::Index> start(kCells * kCells + 1, 0);
-  for (Eigen::Index p = 0; p < n; ++p) {
-    key[p] = Morton(Cell(xt(p, 0), lo0, scale0), Cell(xt(p, 1), lo1, scale1));
-    ++start[key[p] + 1];
+  if (n == 0) return {};
+  const long tasks = PassTasks(static_cast<long>(n));
+  auto task_range = [n](long t, Eigen::Index* first, Eigen::Index* last) {
+    *first = static_cast<Eigen::Index>(t) * kPassTaskPoints;
+    *last = std::min<Eigen::Index>(n, *first + kPassTaskPoints);
+  };
+  // The bounding box: minima and maxima per task, then over the tasks (exact in any order).
+  std::vector<double> box(static_cast<size_t>(tasks) * 4);
+  ParallelFor(threads, tasks, [&](long t) {
+    Eigen::Index first, last;
+    task_range(t, &first, &last);
+    double* b = box.data() + 4 * t;
+    b[0] = b[1] = xt(first, 0);
+    b[2] = b[3] = xt(first, 1);
+    for (Eigen::Index p = first + 1; p < last; ++p) {
+      b[0] = std::min(b[0], xt(p, 0));
+      b[1] = std::max(b[1], xt(p, 0));
+      b[2] = std::min(b[2], xt(p, 1));
+      b[3] = std::max(b[3], xt(p, 1));
+    }
+  });
+  double lo0 = box[0], hi0 = box[1], lo1 = box[2], hi1 = box[3];
+  for (long t = 1; t < tasks; ++t) {
+    lo0 = std::min(lo0, box[4 * t]);
+    hi0 = std::max(hi0, box[4 * t + 1]);
+    lo1 = std::min(lo1, box[4 * t + 2]);
+    hi1 = std::max(hi1, box[4 * t + 3]);
   }
-  for (uint32_t c = 0; c < kCells * kCells; ++c) start[c + 1] += start[c];
+  const double span0 = hi0 - lo0, span1 = hi1 - lo1;
+  const double scale0 = span0 > 0.0 ? kCells / span0 : 0.0, scale1 = span1 > 0.0 ? kCells / span1 : 0.0;
+  // Keys and each task's count per cell; then each (cell, task) pair's first slot, cells in
+  // order and tasks in order within a cell: a stable counting sort split over the tasks.
+  constexpr size_t kAllCells = static_cast<size_t>(kCells) * kCells;
+  // Left uninitialised here and first written by the tasks: zeroing megabytes on the calling
+  // thread (and taking their page faults there) was serial time.
+  std::unique_ptr<uint32_t[]> key(new uint32_t[static_cast<size_t>(n)]);
+  std::unique_ptr<Eigen::Index[]> start(new Eigen::Index[kAllCells * static_cast<size_t>(tasks)]);  // [t * cells + c]
+  ParallelFor(threads, tasks, [&](long t) {
+    Eigen::Index first, last;
+    task_range(t, &first, &last);
+    Eigen::Index* count = start.get() + static_cast<size_t>(t) * kAllCells;
+    std::fill(count, count + kAllCells, Eigen::Index{0});
+    for (Eigen::Index p = first; p < last; ++p) {
+      key[p] = Morton(Cell(xt(p, 0), lo0, scale0), Cell(xt(p, 1), lo1, scale1));
+      ++count[key[p]];
+    }
+  });
+  // Cells' totals (in blocks of cells on the threads), their running sums, then each task's
+  // first slot per cell: exact integer sums, so the same for any split.
+  constexpr long kCellBlock = 256;
+  constexpr long kCellBlocks = static_cast<long>(kAllCells) / kCellBlock;
+  std::vector<Eigen::Index> cell_start(kAllCells + 1, 0);
+  ParallelFor(threads, kCellBlocks, [&](long b) {
+    for (size_t c = static_cast<size_t>(b * kCellBlock); c < static_cast<size_t>((b + 1) * kCellBlock); ++c)
+      for (long t = 0; t < tasks; ++t) cell_start[c + 1] += start[static_cast<size_t>(t) * kAllCells + c];
+  });
+  for (size_t c = 0; c < kAllCells; ++c) cell_start[c + 1] += cell_start[c];
+  ParallelFor(threads, kCellBlocks, [&](long b) {
+    for (size_t c = static_cast<size_t>(b * kCellBlock); c < static_cast<size_t>((b + 1) * kCellBlock); ++c) {
+      Eigen::Index next = cell_start[c];
+      for (long t = 0; t < tasks; ++t) {
+        Eigen::Index& slot = start[static_cast<size_t>(t) * kAllCells + c];
+        const Eigen::Index count = slot;
+        slot = next;
+        next += count;
+      }
+    }
+  });
   std::vector<Eigen::Index> order(n);
-  for (Eigen::Index p = 0; p < n; ++p) order[start[key[p]]++] = p;
+  ParallelFor(threads, tasks, [&](long t) {
+    Eigen::Index first, last;
+    task_range(t, &first, &last);
+    Eigen::Index* slot = start.get() + static_cast<size_t>(t) * kAllCells;
+    for (Eigen::Index p = first; p < last; ++p) order[slot[key[p]]++] = p;
+  });
   return order;
 }
 

@@ -18,8 +18,10 @@ namespace detail {
 
 // xt: N x 2 points as rows, finite. Returns a permutation (N indices into xt): points sorted by
 // the Morton (Z-order) index of their cell in a 64 x 64 grid over the bounding box, ties in the
-// original order (counting sort: O(N), deterministic). A constant coordinate is fine.
-std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt);
+// original order (counting sort: O(N), deterministic). A constant coordinate is fine. Runs on up
+// to `threads` threads (>= 1): each task of points counts its cells, and task t's points of a
+// cell go after those of tasks 0..t-1, so the order is the same for any thread count.
+std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt, int threads = 1);
 
 }  // namespace detail
 }  // namespace learn

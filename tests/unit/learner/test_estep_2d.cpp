@@ -7,6 +7,7 @@
 // baseline and AVX2 kernels against each other; k-means' inline angle wrap against
 // gmmrrt_wrap_angle; and FitMixture's screening
 // subsample: deterministic, and the fit on all points still recovers the generating mixture.
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -500,6 +501,49 @@ void test_parallel_for_runs_every_task_once(void** state) {
   }
 }
 
+// The spatial order against a plain twin: each point's Morton index of its cell in a 64 x 64
+// grid over the bounding box, then a stable sort by it. The parallel counting sort must give the
+// same permutation on any thread count: points in several tasks of 8192 (30 000 here), a
+// constant coordinate, a single point, a box that is a line.
+static std::vector<Eigen::Index> PlainSpatialOrder(const Eigen::MatrixXd& xt) {
+  const Eigen::Index n = xt.rows();
+  double lo[2], scale[2];
+  for (int j = 0; j < 2; ++j) {
+    lo[j] = xt.col(j).minCoeff();
+    const double span = xt.col(j).maxCoeff() - lo[j];
+    scale[j] = span > 0.0 ? 64.0 / span : 0.0;
+  }
+  std::vector<uint32_t> key(n);
+  for (Eigen::Index p = 0; p < n; ++p) {
+    uint32_t cell[2];
+    for (int j = 0; j < 2; ++j) {
+      const double c = (xt(p, j) - lo[j]) * scale[j];
+      cell[j] = c > 0.0 ? std::min<uint32_t>(static_cast<uint32_t>(c), 63u) : 0u;
+    }
+    uint32_t k = 0;
+    for (int b = 0; b < 6; ++b) k |= ((cell[0] >> b) & 1u) << (2 * b) | ((cell[1] >> b) & 1u) << (2 * b + 1);
+    key[p] = k;
+  }
+  std::vector<Eigen::Index> order(n);
+  for (Eigen::Index p = 0; p < n; ++p) order[p] = p;
+  std::stable_sort(order.begin(), order.end(), [&key](Eigen::Index a, Eigen::Index b) { return key[a] < key[b]; });
+  return order;
+}
+
+static void test_spatial_order_matches_a_stable_sort_on_any_thread_count(void** state) {
+  (void)state;
+  std::mt19937_64 rng(17);
+  std::normal_distribution<double> g(0.0, 3.0);
+  Eigen::MatrixXd cloud(30000, 2), flat(20000, 2), one(1, 2);
+  for (Eigen::Index p = 0; p < cloud.rows(); ++p) cloud.row(p) << g(rng), 0.3 * g(rng);
+  for (Eigen::Index p = 0; p < flat.rows(); ++p) flat.row(p) << g(rng), 1.5;
+  one << 0.25, -4.0;
+  for (const Eigen::MatrixXd* xt : {&cloud, &flat, &one}) {
+    const std::vector<Eigen::Index> want = PlainSpatialOrder(*xt);
+    for (int threads : {1, 2, 3}) assert_true(detail::SpatialOrder2d(*xt, threads) == want);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_parallel_for_runs_every_task_once),
@@ -509,6 +553,7 @@ int main(void) {
       cmocka_unit_test(test_fused_estep_with_angle_matches_the_general_path),
       cmocka_unit_test(test_baseline_and_avx2_kernels_agree),
       cmocka_unit_test(test_culling_components_gives_the_same_bits),
+      cmocka_unit_test(test_spatial_order_matches_a_stable_sort_on_any_thread_count),
       cmocka_unit_test(test_culling_terms_with_the_angle_gives_the_same_bits),
       cmocka_unit_test(test_screening_on_a_sample_is_deterministic_and_recovers_the_mixture),
   };

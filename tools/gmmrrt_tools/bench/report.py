@@ -30,6 +30,15 @@ def _target(name: str, target: str, value, text: str, met: Optional[bool]) -> di
 SCREEN_POINTS_DEFAULT = 20000  # the learner's --screen-points default (FitOptions::screen_points)
 
 
+def _seeds_statistic(si: dict) -> str:
+    """How the same-iteration figures were taken: medians over which seeds, on every side."""
+    seeds = si.get("seeds") or list(range(1, (si.get("reps") or 0) + 1))
+    if not seeds:
+        return "seeds not recorded"
+    span = f"seed {seeds[0]}" if len(seeds) == 1 else f"seeds {seeds[0]}-{seeds[-1]}"
+    return f"medians over {len(seeds)} {'seed' if len(seeds) == 1 else 'seeds'} each side ({span})"
+
+
 def _screened_on(si: dict) -> str:
     """Where our default candidates run in the same-iteration comparison: a sample above the
     learner's --screen-points default, all points at or below it."""
@@ -102,7 +111,8 @@ def evaluate_targets(res: dict) -> List[dict]:
     si_ok = bool(si) and not si.get("skipped")
     for tag, label in (("", "defaults: 8 candidates screened on " + _screened_on(si)),
                        ("_one_start", "one start on all points, --restarts 1 --screen-points 0: like-for-like")):
-        where = f"{si.get('em_iterations')} EM iterations, N={si.get('n')}, K={si.get('k')}; ours {label}"
+        where = (f"{si.get('em_iterations')} EM iterations, N={si.get('n')}, K={si.get('k')}; ours {label}; "
+                 f"{_seeds_statistic(si)}")
         def against_peer(title: str, speedup: str, gap_key: str, need: float) -> dict:
             # CPU-time speed-up (wall beside it) at an equal or better log-likelihood.
             sp, sp_wall, gap = si.get(f"{speedup}_cpu{tag}"), si.get(f"{speedup}{tag}"), si.get(f"{gap_key}{tag}")
@@ -555,8 +565,11 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
                   "**Defaults**: our 8 candidates, each k-means++ and EM steps on all points (N is within the "
                   "20,000-point screening sample); the kept one's steps are the 16. ") + "**One start on all points** "
                   "(`--restarts 1 --screen-points 0`): one k-means++ initialisation and 16 EM iterations on all N "
-                  "points, as the peers do: the like-for-like row for the time per EM iteration. Medians of "
-                  f"{si.get('reps')} interleaved repetitions; all mixtures scored by scikit-learn.", "",
+                  "points, as the peers do: the like-for-like row for the time per EM iteration. Every learner runs "
+                  f"once per seed ({_seeds_statistic(si)}: ours `--seed`, Armadillo's seed argument, scikit-learn's "
+                  "`random_state`), interleaved; times and log-likelihoods are those medians, the same statistic on "
+                  "every side (one start's log-likelihood depends on its seed); all mixtures scored by scikit-learn.",
+                  "",
                   "| learner | setting | threads | CPU time | wall time | mean log-likelihood / point |",
                   "|---|---|---|---|---|---|"]
             for who, name, setting, th in (
@@ -584,7 +597,9 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
                       f"{fmt(si.get(f'speedup_vs_sklearn_1_cpu{tag}'), 1, 'x')}"]
             L += [f"- Armadillo's second core: {fmt(si.get('second_core_armadillo'), 2, 'x')} (wall; a loaded machine "
                   "has no free core to give)",
-                  f"- commands: `{((_get(si, 'ours_2', 'runs') or [{}])[0]).get('command')}`; "
+                  "- commands, shown for the first seed (seed S runs the same with `--seed S`, Armadillo's last "
+                  "argument S, scikit-learn's `random_state=S`): "
+                  f"`{((_get(si, 'ours_2', 'runs') or [{}])[0]).get('command')}`; "
                   f"`{((_get(si, 'ours_one_2', 'runs') or [{}])[0]).get('command')}`; "
                   f"`{((_get(si, 'armadillo_2', 'runs') or [{}])[0]).get('command')}`", ""]
         kr = le.get("k_recovery") or {}
