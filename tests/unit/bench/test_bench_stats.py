@@ -172,8 +172,8 @@ def test_same_iteration_targets_judge_both_of_our_settings():
     assert defaults == ["met", "met", "not met"]
     assert one == ["not met", "not met", "met"]
     # The rows say which statistic they compare: medians over the same seeds on every side.
-    assert all("medians over 7 seeds each side (seeds 1-7)" in t["name"]
-               for t in evaluate_targets({"learner": {"same_iterations": dict(si, seeds=list(range(1, 8)))}})
+    assert all("medians over 25 seeds each side (seeds 1-25)" in t["name"]
+               for t in evaluate_targets({"learner": {"same_iterations": dict(si, seeds=list(range(1, 26)))}})
                if "EM iterations" in t["name"])
     skipped = evaluate_targets({"learner": {"same_iterations": {"skipped": "no Armadillo"}}})
     assert {t["status"] for t in skipped if "EM iterations" in t["name"]} == {"not run"}
