@@ -84,8 +84,9 @@ struct gmmrrt_world {
     const gmmrrt_raster_t *raster;
     uint32_t raster_generation;
     double raster_slack_m;
-    /* 1: where the four-corner bound cannot decide, the union of the corners' discs
-     * (gmmrrt_raster_clearance_union) may; set by the planner once it has a path. */
+    /* 1 (the default): where the four-corner bound cannot decide, the union of the corners'
+     * discs (gmmrrt_raster_clearance_union) may; the planner's search turns it off until its
+     * first path (rrtstar.c, gmmrrt_planner_run), where coverage matters more than closeness. */
     int32_t raster_union;
     gmmrrt_world_grid_stats_t stats;
     int64_t lazy_cells; /* cells filled by queries since the last update */
@@ -367,7 +368,7 @@ gmmrrt_status_t gmmrrt_world_update(gmmrrt_world_t **world, void *mem, size_t si
     w->raster = obstacles->raster;
     w->raster_generation = obstacles->raster ? obstacles->raster->generation : 0;
     w->raster_slack_m = obstacles->raster ? 1e-9 : 0.0;
-    w->raster_union = 0;
+    w->raster_union = 1; /* the tightest bound unless the planner's search says otherwise */
     set_people(w);
     for (int32_t k = 0; k < obstacles->num_boxes; ++k) {
         w->box_cos[k] = cos(obstacles->boxes[k].yaw);

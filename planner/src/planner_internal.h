@@ -89,8 +89,9 @@ typedef struct {
 
 /* Set by collision.c's internal hook: segment walk step. */
 void gmmrrt_world_set_edge_resolution(gmmrrt_world_t *world, double edge_resolution_m);
-/* Set by collision.c's internal hook: 1 lets the map's bound take the union of its corners'
- * discs where the four-corner bound cannot decide (raster.h), 0 (a new world) not. */
+/* Set by collision.c's internal hook: 1 (a new world) lets the map's bound take the union of its
+ * corners' discs where the four-corner bound cannot decide (raster.h), 0 not: only the search's
+ * extensions before the first path run without it (rrtstar.c, gmmrrt_planner_run). */
 void gmmrrt_world_set_raster_union(gmmrrt_world_t *world, int on);
 
 struct gmmrrt_planner {

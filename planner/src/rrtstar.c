@@ -135,7 +135,6 @@ static void reset_tree(struct gmmrrt_planner *p)
     p->iterations = 0;
     p->first_solution_iteration = -1;
     p->first_solution_ms = -1.0;
-    gmmrrt_world_set_raster_union(p->world, 0); /* until the first path (update_best) */
     p->time_ms = 0.0;
     p->run_t0_ms = -1.0;
     p->run_base_ms = 0.0;
@@ -484,7 +483,9 @@ static void update_best(struct gmmrrt_planner *p)
         /* Until the first path the search wants coverage, and the map's four-corner bound is the
          * cheapest test; from then on the cost depends on how close paths may pass walls, and the
          * union of the corners' discs (several times the arithmetic where the bound cannot
-         * decide) lets them pass nearly at the true clearance. */
+         * decide) lets them pass nearly at the true clearance. Outside the search's extensions
+         * (the start and goal checks, a seeded path, the tree check) the union is always on, so
+         * a pose reached along a published path is never judged by a looser rule than the path. */
         gmmrrt_world_set_raster_union(p->world, 1);
     }
     p->best_goal = best;
@@ -814,6 +815,9 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
     const int64_t it0 = p->iterations;
     gmmrrt_status_t st = GMMRRT_OK;
     int timed_out = 0;
+    /* The search's own extensions use the map's four-corner bound alone until the first path
+     * (update_best turns the union on then); every other check, in and outside run(), has it. */
+    gmmrrt_world_set_raster_union(p->world, p->first_solution_iteration >= 0);
     for (;;) {
         const int64_t done = p->iterations - it0;
         if (budget->max_iterations > 0 && done >= budget->max_iterations)
@@ -846,6 +850,7 @@ gmmrrt_status_t gmmrrt_planner_run(gmmrrt_planner_t *p, const gmmrrt_budget_t *b
         }
         iterate(p);
     }
+    gmmrrt_world_set_raster_union(p->world, 1);
 #ifdef GMMRRT_TREE_CHECKS /* Debug builds (planner/CMakeLists.txt), where assert is on */
     assert(gmmrrt_tree_check(p, NULL, 0) && "a broken tree invariant (tree_check.h)");
 #endif
