@@ -27,8 +27,10 @@
  * 2^-24; the stored distance is shrunk by this factor so it stays a lower bound. */
 #define FIELD_SHRINK (1.0 - 1e-6)
 /* The union's candidate points carry the rounding of a few products and square roots of
- * numbers of at most UNION_MAX_CELLS: a point counts as covered by a disc only when it is this
- * far (relative) inside it, and the result is lowered by as much. */
+ * numbers of at most UNION_MAX_CELLS (the crossings' height in factored form, without
+ * cancellation): a point counts as covered by a disc only when it is this far (relative) inside
+ * it, and the result is lowered by as much. Behind it, the stored radii are shrunk by
+ * FIELD_SHRINK, about a thousand times this margin, so rounding here cannot reach a wall. */
 #define UNION_MARGIN 1e-9
 #define UNION_MAX_CELLS 1e6
 
@@ -447,7 +449,10 @@ double gmmrrt_raster_clearance_union(const gmmrrt_raster_t *r, double x, double 
             if (!(dd > 0.0) || !(dd < rad[a] + rad[b]) || !(dd > fabs(rad[a] - rad[b])))
                 continue; /* apart, or one inside the other: no crossing */
             const double inv = 1.0 / dd, t = (rad[a] * rad[a] - rad[b] * rad[b] + dd * dd) * 0.5 * inv;
-            const double h2 = rad[a] * rad[a] - t * t;
+            /* h^2 = ra^2 - t^2 in factored form (each factor positive by the test above), so two
+             * nearly tangent circles do not lose the crossing to cancellation. */
+            const double h2 = (rad[a] + rad[b] - dd) * (rad[a] + rad[b] + dd) * (dd - rad[a] + rad[b]) *
+                              (dd + rad[a] - rad[b]) * 0.25 * inv * inv;
             const double h = h2 > 0.0 ? sqrt(h2) : 0.0;
             const double ux = ex * inv, uy = ey * inv;
             const double mx = cx[a] + ux * t, my = cy[a] + uy * t;
