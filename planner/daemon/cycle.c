@@ -552,7 +552,7 @@ void gmmrrtd_cycle(gmmrrtd_t *d, int64_t now_us)
 {
     d->cycles++;
     d->event_pending = 0; /* this cycle takes every input so far */
-    gmmrrtd_pacing_spend(&d->pacing, now_us, gmmrrtd_min_period_us(d));
+    gmmrrtd_pacing_spend(&d->pacing, now_us, gmmrrtd_min_period_us(d), d->set.event_burst);
     d->status.plan_time_ms = 0.0;
     d->status.setup_time_ms = 0.0;
     clear_stats(d);

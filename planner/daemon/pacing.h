@@ -7,9 +7,8 @@
  * Why a bucket and not a fixed gap: inputs from different sources come out of phase. A people list
  * starts a cycle; the pose that comes a millisecond later should plan at once, not wait out the
  * gap (its wait is the robot's reaction time). With burst = 2 the pose goes at once; over any
- * longer time there are still at most burst + t / period_us cycles in a time t, so min_period_ms
- * keeps bounding the CPU the event trigger takes. burst = 1 is a fixed gap of period_us after
- * each cycle start.
+ * time t the event trigger still starts at most burst + t / period_us cycles, so min_period_ms
+ * keeps bounding the CPU it takes. burst = 1 is a fixed gap of period_us after each cycle start.
  *
  * Pure functions on a caller-owned struct: no I/O, no allocation, no clock reads.
  */
@@ -27,8 +26,10 @@ typedef struct {
  * period_us >= 0. */
 int64_t gmmrrtd_pacing_earliest_us(const gmmrrtd_pacing_t *p, int64_t period_us, int burst);
 
-/* A cycle started at now_us: spends one token (every cycle does, tick or event, so ticks and
- * events together stay within the bound). */
-void gmmrrtd_pacing_spend(gmmrrtd_pacing_t *p, int64_t now_us, int64_t period_us);
+/* A cycle started at now_us: spends one token, if one is left. Every cycle spends, tick or event,
+ * so events right after a tick wait for the refill; ticks themselves are not held by the bucket
+ * (they run at rate_hz), and an empty bucket stays empty rather than going into debt, so the
+ * event trigger never waits more than one period. */
+void gmmrrtd_pacing_spend(gmmrrtd_pacing_t *p, int64_t now_us, int64_t period_us, int burst);
 
 #endif
