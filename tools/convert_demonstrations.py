@@ -24,7 +24,9 @@ from gmmrrt_tools.episodes import HOMOTOPIES, TASKS, EpisodeError, read_episodes
 def csv2log(args) -> int:
     if args.split and not args.index:
         raise EpisodeError("--split needs --index (the index CSV with episode_id and split columns)")
-    episodes, _ = read_episodes(args.input, index=args.index)
+    episodes, warnings = read_episodes(args.input, index=args.index)
+    for w in warnings:  # e.g. an event listed twice, read once
+        print(f"warning: {w}", file=sys.stderr)
     if args.index:
         missing = [e.id for e in episodes if not e.split]
         if missing:

@@ -570,6 +570,7 @@ void EstimateHeadingsFromMotion(std::vector<PoseSample>* samples, double min_ste
 // is left out with a warning that names the file, both episodes and their labels when they differ.
 static void DropRepeatedEvents(const std::string& path, std::vector<Episode>* episodes,
                                std::vector<std::string>* warnings) {
+    Warnings warn(warnings);
     std::map<std::string, size_t> first_of;  // the samples' bytes -> index of the kept listing
     std::vector<Episode> kept;
     kept.reserve(episodes->size());
@@ -590,10 +591,11 @@ static void DropRepeatedEvents(const std::string& path, std::vector<Episode>* ep
         if (first.homotopy != e.homotopy)
             labels = std::string(" with opposite homotopy labels (") + HomotopyName(first.homotopy) + ", " +
                      HomotopyName(e.homotopy) + ")";
-        warnings->push_back(path + ": episodes " + first.id + " and " + e.id +
-                            " are one event (the same person and positions at the same times)" + labels +
-                            "; counted once, as " + first.id);
+        warn.Add(path + ": episodes " + first.id + " and " + e.id +
+                 " are one event (the same person and positions at the same times)" + labels +
+                 "; counted once, as " + first.id);
     }
+    warn.Finish();
     *episodes = std::move(kept);
 }
 

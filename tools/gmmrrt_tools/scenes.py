@@ -12,6 +12,7 @@ recorded with different person poses are compared and planned in this frame, so 
 from __future__ import annotations
 
 import csv
+import sys
 from dataclasses import replace
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple
@@ -38,11 +39,14 @@ def read_episodes(path: str, index: Optional[str] = None, split: Optional[str] =
     """Episodes of an episode CSV (or demonstration log), in file order, read by the learner's reader
     (gmmrrt_tools.episodes.read_episodes; an event listed twice is read once, with a warning); with
     `index`, each gets its split and index row and `split` filters. The reader's warnings are appended
-    to `warnings` when given. Raises EpisodeError (a ValueError) naming the file and line on a malformed
-    row."""
+    to `warnings` when given, else printed on stderr: never dropped. Raises EpisodeError (a ValueError)
+    naming the file and line on a malformed row."""
     eps, said = episodes.read_episodes(path, index=index)
     if warnings is not None:
         warnings.extend(said)
+    else:
+        for w in said:
+            print(f"warning: {w}", file=sys.stderr)
     idx = read_index(index) if index else {}
     out = []
     for e in eps:
