@@ -80,11 +80,7 @@ struct DataInfo {
   Eigen::VectorXd reg;        // D: added to each covariance diagonal
 };
 
-// Points [*first, *last) of pass task t over n points (parallel.hpp).
-inline void PassRange(long t, Eigen::Index n, Eigen::Index* first, Eigen::Index* last) {
-  *first = static_cast<Eigen::Index>(t) * detail::kPassTaskPoints;
-  *last = std::min<Eigen::Index>(n, *first + detail::kPassTaskPoints);
-}
+using detail::PassRange;  // points [first, last) of pass task t (parallel.hpp)
 
 inline bool IsAngleDim(uint32_t mask, Eigen::Index j) { return j < 32 && ((mask >> j) & 1u); }
 

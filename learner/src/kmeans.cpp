@@ -81,7 +81,8 @@ namespace {
 // Points per group (bounding box) and groups per task. 64 points: the E-step's culling groups
 // (estep_2d.cpp) for the same reason; 128 groups = 8192 points per task, the E-step's split.
 constexpr Eigen::Index kGroupPoints = 64;
-constexpr Eigen::Index kTaskGroups = 128;
+constexpr Eigen::Index kTaskGroups = detail::kPassTaskPoints / kGroupPoints;
+static_assert(kTaskGroups * kGroupPoints == detail::kPassTaskPoints, "a task is whole groups");
 // A center is skipped for a group only when its lower bound exceeds the competing value by
 // this relative margin (see the file comment).
 constexpr double kBoundMargin = 1e-12;

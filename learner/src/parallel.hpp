@@ -27,6 +27,13 @@ constexpr long kPassTaskPoints = 8192;
 // Tasks of kPassTaskPoints points that cover n points.
 inline long PassTasks(long n) { return (n + kPassTaskPoints - 1) / kPassTaskPoints; }
 
+// Points [*first, *last) of pass task t over n points: the one rule every pass cuts its tasks by.
+template <typename Index>
+inline void PassRange(long t, Index n, Index* first, Index* last) {
+  *first = static_cast<Index>(t) * static_cast<Index>(kPassTaskPoints);
+  *last = n < *first + static_cast<Index>(kPassTaskPoints) ? n : *first + static_cast<Index>(kPassTaskPoints);
+}
+
 // CPUs this process may run on (sched_getaffinity), at least 1: the default thread count.
 int AvailableCores();
 

@@ -42,10 +42,7 @@ std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt, int threads)
   const Eigen::Index n = xt.rows();
   if (n == 0) return {};
   const long tasks = PassTasks(static_cast<long>(n));
-  auto task_range = [n](long t, Eigen::Index* first, Eigen::Index* last) {
-    *first = static_cast<Eigen::Index>(t) * kPassTaskPoints;
-    *last = std::min<Eigen::Index>(n, *first + kPassTaskPoints);
-  };
+  auto task_range = [n](long t, Eigen::Index* first, Eigen::Index* last) { PassRange(t, n, first, last); };
   // The bounding box: minima and maxima per task, then over the tasks (exact in any order).
   std::vector<double> box(static_cast<size_t>(tasks) * 4);
   ParallelFor(threads, tasks, [&](long t) {
