@@ -347,9 +347,9 @@ def _real_report(ctx: Ctx, rs: RealSet, results) -> None:
                     f"{PERSON_RADIUS_M} m = 0.55 m is contact).")
     ppl = [len(sc.people) for sc in rs.scenes]
     if rs.repeats:
-        md += ("Each event is counted once: the learner's reader leaves out an episode that repeats an earlier one "
-               "(the same person and positions at the same times), so it is in neither the models' fit nor their "
-               "evaluation, the side rules or the humans' agreement:\n\n" + "".join(f"- {l}\n" for l in portable(rs.repeats).splitlines())
+        md += ("The learner's reader's warnings on this data. It reads each event once: an episode that repeats an "
+               "earlier one (the same person and positions at the same times) is in neither the models' fit nor "
+               "their evaluation, the side rules or the humans' agreement:\n\n" + "".join(f"- {l}\n" for l in portable(rs.repeats).splitlines())
                + "\n")
     md += (f"People per episode: {min(ppl)}–{max(ppl)} (mean {np.mean(ppl):.1f}); {sum(p > 1 for p in ppl)} of {n} "
            "episodes have more than one.\n\n")
@@ -397,9 +397,9 @@ TDM_TARGETS = {"real_upo_avoid": ("m", 0.30), "real_ucy_avoid": ("x RRT*", 0.9)}
 
 
 def _agreement_ceiling(rs: RealSet) -> str:
-    """Whether closer situations make humans agree more, and the most any side rule on the start and goal
-    in the person frame alone can agree with them at each distance (realdata.side_ceiling). A planner that
-    sees more (the other people) is not bound by it."""
+    """Whether closer situations make humans agree more, and at each distance an estimate of the most a
+    side rule on the start and goal alone could agree with them (realdata.side_ceiling). Pairs that are
+    not quite the same situation agree less, so the estimate errs low: it is not a bound."""
     from gmmrrt_tools import realdata as RD
 
     bands = [(r, n, q) for r, n, q in (rs.agreement_within or []) if n > 0]
@@ -407,11 +407,13 @@ def _agreement_ceiling(rs: RealSet) -> str:
         return ""
     return ("\nWhether the situation decides the side: pairs of humans of different recordings/persons whose "
             "start and goal (summed distances in the person frame) lie within "
-            + "; ".join(f"{r:g} m agree in {100 * q:.0f} % ({n} pairs; a rule on the start and goal alone agrees "
-                        f"with them at most {100 * RD.side_ceiling(q):.0f} %)" for r, n, q in bands)
-            + ". The bound assumes a start and goal make a human pass on one side with some probability and two "
-            "humans choose independently (realdata.side_ceiling); a planner that also sees the other people is not "
-            "bound by it.\n")
+            + "; ".join(f"{r:g} m agree in {100 * q:.0f} % ({n} pairs; were they the same situation, a rule on the "
+                        f"start and goal alone could agree with the humans {100 * RD.side_ceiling(q):.0f} % at most)"
+                        for r, n, q in bands)
+            + ". That figure (realdata.side_ceiling) assumes a situation makes a human pass on one side with some "
+            "probability and two humans choose independently; pairs that are not quite the same situation agree "
+            "less, so it errs low: an estimate, not a bound. A planner that also sees the other people is not held "
+            "to it.\n")
 
 
 def _side_limit(rs: RealSet, per, labels) -> str:
