@@ -264,6 +264,12 @@ def find_executable(build_dir: Path, name: str) -> Optional[Path]:
 
 
 ALL_PLANNERS_BUDGETS_MS = (1.0, 10.0, 100.0, 1000.0)
+# First paths are timed on runs of their own: FIRST_PATH_TRIALS seeds (1..N), one run each at a
+# FIRST_PATH_BUDGET_MS budget. A first path's time is heavy-tailed over seeds (on the floor plan the
+# iterations to it range over several times their median), and the cost runs use the same few seeds
+# at every budget, so their first paths would be a sample of those few seeds, not of the time.
+FIRST_PATH_TRIALS = 15
+FIRST_PATH_BUDGET_MS = 100.0
 
 
 def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optional[str] = None,
@@ -296,21 +302,36 @@ def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optiona
         for old in arena_dir.glob("*.log"):
             old.unlink()
         cmd += ["--arena", str(arena_dir)]
+    scene_args = cmd[cmd.index(str(raw)) + 1:]
+    scene_args = [a for i, a in enumerate(scene_args)
+                  if a != "--arena" and (i == 0 or scene_args[i - 1] != "--arena")]
     t0 = time.time()
     text = _run(cmd, 3600)
     recs = [json.loads(line) for line in raw.read_text().splitlines() if line.strip()]
     arena = check_arena_logs(arena_dir, recs) if arena_dir else None
+    first_trials = 1 if quick else FIRST_PATH_TRIALS
+    first_raw = raw.with_name(raw.stem + "_first" + raw.suffix)
+    first_cmd = [str(exe), "--problems", str(root / "tests" / "data" / "bench_problems"), "--trials", str(first_trials),
+                 "--budgets", "%g" % FIRST_PATH_BUDGET_MS, "--json", str(first_raw)] + scene_args
+    _run(first_cmd, 3600)
+    first_recs = [json.loads(line) for line in first_raw.read_text().splitlines() if line.strip()]
     problems: Dict[str, dict] = {}
     for name in sorted({r["problem"] for r in recs}):
         rs = [r for r in recs if r["problem"] == name]
         by = {}
         for r in rs:
             by.setdefault(r["planner"], []).append(r)
-        first = {p: median([r["first_ms"] for r in v if r["first_ms"] is not None] or [INF]) for p, v in by.items()}
+        by_first: Dict[str, List[dict]] = {}
+        for r in first_recs:
+            if r["problem"] == name:
+                by_first.setdefault(r["planner"], []).append(r)
+        first = {p: median([r["first_ms"] for r in v if r["first_ms"] is not None] or [INF])
+                 for p, v in by_first.items()}
         ompl_first = {p: f for p, f in first.items() if p != "gmmrrt" and math.isfinite(f)}
         fastest = min(ompl_first, key=ompl_first.get) if ompl_first else None
         out = {"first_ms": first.get("gmmrrt"), "fastest_ompl": fastest,
-               "fastest_ompl_first_ms": ompl_first.get(fastest) if fastest else None, "cost": {}}
+               "fastest_ompl_first_ms": ompl_first.get(fastest) if fastest else None, "cost": {},
+               "first_ms_by_planner": {p: (f if math.isfinite(f) else None) for p, f in sorted(first.items())}}
         out["first_ratio"] = (out["first_ms"] / out["fastest_ompl_first_ms"]) if fastest else None
         for b in budgets:
             med = {p: median([r["cost"] if r["cost"] is not None else INF for r in v if r["budget_ms"] == b])
@@ -326,7 +347,12 @@ def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optiona
                  ["--approach-model", Path(approach_model).name] if approach_model else []) + (
                  ["--map", "logs/maps/" + Path(map_yaml).name] if map_yaml else []) + (
                  ["--arena", "build/" + arena_dir.name] if arena_dir else [])
-    out = {"command": " ".join(shown),
+    tail = shown[shown.index(raw.name) + 1:]
+    first_shown = shown[:3] + ["--trials", str(first_trials), "--budgets", "%g" % FIRST_PATH_BUDGET_MS,
+                               "--json", first_raw.name] + [a for i, a in enumerate(tail) if a != "--arena" and
+                                                            (i == 0 or tail[i - 1] != "--arena")]
+    out = {"command": " ".join(shown), "first_path_command": " ".join(first_shown),
+           "first_path_trials": first_trials, "first_path_budget_ms": FIRST_PATH_BUDGET_MS,
            "seconds": round(time.time() - t0, 1), "text": text.strip(), "problems": problems, "trials": trials}
     if arena is not None:
         out["arena_logs"] = arena

@@ -171,8 +171,11 @@ def _planner_targets_summary(res: dict, pl: dict) -> List[str]:
     if not probs:
         return []
     load = f"load {res.get('load_before')} before, {res.get('load_after')} after, on {_get(res, 'host', 'nproc')} cores"
-    L = [f"**Targets, scene by scene** (medians of {pl.get('trials')} trials; {load}): first path including "
-         "set-up <= 0.5x the fastest OMPL planner's, and best cost at every budget <= the best OMPL planner's.", "",
+    nf = pl.get("first_path_trials", pl.get("trials"))
+    L = [f"**Targets, scene by scene** ({load}): first path including set-up <= 0.5x the fastest OMPL "
+         f"planner's (medians over {nf} seeds, one run each at a {fmt(pl.get('first_path_budget_ms'), 0)} ms "
+         f"budget: `{pl.get('first_path_command', pl.get('command'))}`), and best cost at every budget <= the "
+         f"best OMPL planner's (medians of {pl.get('trials')} trials, the tables above).", "",
          "| problem | first path: ours / fastest OMPL | ratio | met | cost met at |  cost not met at |",
          "|---|---|---|---|---|---|"]
     for name, pr in sorted(probs.items()):
@@ -185,6 +188,16 @@ def _planner_targets_summary(res: dict, pl: dict) -> List[str]:
                  f"{fmt(pr.get('fastest_ompl_first_ms'), 3, ' ms')} | {fmt(ratio_, 2, 'x')} | "
                  f"{'yes' if ratio_ is not None and ratio_ <= 0.5 else 'no'} | "
                  f"{', '.join(met_at) or '-'} | {'; '.join(miss) or '-'} |")
+    names = sorted(probs)
+    planners = sorted({q for pr in probs.values() for q in (pr.get("first_ms_by_planner") or {})},
+                      key=lambda q: (q != "gmmrrt", q))
+    if planners:
+        L += ["", f"First path including set-up, ms (medians over {nf} seeds; `-`: no first path reported):", "",
+              "| planner | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]
+        for q in planners:
+            L.append(f"| {q} | " + " | ".join(fmt((probs[n].get("first_ms_by_planner") or {}).get(q), 3)
+                                              if (probs[n].get("first_ms_by_planner") or {}).get(q) is not None
+                                              else "-" for n in names) + " |")
     # The other speed targets of the same set, measured by other sections (maybe in an earlier run).
     carried = res.get("carried_over") or {}
     others = []
@@ -376,8 +389,10 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
               "person a disc of 0.55 m around a point robot, task cost with the approach model, the person the "
               "target; OMPL through the same `GmmTaskCostObjective`, a `StateCostIntegralObjective`); and MAP, "
               "the floor plan of `logs/maps/` (its whole extent, (-9, -2) -> (8, 4), robot disc 0.3 m, path "
-              "length). In MAP our planner reads the map through its raster layer (distance field, "
-              "conservative by up to about a cell, docs/world.md); OMPL gets exact state and motion validators "
+              "length). In MAP our planner reads the map through its raster layer (a distance field at the "
+              "cells' corners, exact there and short of the true clearance by at most a cell's diagonal between "
+              "them, and once a path exists the corners' discs together where that cannot decide; docs/world.md); "
+              "OMPL gets exact state and motion validators "
               "over the same raster (a 0.3 m disc, swept along the motion, against every blocked cell's "
               "square: occupied, unknown, or outside the map), and both sides' returned paths are re-checked "
               "with them: both mean the same blocked cells, and OMPL's free space is the larger. The map is "
