@@ -344,14 +344,21 @@ static void neighbours(double a, int32_t n, int32_t *lo, int32_t *hi)
     *hi = f + 1 < n ? f + 1 : n - 1;
 }
 
+/* The point (x, y) in cells (*u, *v) and the corners of its cell: floor and the next in each
+ * direction, clamped to the lattice of (width + 1) x (height + 1) corners. */
+static inline void cell_corners(const gmmrrt_raster_t *r, double x, double y, double *u, double *v, int32_t *ia,
+                                int32_t *ib, int32_t *ja, int32_t *jb)
+{
+    to_cells(r, x, y, u, v);
+    neighbours(*u, r->width + 1, ia, ib);
+    neighbours(*v, r->height + 1, ja, jb);
+}
+
 double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double y)
 {
     double u, v;
-    to_cells(r, x, y, &u, &v);
-    /* The corners of the point's cell: floor(u) and the next, clamped to the lattice. */
     int32_t ia, ib, ja, jb;
-    neighbours(u, r->width + 1, &ia, &ib);
-    neighbours(v, r->height + 1, &ja, &jb);
+    cell_corners(r, x, y, &u, &v, &ia, &ib, &ja, &jb);
     /* Offsets from the point to each corner, in cells, squared. */
     const double cua = (double)ia - u, cub = (double)ib - u;
     const double cva = (double)ja - v, cvb = (double)jb - v;
@@ -388,10 +395,8 @@ static int inside_disc(double px, double py, double cx, double cy, double rad_in
 double gmmrrt_raster_clearance_union(const gmmrrt_raster_t *r, double x, double y)
 {
     double u, v;
-    to_cells(r, x, y, &u, &v);
     int32_t ia, ib, ja, jb;
-    neighbours(u, r->width + 1, &ia, &ib);
-    neighbours(v, r->height + 1, &ja, &jb);
+    cell_corners(r, x, y, &u, &v, &ia, &ib, &ja, &jb);
     const size_t w = (size_t)r->width + 1u;
     const int32_t ci[4] = {ia, ib, ia, ib}, cj[4] = {ja, ja, jb, jb};
     /* The valid corners' circles, relative to the point, in cells. */
