@@ -289,44 +289,48 @@ def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optiona
     root = Path(__file__).resolve().parents[3]  # the repository (this file is tools/gmmrrt_tools/bench/)
     budgets = ALL_PLANNERS_BUDGETS_MS[:3] if quick else ALL_PLANNERS_BUDGETS_MS
     trials = 1 if quick else 3
-    cmd = [str(exe), "--problems", str(root / "tests" / "data" / "bench_problems"), "--trials", str(trials),
-           "--budgets", ",".join("%g" % b for b in budgets), "--json", str(raw)]
-    if avoid_model:
-        cmd += ["--model", str(avoid_model)]
-    if approach_model:
-        cmd += ["--approach-model", str(approach_model)]
-    if map_yaml:
-        cmd += ["--map", str(map_yaml)]
+    first_trials = 1 if quick else FIRST_PATH_TRIALS
+    first_raw = raw.with_name(raw.stem + "_first" + raw.suffix)
+    # The scenes' arguments, as run and as shown (paths relative to the repository).
+    scene, scene_shown = [], []
+    for flag, path, shown_path in (("--model", avoid_model, lambda q: q.name),
+                                   ("--approach-model", approach_model, lambda q: q.name),
+                                   ("--map", map_yaml, lambda q: "logs/maps/" + q.name)):
+        if path:
+            scene += [flag, str(path)]
+            scene_shown += [flag, shown_path(Path(path))]
+    arena_args, arena_shown = [], []
     if arena_dir:
         arena_dir.mkdir(parents=True, exist_ok=True)
         for old in arena_dir.glob("*.log"):
             old.unlink()
-        cmd += ["--arena", str(arena_dir)]
-    scene_args = cmd[cmd.index(str(raw)) + 1:]
-    scene_args = [a for i, a in enumerate(scene_args)
-                  if a != "--arena" and (i == 0 or scene_args[i - 1] != "--arena")]
+        arena_args, arena_shown = ["--arena", str(arena_dir)], ["--arena", "build/" + arena_dir.name]
+
+    def run_args(n_trials: int, budget_list: str, json_name: str) -> List[str]:
+        return ["--trials", str(n_trials), "--budgets", budget_list, "--json", json_name]
+
+    problems_dir = str(root / "tests" / "data" / "bench_problems")
+    cost_args = run_args(trials, ",".join("%g" % b for b in budgets), str(raw))
+    first_args = run_args(first_trials, "%g" % FIRST_PATH_BUDGET_MS, str(first_raw))
     t0 = time.time()
-    text = _run(cmd, 3600)
+    text = _run([str(exe), "--problems", problems_dir] + cost_args + scene + arena_args, 3600)
     recs = [json.loads(line) for line in raw.read_text().splitlines() if line.strip()]
     arena = check_arena_logs(arena_dir, recs) if arena_dir else None
-    first_trials = 1 if quick else FIRST_PATH_TRIALS
-    first_raw = raw.with_name(raw.stem + "_first" + raw.suffix)
-    first_cmd = [str(exe), "--problems", str(root / "tests" / "data" / "bench_problems"), "--trials", str(first_trials),
-                 "--budgets", "%g" % FIRST_PATH_BUDGET_MS, "--json", str(first_raw)] + scene_args
-    _run(first_cmd, 3600)
+    _run([str(exe), "--problems", problems_dir] + first_args + scene, 3600)
     first_recs = [json.loads(line) for line in first_raw.read_text().splitlines() if line.strip()]
+
+    def by_planner(records: List[dict], problem: str) -> Dict[str, List[dict]]:
+        out: Dict[str, List[dict]] = {}
+        for r in records:
+            if r["problem"] == problem:
+                out.setdefault(r["planner"], []).append(r)
+        return out
+
     problems: Dict[str, dict] = {}
     for name in sorted({r["problem"] for r in recs}):
-        rs = [r for r in recs if r["problem"] == name]
-        by = {}
-        for r in rs:
-            by.setdefault(r["planner"], []).append(r)
-        by_first: Dict[str, List[dict]] = {}
-        for r in first_recs:
-            if r["problem"] == name:
-                by_first.setdefault(r["planner"], []).append(r)
+        by = by_planner(recs, name)
         first = {p: median([r["first_ms"] for r in v if r["first_ms"] is not None] or [INF])
-                 for p, v in by_first.items()}
+                 for p, v in by_planner(first_recs, name).items()}
         ompl_first = {p: f for p, f in first.items() if p != "gmmrrt" and math.isfinite(f)}
         fastest = min(ompl_first, key=ompl_first.get) if ompl_first else None
         out = {"first_ms": first.get("gmmrrt"), "fastest_ompl": fastest,
@@ -341,16 +345,9 @@ def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optiona
             out["cost"]["%g" % b] = {"ours": med.get("gmmrrt"), "best_ompl": ompl[best], "best_ompl_planner": best,
                                      "met": med.get("gmmrrt", INF) <= ompl[best]}
         problems[name] = out
-    shown = [str(exe.relative_to(root)) if root in exe.parents else str(exe), "--problems",
-             "tests/data/bench_problems"] + cmd[3:7] + ["--json", raw.name] + (
-                 ["--model", Path(avoid_model).name] if avoid_model else []) + (
-                 ["--approach-model", Path(approach_model).name] if approach_model else []) + (
-                 ["--map", "logs/maps/" + Path(map_yaml).name] if map_yaml else []) + (
-                 ["--arena", "build/" + arena_dir.name] if arena_dir else [])
-    tail = shown[shown.index(raw.name) + 1:]
-    first_shown = shown[:3] + ["--trials", str(first_trials), "--budgets", "%g" % FIRST_PATH_BUDGET_MS,
-                               "--json", first_raw.name] + [a for i, a in enumerate(tail) if a != "--arena" and
-                                                            (i == 0 or tail[i - 1] != "--arena")]
+    shown_exe = [str(exe.relative_to(root)) if root in exe.parents else str(exe), "--problems", "tests/data/bench_problems"]
+    shown = shown_exe + cost_args[:-1] + [raw.name] + scene_shown + arena_shown
+    first_shown = shown_exe + first_args[:-1] + [first_raw.name] + scene_shown
     out = {"command": " ".join(shown), "first_path_command": " ".join(first_shown),
            "first_path_trials": first_trials, "first_path_budget_ms": FIRST_PATH_BUDGET_MS,
            "seconds": round(time.time() - t0, 1), "text": text.strip(), "problems": problems, "trials": trials}
