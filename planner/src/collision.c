@@ -578,10 +578,11 @@ static double static_clearance_obstacles(const struct gmmrrt_world *w, near_stat
 /* The clearance from everything static (obstacles and the raster's blocked cells) as
  * static_clearance_obstacles: a lower bound of the true clearance, at most `need` when that
  * cannot be proved. The raster's part is its distance field's bound (raster.h: to the blocked
- * cells' squares, exact at the cells' corners; once the planner has a path, the corners' discs
- * together where the four-corner bound cannot decide) less the robot's radius: never closer to a
- * blocked cell than the robot's radius. That part may jump across a cell's edge (raster.h); the
- * sphere tracing needs only that it stays below the true clearance, which is 1-Lipschitz. */
+ * cells' squares, exact at the cells' corners; where the four-corner bound cannot decide, the
+ * corners' discs together, except in the search's extensions before its first path) less the
+ * robot's radius: never closer to a blocked cell than the robot's radius. That part may jump
+ * across a cell's edge (raster.h); the sphere tracing needs only that it stays below the true
+ * clearance, which is 1-Lipschitz. */
 static double static_clearance(const struct gmmrrt_world *w, near_statics_t *n, double x, double y, double need)
 {
     if (w->raster) {

@@ -384,12 +384,20 @@ double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double 
     return best;
 }
 
-/* 1 when point (px, py) lies inside the open disc (cx, cy, rad) by more than the rounding
- * margin (rad_in = rad less the margin, > 0: compared squared). */
-static int inside_disc(double px, double py, double cx, double cy, double rad_in)
+/* 1 when point (px, py) lies inside one of the n discs (cx, cy, rad_in) other than skip_a and
+ * skip_b by more than the rounding margin (rad_in = the radius less the margin; a disc with
+ * rad_in <= 0 covers nothing; compared squared). */
+static int covered_by_another(double px, double py, int n, const double *cx, const double *cy, const double *rad_in,
+                              int skip_a, int skip_b)
 {
-    const double dx = px - cx, dy = py - cy;
-    return dx * dx + dy * dy < rad_in * rad_in;
+    for (int j = 0; j < n; ++j) {
+        if (j == skip_a || j == skip_b || !(rad_in[j] > 0.0))
+            continue;
+        const double dx = px - cx[j], dy = py - cy[j];
+        if (dx * dx + dy * dy < rad_in[j] * rad_in[j])
+            return 1;
+    }
+    return 0;
 }
 
 double gmmrrt_raster_clearance_union(const gmmrrt_raster_t *r, double x, double y)
@@ -432,11 +440,8 @@ double gmmrrt_raster_clearance_union(const gmmrrt_raster_t *r, double x, double 
             px = cx[k] + rad[k];
             py = cy[k];
         }
-        int covered = 0;
-        for (int j = 0; j < n && !covered; ++j)
-            covered = j != k && rad_in[j] > 0.0 && inside_disc(px, py, cx[j], cy[j], rad_in[j]);
         const double e = fabs(rad[k] - dist[k]);
-        if (!covered && e < best)
+        if (e < best && !covered_by_another(px, py, n, cx, cy, rad_in, k, k))
             best = e;
         if (dist[k] == 0.0 && rad[k] < best)
             best = rad[k]; /* any point of the circle is as near: the whole circle counts */
@@ -463,11 +468,8 @@ double gmmrrt_raster_clearance_union(const gmmrrt_raster_t *r, double x, double 
             const double mx = cx[a] + ux * t, my = cy[a] + uy * t;
             for (int sgn = -1; sgn <= 1; sgn += 2) {
                 const double px = mx - (double)sgn * uy * h, py = my + (double)sgn * ux * h;
-                int covered = 0;
-                for (int j = 0; j < n && !covered; ++j)
-                    covered = j != a && j != b && rad_in[j] > 0.0 && inside_disc(px, py, cx[j], cy[j], rad_in[j]);
                 const double e2 = px * px + py * py;
-                if (!covered && e2 < best * best)
+                if (e2 < best * best && !covered_by_another(px, py, n, cx, cy, rad_in, a, b))
                     best = sqrt(e2);
             }
         }
