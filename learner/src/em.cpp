@@ -12,6 +12,7 @@
 #include <random>
 #include <sstream>
 
+#include "angle_dims.hpp"
 #include "component_terms.hpp"
 #include "estep_2d.hpp"
 #include "gmmrrt/features.h"
@@ -82,7 +83,7 @@ struct DataInfo {
 
 using detail::PassRange;  // points [first, last) of pass task t (parallel.hpp)
 
-inline bool IsAngleDim(uint32_t mask, Eigen::Index j) { return j < 32 && ((mask >> j) & 1u); }
+using detail::IsAngleDim;  // angle_dims.hpp
 
 // The data's mean and covariance in three passes on up to `threads` threads (sums per task of
 // points, added in task order: the same bits for any thread count): the mean (angle columns:

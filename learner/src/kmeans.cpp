@@ -23,6 +23,7 @@
 
 #include "gmmrrt/features.h"
 #include "gmmrrt_learner/mixture.hpp"
+#include "angle_dims.hpp"
 #include "parallel.hpp"
 
 namespace gmmrrt {
@@ -53,7 +54,7 @@ namespace {
 // One angle difference per point, centre and iteration: the core's wrap, inline (features.h).
 inline double Wrap(double v) { return gmmrrt_wrap_angle_inline(v); }
 
-inline bool IsAngle(uint32_t mask, Eigen::Index c) { return c < 32 && ((mask >> c) & 1u); }
+using detail::IsAngleDim;  // angle_dims.hpp
 
 }  // namespace
 
@@ -70,7 +71,7 @@ void SquaredDistances(const Eigen::MatrixXd& points, const Eigen::VectorXd& cent
   Eigen::ArrayXd diff(n);
   for (Eigen::Index c = 0; c < points.cols(); ++c) {
     diff = points.col(c).array() - center[c];
-    if (IsAngle(angle_mask, c))
+    if (IsAngleDim(angle_mask, c))
       for (Eigen::Index p = 0; p < n; ++p) diff[p] = Wrap(diff[p]);
     *d2 += diff.square();
   }
@@ -152,7 +153,7 @@ inline void BoxBounds(const Layout& l, Eigen::Index g, const double* center, dou
   for (int c = 0; c < l.d; ++c) {
     const double a = l.lo(c, g) - center[c], b = l.hi(c, g) - center[c];
     double near, far;
-    if (IsAngle(l.mask, c) && !(a > -M_PI && b <= M_PI)) {
+    if (IsAngleDim(l.mask, c) && !(a > -M_PI && b <= M_PI)) {
       near = 0.0;
       far = M_PI;
     } else {
@@ -173,7 +174,7 @@ inline void GroupDistances(const Layout& l, Eigen::Index g, const double* center
   for (int c = 0; c < l.d; ++c) {
     const double* xc = l.x->col(c).data() + first;
     const double cc = center[c];
-    if (IsAngle(l.mask, c)) {
+    if (IsAngleDim(l.mask, c)) {
       for (int q = 0; q < size; ++q) {
         const double v = Wrap(xc[q] - cc);
         d2[q] = c == 0 ? v * v : d2[q] + v * v;
@@ -408,7 +409,7 @@ double Update(const Layout& l, const Eigen::ArrayXi& labels, const Eigen::ArrayX
       else
         for (int q = 0; q < size; ++q) count[lab[q]] += 1.0;
       for (int c = 0; c < l.d; ++c) {
-        const bool angle = IsAngle(mask, c);
+        const bool angle = IsAngleDim(mask, c);
         const double* xc = x.col(c).data() + first;
         if (same) {
           const double center = (*centers)(c, one);
