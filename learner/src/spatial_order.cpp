@@ -42,12 +42,11 @@ std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt, int threads)
   const Eigen::Index n = xt.rows();
   if (n == 0) return {};
   const long tasks = PassTasks(static_cast<long>(n));
-  auto task_range = [n](long t, Eigen::Index* first, Eigen::Index* last) { PassRange(t, n, first, last); };
   // The bounding box: minima and maxima per task, then over the tasks (exact in any order).
   std::vector<double> box(static_cast<size_t>(tasks) * 4);
   ParallelFor(threads, tasks, [&](long t) {
     Eigen::Index first, last;
-    task_range(t, &first, &last);
+    PassRange(t, n, &first, &last);
     double* b = box.data() + 4 * t;
     b[0] = b[1] = xt(first, 0);
     b[2] = b[3] = xt(first, 1);
@@ -76,7 +75,7 @@ std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt, int threads)
   std::unique_ptr<Eigen::Index[]> start(new Eigen::Index[kAllCells * static_cast<size_t>(tasks)]);  // [t * cells + c]
   ParallelFor(threads, tasks, [&](long t) {
     Eigen::Index first, last;
-    task_range(t, &first, &last);
+    PassRange(t, n, &first, &last);
     Eigen::Index* count = start.get() + static_cast<size_t>(t) * kAllCells;
     std::fill(count, count + kAllCells, Eigen::Index{0});
     for (Eigen::Index p = first; p < last; ++p) {
@@ -108,7 +107,7 @@ std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt, int threads)
   std::vector<Eigen::Index> order(n);
   ParallelFor(threads, tasks, [&](long t) {
     Eigen::Index first, last;
-    task_range(t, &first, &last);
+    PassRange(t, n, &first, &last);
     Eigen::Index* slot = start.get() + static_cast<size_t>(t) * kAllCells;
     for (Eigen::Index p = first; p < last; ++p) order[slot[key[p]]++] = p;
   });
