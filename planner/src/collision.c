@@ -30,6 +30,7 @@
 #include "block_layout.h"
 #include "collision_internal.h"
 #include "fcl_adapter.h"
+#include "raster_bound.h"
 #include "segment_exact.h"
 
 #define GMMRRT_CLEARANCE_CAP_CELLS 4.0
@@ -588,7 +589,11 @@ static double static_clearance(const struct gmmrrt_world *w, near_statics_t *n, 
     if (w->raster) {
         /* The raster's bound is the whole answer for the map: when it is at most `need`, so
          * is the minimum, and the caller refuses whatever the obstacles add. */
-        double lm = gmmrrt_raster_clearance_bound(w->raster, x, y) - w->raster_slack_m - w->robot_radius_m;
+        double u, v, lb;
+        gmmrrt_raster_to_cells(w->raster, x, y, &u, &v);
+        if (!gmmrrt_raster_interior_bound(w->raster, u, v, &lb))
+            lb = gmmrrt_raster_clearance_bound(w->raster, x, y);
+        double lm = lb - w->raster_slack_m - w->robot_radius_m;
         if (!(lm > need) && w->raster_union) { /* near a wall: the corners' discs together prove more */
             const double lu = gmmrrt_raster_clearance_union(w->raster, x, y) - w->raster_slack_m - w->robot_radius_m;
             lm = lu > lm ? lu : lm;

@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "block_layout.h"
+#include "raster_bound.h"
 
 /* "Nothing blocks" in squared cells: larger than any real squared distance (2 x 16385^2). */
 #define FAR2 1e18
@@ -314,19 +315,6 @@ gmmrrt_status_t gmmrrt_raster_update_distance_window(gmmrrt_raster_t *r, int64_t
     return GMMRRT_OK;
 }
 
-/* World point to continuous raster coordinates in cells (cell (i, j) spans [i, i + 1) x [j, j + 1)). */
-static void to_cells(const gmmrrt_raster_t *r, double x, double y, double *u, double *v)
-{
-    const double dx = x - r->origin_x, dy = y - r->origin_y;
-    if (r->sin_yaw == 0.0 && r->cos_yaw == 1.0) { /* an unrotated map: the same values without the rotation */
-        *u = dx * r->inv_resolution_m;
-        *v = dy * r->inv_resolution_m;
-        return;
-    }
-    *u = (dx * r->cos_yaw + dy * r->sin_yaw) * r->inv_resolution_m;
-    *v = (-dx * r->sin_yaw + dy * r->cos_yaw) * r->inv_resolution_m;
-}
-
 /* The two neighbour indices along one axis, floor(a) and floor(a) + 1, each clamped to
  * [0, n - 1] (a below -1 or NaN: both 0). */
 static void neighbours(double a, int32_t n, int32_t *lo, int32_t *hi)
@@ -349,16 +337,20 @@ static void neighbours(double a, int32_t n, int32_t *lo, int32_t *hi)
 static inline void cell_corners(const gmmrrt_raster_t *r, double x, double y, double *u, double *v, int32_t *ia,
                                 int32_t *ib, int32_t *ja, int32_t *jb)
 {
-    to_cells(r, x, y, u, v);
+    gmmrrt_raster_to_cells(r, x, y, u, v);
     neighbours(*u, r->width + 1, ia, ib);
     neighbours(*v, r->height + 1, ja, jb);
 }
 
 double gmmrrt_raster_clearance_bound(const gmmrrt_raster_t *r, double x, double y)
 {
-    double u, v;
+    double u, v, inner;
+    gmmrrt_raster_to_cells(r, x, y, &u, &v);
+    if (gmmrrt_raster_interior_bound(r, u, v, &inner))
+        return inner;
     int32_t ia, ib, ja, jb;
-    cell_corners(r, x, y, &u, &v, &ia, &ib, &ja, &jb);
+    neighbours(u, r->width + 1, &ia, &ib);
+    neighbours(v, r->height + 1, &ja, &jb);
     /* Offsets from the point to each corner, in cells, squared. */
     const double cua = (double)ia - u, cub = (double)ib - u;
     const double cva = (double)ja - v, cvb = (double)jb - v;
@@ -483,7 +475,7 @@ double gmmrrt_raster_distance_to_blocked(const gmmrrt_raster_t *r, double x, dou
     if (!r || r->width < 1 || !isfinite(x) || !isfinite(y) || !(max_m > 0.0))
         return NAN;
     double u, v;
-    to_cells(r, x, y, &u, &v);
+    gmmrrt_raster_to_cells(r, x, y, &u, &v);
     if (r->unknown_blocked && !(u >= 0.0 && v >= 0.0 && u <= (double)r->width && v <= (double)r->height))
         return 0.0; /* in the outside, which blocks */
     const double reach = max_m / r->resolution_m + 1.0;
@@ -530,7 +522,7 @@ gmmrrt_status_t gmmrrt_raster_apply_scan(gmmrrt_raster_t *r, const gmmrrt_scan_t
     const uint32_t stamp = (uint32_t)((utime - epoch) / 1000) + 1u;
     int32_t n_marked = 0, n_cleared = 0;
     double su, sv;
-    to_cells(r, sensor_x, sensor_y, &su, &sv);
+    gmmrrt_raster_to_cells(r, sensor_x, sensor_y, &su, &sv);
     for (int32_t k = 0; k < scan->num_ranges; ++k) {
         const double range = (double)scan->ranges_m[k];
         if (!(isfinite(range) && range >= scan->range_min_m && range < scan->range_max_m))
