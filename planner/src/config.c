@@ -39,6 +39,7 @@ void gmmrrt_planner_config_default(gmmrrt_planner_config_t *cfg)
     cfg->informed_sampling = 1;
     cfg->connect_first = 1;
     cfg->connect_max_iterations = 4096; /* docs/planner.md, "Defaults" */
+    cfg->connect_domains = 1;
     cfg->w_length = 1.0;
     cfg->w_task = 2.0;
     cfg->task_cost = GMMRRT_TASK_COST_PAPER; /* measured better on the real splits (docs/planner.md) */

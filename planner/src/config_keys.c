@@ -48,6 +48,8 @@ static const gmmrrt_config_key_t k_keys[] = {
      "1: connect phase (RRT-Connect) until the first path, then RRT* from it; 0: RRT* from the first sample"},
     INT(connect_max_iterations, "connect-max-iterations", 1, INT32_MAX,
         "the connect phase ends after this many iterations without a path; RRT* goes on alone"),
+    {"connect_domains", "connect-domains", GMMRRT_KEY_SWITCH, OFF(connect_domains), 0, 1, 0, 0, {NULL},
+     "1: a connect node whose step was blocked tries targets beyond one step only as the nearest; 0: off"},
     REAL(w_length, "w-length", 0.0, 0, GMMRRT_MAX_COST_WEIGHT, 0, "weight of length in the edge cost"),
     REAL(w_task, "w-task", 0.0, 0, GMMRRT_MAX_COST_WEIGHT, 0,
          "weight of the task cost c(f) in the edge cost (paper Sect. 4)"),

@@ -29,6 +29,16 @@
  * the problems this phase is for, and the scan is a tight loop over 16-byte points.
  * Not used with walking people (gmmrrt_connect_reset says why) nor by gmm-rrt (a baseline whose
  * staged sampling is the point).
+ *
+ * Dynamic domains (cfg.connect_domains; Yershova, Jaillet, Simeon and LaValle, "Dynamic-Domain
+ * RRTs", ICRA 2005): a node whose step was once blocked stands at the border of the free space
+ * (a wall, or a room's side), and a target far from it mostly lies behind that border. Such a
+ * node is tried for a target beyond one step (step_m) only when it is the tree's nearest node,
+ * the try RRT-Connect itself makes; as a further try (GMMRRT_CONNECT_TRIES) it is skipped without
+ * a collision test. The domain's radius is the step itself, so there is no constant to set: a
+ * blocked node still takes every target its one unsteered edge reaches. Why: on a floor plan most
+ * of the phase's time went to edges from nodes in a room towards targets behind its walls, and
+ * tested again and again from the same nodes; docs/planner.md has the measurement.
  */
 #include <math.h>
 #include <stdint.h>
@@ -43,7 +53,7 @@ size_t gmmrrt_connect_mem_size(const gmmrrt_planner_config_t *cfg)
     if (!cfg || !cfg->connect_first || cfg->planner == GMMRRT_PLANNER_GMM_RRT)
         return 0;
     const size_t n = GMMRRT_CONNECT_MAX_NODES;
-    return gmmrrt_align8(n * sizeof(gmmrrt_xy_t)) + gmmrrt_align8(n * sizeof(int32_t)) +
+    return gmmrrt_align8(n * sizeof(gmmrrt_xy_t)) + gmmrrt_align8(n * sizeof(int32_t)) + gmmrrt_align8(n) +
            2 * gmmrrt_align8(n * sizeof(double));
 }
 
@@ -56,6 +66,7 @@ void gmmrrt_connect_bind(struct gmmrrt_planner *p, void *mem)
     if (gmmrrt_connect_mem_size(&p->cfg) == 0) {
         c->xy = NULL;
         c->parent = NULL;
+        c->blocked_once = NULL;
         c->path_x = c->path_y = NULL;
         return;
     }
@@ -64,6 +75,7 @@ void gmmrrt_connect_bind(struct gmmrrt_planner *p, void *mem)
     size_t off = 0;
     c->xy = (gmmrrt_xy_t *)(void *)(base + gmmrrt_block_take(&off, n * sizeof(gmmrrt_xy_t)));
     c->parent = (int32_t *)(void *)(base + gmmrrt_block_take(&off, n * sizeof(int32_t)));
+    c->blocked_once = base + gmmrrt_block_take(&off, n);
     c->path_x = (double *)(void *)(base + gmmrrt_block_take(&off, n * sizeof(double)));
     c->path_y = (double *)(void *)(base + gmmrrt_block_take(&off, n * sizeof(double)));
 }
@@ -74,6 +86,7 @@ void gmmrrt_connect_reset(struct gmmrrt_planner *p)
     c->turn = 0;
     c->n_start = c->n_goal = 0;
     c->iterations = 0;
+    c->edge_tests = 0;
     c->state = GMMRRT_CONNECT_OFF;
     /* Walking people are tested against a time window from each point's straight distance to
      * the root (moving_people.c), which holds for the near-straight paths RRT* converges to but
@@ -83,9 +96,11 @@ void gmmrrt_connect_reset(struct gmmrrt_planner *p)
     const int32_t top = GMMRRT_CONNECT_MAX_NODES - 1;
     c->xy[0] = p->pool.xy[0]; /* the RRT* tree's root: the start, or the escape's exit */
     c->parent[0] = -1;
+    c->blocked_once[0] = 0;
     c->xy[top].x = p->problem.goal_x;
     c->xy[top].y = p->problem.goal_y;
     c->parent[top] = -1;
+    c->blocked_once[top] = 0;
     c->n_start = c->n_goal = 1;
     c->state = GMMRRT_CONNECT_GROWING;
 }
@@ -123,8 +138,10 @@ static int nearest_few(const gmmrrt_xy_t *xy, int32_t lo, int32_t hi, double x, 
 /* One step of the start tree (goal_tree 0) or the goal tree (1) from its node n towards
  * (x, y), a free point, at most step_m. REACHED with *out the node at (x, y) (added, or n when
  * it is there), ADVANCED with *out the node added short of it, TRAPPED when the step is
- * blocked, FULL when the array has no room. */
-static int extend_from(struct gmmrrt_planner *p, int goal_tree, int32_t n, double x, double y, int32_t *out)
+ * blocked, or when n is only a further try (nearest 0) outside its dynamic domain (the file
+ * comment), FULL when the array has no room. */
+static int extend_from(struct gmmrrt_planner *p, int goal_tree, int32_t n, double x, double y, int nearest,
+                       int32_t *out)
 {
     gmmrrt_connect_t *c = &p->connect;
     const double nx = c->xy[n].x, ny = c->xy[n].y;
@@ -137,6 +154,8 @@ static int extend_from(struct gmmrrt_planner *p, int goal_tree, int32_t n, doubl
     if (c->n_start + c->n_goal >= GMMRRT_CONNECT_MAX_NODES)
         return FULL;
     const int steered = dist > p->cfg.step_m;
+    if (steered && !nearest && c->blocked_once[n] && p->cfg.connect_domains)
+        return TRAPPED;
     double qx = x, qy = y;
     if (steered) {
         qx = nx + dx * (p->cfg.step_m / dist);
@@ -149,12 +168,16 @@ static int extend_from(struct gmmrrt_planner *p, int goal_tree, int32_t n, doubl
      * on a map with circles or boxes the edge's end bound stops at the map's, and the walk's
      * clearance proof then covers the end with exact clearance >= 0 where the point test asks
      * for > 1e-9 m. Within that nanometre the trees could differ; nowhere else. */
-    if (!gmmrrt_planner_edge_allowed(p, nx, ny, qx, qy))
+    ++c->edge_tests;
+    if (!gmmrrt_planner_edge_allowed(p, nx, ny, qx, qy)) {
+        c->blocked_once[n] = 1;
         return TRAPPED;
+    }
     const int32_t i = goal_tree ? GMMRRT_CONNECT_MAX_NODES - 1 - c->n_goal++ : c->n_start++;
     c->xy[i].x = qx;
     c->xy[i].y = qy;
     c->parent[i] = n;
+    c->blocked_once[i] = 0;
     *out = i;
     return steered ? ADVANCED : REACHED;
 }
@@ -170,7 +193,7 @@ static int extend(struct gmmrrt_planner *p, int goal_tree, double x, double y, i
     const int m = nearest_few(c->xy, lo, hi, x, y, idx);
     int st = TRAPPED;
     for (int k = 0; k < m && st == TRAPPED; ++k)
-        st = extend_from(p, goal_tree, idx[k], x, y, out);
+        st = extend_from(p, goal_tree, idx[k], x, y, k == 0, out);
     return st;
 }
 
@@ -227,8 +250,8 @@ void gmmrrt_connect_iterate(struct gmmrrt_planner *p)
          * from), so it scans the tree once. */
         const double tx = c->xy[grown].x, ty = c->xy[grown].y;
         st = extend(p, !from_goal, tx, ty, &other);
-        while (st == ADVANCED)
-            st = extend_from(p, !from_goal, other, tx, ty, &other);
+        while (st == ADVANCED) /* from the node just added: the nearest to the target */
+            st = extend_from(p, !from_goal, other, tx, ty, 1, &other);
     }
     if (st == FULL) {
         c->state = GMMRRT_CONNECT_OFF; /* RRT* alone from here */

@@ -80,11 +80,14 @@ typedef enum {
 typedef struct {
     gmmrrt_xy_t *xy;            /* GMMRRT_CONNECT_MAX_NODES, in the planner block */
     int32_t *parent;            /* same index space; -1 for the two roots */
+    uint8_t *blocked_once;      /* same index space: 1 once a step from the node was blocked
+                                   (a boundary node of the dynamic domains, connect.c) */
     double *path_x, *path_y;    /* GMMRRT_CONNECT_MAX_NODES: the joined path, start first */
     int32_t state;              /* gmmrrt_connect_state_t */
     int32_t n_start, n_goal;    /* nodes of each tree */
     int32_t turn;               /* 0: the start tree extends towards the next sample, 1: the goal tree */
     int64_t iterations;         /* of this phase since gmmrrt_connect_reset (cfg.connect_max_iterations) */
+    int64_t edge_tests;         /* edges this phase has tested since gmmrrt_connect_reset */
 } gmmrrt_connect_t;
 
 /* Set by collision.c's internal hook: segment walk step. */

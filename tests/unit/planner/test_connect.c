@@ -235,6 +235,73 @@ static void test_same_seed_same_path_and_the_phase_is_selectable(void **state)
     assert_true(gmmrrt_planner_mem_size(&on) > gmmrrt_planner_mem_size(&off));
 }
 
+/* Three rooms of 0.2 m walls in [-10, 10] x [-6, 6]: a long room below y = 0, two above it
+ * split at x = 0; 1 m doors at x in [-7, -6] (below to the upper left) and y in [4, 5] (upper
+ * left to upper right). (-8, -3) -> (8, 3): through both doors, as on a floor plan. */
+static gmmrrt_problem_t three_rooms(void)
+{
+    gmmrrt_problem_t pr = empty_problem(-8.0, -3.0, 8.0, 3.0);
+    pr.goal_tolerance_m = 1e-6;
+    pr.obstacles.bounds = (gmmrrt_bounds_t){-10.0, -6.0, 10.0, 6.0};
+    pr.obstacles.num_boxes = 4;
+    pr.obstacles.boxes[0] = (gmmrrt_box_t){-8.5, 0.0, 3.0, 0.2, 0.0};
+    pr.obstacles.boxes[1] = (gmmrrt_box_t){2.0, 0.0, 16.0, 0.2, 0.0};
+    pr.obstacles.boxes[2] = (gmmrrt_box_t){0.0, 2.0, 0.2, 4.0, 0.0};
+    pr.obstacles.boxes[3] = (gmmrrt_box_t){0.0, 5.5, 0.2, 1.0, 0.0};
+    return pr;
+}
+
+static int64_t median9(int64_t *v)
+{
+    for (int a = 0; a < 9; ++a)
+        for (int b = a + 1; b < 9; ++b)
+            if (v[b] < v[a]) {
+                const int64_t t = v[a];
+                v[a] = v[b];
+                v[b] = t;
+            }
+    return v[4];
+}
+
+/* Dynamic domains (connect.c): a node whose step was blocked is not tested again as a further
+ * try towards a target beyond one step. In rooms that spares most of the edge tests to the first
+ * path; the path still comes, in a tree with the invariants; the switch turns it off. */
+static void test_dynamic_domains_spare_edge_tests_in_rooms(void **state)
+{
+    (void)state;
+    int64_t tests[2][9], iterations[2][9];
+    for (int on = 0; on <= 1; ++on)
+        for (int s = 0; s < 9; ++s) {
+            gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+            cfg.seed = (uint64_t)s + 1;
+            cfg.step_m = 0.2 * hypot(20.0, 12.0); /* the benchmark's: OMPL's range, 0.2 x the extent */
+            cfg.goal_bias = 0.05;
+            cfg.connect_domains = on;
+            test_planner_t t;
+            assert_int_equal(test_planner_make(&t, &cfg), GMMRRT_OK);
+            gmmrrt_problem_t pr = three_rooms();
+            assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
+            iterations[on][s] = run_to_first_path(t.p, 200000);
+            tests[on][s] = t.p->connect.edge_tests;
+            assert_true(tests[on][s] > 0); /* the first path came from the connect phase */
+            if (on && s == 0)
+                check_tree(t.p, 1);
+            test_planner_free(&t);
+        }
+    const int64_t tests_off = median9(tests[0]), tests_on = median9(tests[1]);
+    printf("three rooms: edge tests to the first path, median of 9 seeds: domains %lld, without %lld "
+           "(iterations %lld, %lld)\n",
+           (long long)tests_on, (long long)tests_off, (long long)median9(iterations[1]),
+           (long long)median9(iterations[0]));
+    assert_true(tests_on < tests_off);
+
+    gmmrrt_planner_config_t bad = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
+    bad.connect_domains = 2;
+    char err[128];
+    assert_int_equal(gmmrrt_planner_config_validate(&bad, err, sizeof err), GMMRRT_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(err, "connect_domains"));
+}
+
 static void test_the_iteration_cap_hands_over_to_rrt_star(void **state)
 {
     (void)state;
@@ -290,6 +357,7 @@ int main(void)
         cmocka_unit_test(test_task_cost_of_the_handed_over_path_is_the_planners),
         cmocka_unit_test(test_same_seed_same_path_and_the_phase_is_selectable),
         cmocka_unit_test(test_the_iteration_cap_hands_over_to_rrt_star),
+        cmocka_unit_test(test_dynamic_domains_spare_edge_tests_in_rooms),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
