@@ -90,6 +90,19 @@ static void check_tree(gmmrrt_planner_t *p, int length_cost)
     assert_true(isfinite(path.cost) && path.cost > 0.0);
 }
 
+/* The median of nine values (sorts v). */
+static int64_t median9(int64_t *v)
+{
+    for (int a = 0; a < 9; ++a)
+        for (int b = a + 1; b < 9; ++b)
+            if (v[b] < v[a]) {
+                const int64_t t = v[a];
+                v[a] = v[b];
+                v[b] = t;
+            }
+    return v[4];
+}
+
 static void test_narrow_passage_is_found_in_fewer_iterations(void **state)
 {
     (void)state;
@@ -107,29 +120,10 @@ static void test_narrow_passage_is_found_in_fewer_iterations(void **state)
             (on ? with : without)[s] = run_to_first_path(t.p, 200000);
             test_planner_free(&t);
         }
-    /* Medians by counting: the median of `with` is below the median of `without` when more
-     * than half of `without` exceed it. */
-    int64_t sorted_with[SEEDS], sorted_without[SEEDS];
-    for (int s = 0; s < SEEDS; ++s) {
-        sorted_with[s] = with[s];
-        sorted_without[s] = without[s];
-    }
-    for (int a = 0; a < SEEDS; ++a)
-        for (int b = a + 1; b < SEEDS; ++b) {
-            if (sorted_with[b] < sorted_with[a]) {
-                const int64_t t = sorted_with[a];
-                sorted_with[a] = sorted_with[b];
-                sorted_with[b] = t;
-            }
-            if (sorted_without[b] < sorted_without[a]) {
-                const int64_t t = sorted_without[a];
-                sorted_without[a] = sorted_without[b];
-                sorted_without[b] = t;
-            }
-        }
+    const int64_t med_with = median9(with), med_without = median9(without);
     printf("narrow passage: iterations to the first path, median of %d seeds: connect %lld, RRT* alone %lld\n",
-           SEEDS, (long long)sorted_with[SEEDS / 2], (long long)sorted_without[SEEDS / 2]);
-    assert_true(sorted_with[SEEDS / 2] < sorted_without[SEEDS / 2]);
+           SEEDS, (long long)med_with, (long long)med_without);
+    assert_true(med_with < med_without);
 }
 
 static void test_handed_over_tree_keeps_the_invariants_and_converges(void **state)
@@ -249,18 +243,6 @@ static gmmrrt_problem_t three_rooms(void)
     pr.obstacles.boxes[2] = (gmmrrt_box_t){0.0, 2.0, 0.2, 4.0, 0.0};
     pr.obstacles.boxes[3] = (gmmrrt_box_t){0.0, 5.5, 0.2, 1.0, 0.0};
     return pr;
-}
-
-static int64_t median9(int64_t *v)
-{
-    for (int a = 0; a < 9; ++a)
-        for (int b = a + 1; b < 9; ++b)
-            if (v[b] < v[a]) {
-                const int64_t t = v[a];
-                v[a] = v[b];
-                v[b] = t;
-            }
-    return v[4];
 }
 
 /* Dynamic domains (connect.c): a node whose step was blocked is not tested again as a further
