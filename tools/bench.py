@@ -213,7 +213,7 @@ def main(argv=None) -> int:
             avoid = approach = None
         out = bp.run_all_planners(bin_dir, args.quick, raw / "all_planners.jsonl", avoid, approach,
                                   ROOT / "logs" / "maps" / "floor.yaml", build / "bench-arena")
-        if not args.quick:  # one scene's Planner Arena logs kept as the committed example (a few KB)
+        if not args.quick:  # one scene's Planner Arena logs kept as the committed example (tens of KB)
             example = ROOT / "bench" / "arena"
             example.mkdir(exist_ok=True)
             for old in example.glob("*.log"):

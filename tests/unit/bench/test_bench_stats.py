@@ -2,15 +2,18 @@
 
 Oracles are computed by hand in each test from the records it builds: medians that keep
 "never" as infinity, best cost read off a curve, time to a cost, paired ratios, the social
-summary's converged cost, and the target judgement (met / not met / not run).
+summary's converged cost, the all-planner comparison's medians (each budget over its own
+run's trials, first paths from the first-path budget only) and the tables and target rows
+written from them, and the target judgement (met / not met / not run).
 """
 import json
 import math
+from pathlib import Path
 
 import pytest
 
-from gmmrrt_tools.bench.planner import summarize_ompl, summarize_social
-from gmmrrt_tools.bench.report import evaluate_targets
+from gmmrrt_tools.bench.planner import BenchError, summarize_all_planners, summarize_ompl, summarize_social
+from gmmrrt_tools.bench.report import evaluate_targets, write_markdown
 from gmmrrt_tools.bench.stats import INF, clean, cost_at, median, quantile, ratio, time_to_cost
 
 CURVE = [[0.5, 10, 20.0], [2.0, 40, 15.0], [9.0, 200, 12.0], [50.0, 900, 11.0]]
@@ -177,3 +180,99 @@ def test_same_iteration_targets_judge_both_of_our_settings():
                if "EM iterations" in t["name"])
     skipped = evaluate_targets({"learner": {"same_iterations": {"skipped": "no Armadillo"}}})
     assert {t["status"] for t in skipped if "EM iterations" in t["name"]} == {"not run"}
+
+
+# ------------------------------------------------------------------ all planners (gmmrrt-bench-all)
+def _all_rec(planner, budget, trial, cost, first, setup, problem="MAP"):
+    return {"problem": problem, "planner": planner, "trial": trial, "budget_ms": budget, "setup_ms": setup,
+            "first_ms": first, "cost": cost}
+
+
+def _all_planner_records():
+    """A seeded run (15 trials at 1, 10, 100 ms) and a long run (3 trials at 1000 ms), as the two
+    runs of run_all_planners write them. Ours has no path at 1 ms in trials 0 and 1 (seeds 1 and 2):
+    the first three seeds alone would give a median of 'none' at 1 ms, the 15 give 10.9."""
+    recs = []
+    for t in range(15):
+        for b in (1.0, 10.0, 100.0):
+            ours_cost = (None if t < 2 else 10.0 + 0.1 * t) if b == 1.0 else 10.0 - 0.01 * t
+            # First paths and set-up at 1 and 10 ms are far off: only the 100 ms runs may count.
+            first, setup = (0.01 * (t + 1), 0.001 * (t + 1)) if b == 100.0 else (5.0, 1.0)
+            recs.append(_all_rec("gmmrrt", b, t, ours_cost, first, setup))
+            # RRTConnect reports no first path in trial 14 (left out of its median).
+            recs.append(_all_rec("RRTConnect", b, t, 11.0 if b == 1.0 else 9.95,
+                                 (None if t == 14 else 0.1 * (t + 1)) if b == 100.0 else 7.0, 0.1))
+    for t, (ours, peer) in enumerate(((10.5, 10.8), (10.4, 10.7), (10.6, 10.9))):
+        recs.append(_all_rec("gmmrrt", 1000.0, t, ours, 9.0, 1.0))
+        recs.append(_all_rec("RRTConnect", 1000.0, t, peer, 9.0, 1.0))
+    return recs
+
+
+def test_all_planner_costs_are_medians_over_each_budgets_own_trials():
+    pr = summarize_all_planners(_all_planner_records())["MAP"]
+    c = pr["cost"]
+    assert {b: e["trials"] for b, e in c.items()} == {"1": 15, "10": 15, "100": 15, "1000": 3}
+    # 1 ms: ours 13 paths 10.2..11.4 and two 'none' (largest): the 8th of 15 is 10.9; RRTConnect 11.0.
+    assert c["1"]["ours"] == pytest.approx(10.9)
+    assert c["1"]["best_ompl"] == 11.0 and c["1"]["best_ompl_planner"] == "RRTConnect"
+    assert c["1"]["met"] is True
+    # 10 ms: ours 10.00..9.86, median 9.93 (trial 7); RRTConnect 9.95: met.
+    assert c["10"]["ours"] == pytest.approx(9.93) and c["10"]["met"] is True
+    # 1000 ms: the long run's three trials, 10.5 against 10.8.
+    assert c["1000"]["ours"] == pytest.approx(10.5) and c["1000"]["best_ompl"] == pytest.approx(10.8)
+
+
+def test_all_planner_first_paths_come_from_the_first_path_budget_only():
+    pr = summarize_all_planners(_all_planner_records())["MAP"]
+    assert pr["first_trials"] == 15
+    assert pr["first_ms"] == pytest.approx(0.08)  # 0.01..0.15, the 8th
+    # RRTConnect: trials 0..13 report 0.1..1.4 (trial 14 none): median (0.7 + 0.8) / 2
+    assert pr["fastest_ompl"] == "RRTConnect"
+    assert pr["fastest_ompl_first_ms"] == pytest.approx(0.75)
+    assert pr["first_ratio"] == pytest.approx(0.08 / 0.75)
+    rows = {r["planner"]: r for r in pr["table"]}
+    assert [r["planner"] for r in pr["table"]] == ["gmmrrt", "RRTConnect"]  # the program's order
+    assert rows["gmmrrt"]["setup_ms"] == pytest.approx(0.008)
+    assert rows["gmmrrt"]["first_ms"] == pr["first_ms"]
+    assert rows["gmmrrt"]["cost"]["1"] == pr["cost"]["1"]["ours"]
+
+
+def test_all_planner_summary_refuses_two_runs_on_one_budget_and_uneven_trials():
+    recs = _all_planner_records()
+    with pytest.raises(BenchError, match="budget 1000 ms, trial 0: the runs' budgets must be disjoint"):
+        summarize_all_planners(recs + [_all_rec("gmmrrt", 1000.0, 0, 10.0, 1.0, 1.0)])
+    with pytest.raises(BenchError, match="budget 1000 ms: the planners ran different numbers of trials"):
+        summarize_all_planners(recs + [_all_rec("gmmrrt", 1000.0, 3, 10.0, 1.0, 1.0)])
+
+
+def test_all_planner_targets_and_tables_state_their_seeds_and_agree(tmp_path):
+    problems = clean(summarize_all_planners(_all_planner_records()))
+    runs = [{"role": "seeded", "trials": 15, "budgets_ms": [1.0, 10.0, 100.0], "seconds": 1.0, "command": "A"},
+            {"role": "long", "trials": 3, "budgets_ms": [1000.0], "seconds": 1.0, "command": "B"}]
+    res = {"planners": {"runs": runs, "first_path_budget_ms": 100.0, "first_seed": 1, "problems": problems,
+                        "descriptions": {"MAP": "floor plan"}}}
+    targets = {t["name"]: t for t in evaluate_targets(res) if t["name"].startswith("problem MAP")}
+    for b in ("1", "10", "100"):
+        name = f"problem MAP: best cost at {b} ms vs best OMPL (RRTConnect; medians over 15 seeds (1..15))"
+        assert name in targets, sorted(targets)
+    assert "problem MAP: best cost at 1000 ms vs best OMPL (RRTConnect; medians over 3 seeds (1..3))" in targets
+    assert ("problem MAP: first path incl. set-up vs fastest OMPL (RRTConnect; medians over 15 seeds (1..15))"
+            in targets)
+    doc = tmp_path / "benchmarks.md"
+    res["targets"] = evaluate_targets(res)
+    write_markdown(res, doc, Path("results.json"))
+    text = doc.read_text()
+    lines = text.splitlines()
+    head = lines.index("### Problem MAP (floor plan)")
+    assert lines[head + 2] == ("Set-up and first path: medians over 15 seeds (1..15) at 100 ms; cost: at 1, 10 and "
+                               "100 ms medians over 15 seeds (1..15), at 1000 ms medians over 3 seeds (1..3).")
+    assert lines[head + 4] == ("| planner | set-up ms | first path incl. set-up ms | cost @ 1 ms (15 seeds) | "
+                               "cost @ 10 ms (15 seeds) | cost @ 100 ms (15 seeds) | cost @ 1000 ms (3 seeds) |")
+    ours = next(line for line in lines[head:] if line.startswith("| gmmrrt |")).split(" | ")
+    # The table's cells are the figures the target rows judge (a reader sees one cost per cell).
+    assert ours[1:3] == ["0.008", "0.080"]
+    assert [float(v.strip(" |")) for v in ours[3:]] == [pytest.approx(problems["MAP"]["cost"][b]["ours"])
+                                                        for b in ("1", "10", "100", "1000")]
+    assert targets["problem MAP: best cost at 1 ms vs best OMPL (RRTConnect; medians over 15 seeds (1..15))"][
+        "value_text"] == "10.9000 vs 11.0000"
+    assert "at 1, 10 and 100 ms medians over 15 seeds (1..15), at 1000 ms medians over 3 seeds (1..3)" in text

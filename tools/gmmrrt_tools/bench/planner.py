@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import subprocess
 import time
 from pathlib import Path
@@ -264,12 +265,94 @@ def find_executable(build_dir: Path, name: str) -> Optional[Path]:
 
 
 ALL_PLANNERS_BUDGETS_MS = (1.0, 10.0, 100.0, 1000.0)
-# First paths are timed on runs of their own: FIRST_PATH_TRIALS seeds (1..N), one run each at a
-# FIRST_PATH_BUDGET_MS budget. A first path's time is heavy-tailed over seeds (on the floor plan the
-# iterations to it range over several times their median), and the cost runs use the same few seeds
-# at every budget, so their first paths would be a sample of those few seeds, not of the time.
-FIRST_PATH_TRIALS = 15
+# gmmrrt-bench-all runs twice, on disjoint budgets, so that every figure of a (problem, planner,
+# budget) cell comes from one run and every planner of a cell is measured over the same trials:
+# - the seeded run: SEEDED_TRIALS trials at each of SEEDED_BUDGETS_MS. A first path's time and a
+#   short budget's cost are heavy-tailed over seeds (on the floor plan our iterations to the first
+#   path range over several times their median, and a 1 ms run's cost depends on whether its first
+#   path came inside the budget), so a few seeds would be a sample of those seeds, not of the planner.
+# - the long run: LONG_TRIALS trials at the other budgets (1000 ms): 15 trials there would take
+#   12 planners x 6 scenes x 15 x 1 s = 18 minutes.
+# First paths and set-up times are read from the seeded run's FIRST_PATH_BUDGET_MS runs only: a
+# shorter run that ended without a path has no first-path time.
+SEEDED_TRIALS = 15
+SEEDED_BUDGETS_MS = (1.0, 10.0, 100.0)
+LONG_TRIALS = 3
 FIRST_PATH_BUDGET_MS = 100.0
+# gmmrrt-bench-all runs trial t of our planner with seed FIRST_SEED + t (its first_seed); OMPL's
+# planners draw from OMPL's own generator, which the program does not seed.
+FIRST_SEED = 1
+
+
+def _median_or_none(values: List[float]) -> Optional[float]:
+    return median(values) if values else None
+
+
+def summarize_all_planners(records: List[dict], first_path_budget_ms: float = FIRST_PATH_BUDGET_MS) -> Dict[str, dict]:
+    """Per problem, from gmmrrt-bench-all's records of one or more runs on disjoint budgets.
+
+    Every statistic is a median over the trials of one budget, the same trials for every planner:
+    cost @ b over the runs of budget b (a run without an exactly free path counts as infinite),
+    set-up and first path (set-up included) over the runs of first_path_budget_ms (runs that report
+    no first path left out; none left: infinite). Returns {problem: {"first_ms", "fastest_ompl",
+    "fastest_ompl_first_ms", "first_ratio", "first_ms_by_planner", "first_trials", "cost": {"<b>":
+    {"ours", "best_ompl", "best_ompl_planner", "met", "trials"}}, "table": [one row per planner in
+    the program's order: {"planner", "setup_ms", "first_ms", "cost": {"<b>": median}}]}}.
+    BenchError when a (problem, planner, budget, trial) appears twice (two runs on one budget) or
+    when the planners of a cell ran different numbers of trials.
+    """
+    seen = set()
+    for r in records:
+        key = (r["problem"], r["planner"], r["budget_ms"], r["trial"])
+        if key in seen:
+            raise BenchError(f"two records of problem {key[0]}, planner {key[1]}, budget {key[2]:g} ms, trial "
+                             f"{key[3]}: the runs' budgets must be disjoint")
+        seen.add(key)
+    problems: Dict[str, dict] = {}
+    for name in sorted({r["problem"] for r in records}):
+        mine = [r for r in records if r["problem"] == name]
+        planners = list(dict.fromkeys(r["planner"] for r in mine))  # the program's order, gmmrrt first
+        budgets = sorted({r["budget_ms"] for r in mine})
+        cell = {(p, b): [r for r in mine if r["planner"] == p and r["budget_ms"] == b]
+                for p in planners for b in budgets}
+        trials = {}
+        for b in budgets:
+            counts = {p: len(cell[p, b]) for p in planners}
+            if len(set(counts.values())) != 1:
+                raise BenchError(f"problem {name}, budget {b:g} ms: the planners ran different numbers of "
+                                 f"trials ({counts})")
+            trials[b] = counts[planners[0]]
+        cost = {(p, b): median(INF if r["cost"] is None else r["cost"] for r in cell[p, b])
+                for p in planners for b in budgets}
+        first_runs = {p: cell.get((p, first_path_budget_ms), []) for p in planners}
+        first = {p: median([r["first_ms"] for r in rs if r["first_ms"] is not None] or [INF])
+                 for p, rs in first_runs.items() if rs}
+        setup = {p: _median_or_none([r["setup_ms"] for r in rs if r["setup_ms"] is not None])
+                 for p, rs in first_runs.items()}
+        ompl_first = {p: f for p, f in first.items() if p != "gmmrrt" and math.isfinite(f)}
+        fastest = min(ompl_first, key=ompl_first.get) if ompl_first else None
+        out = {"first_ms": first.get("gmmrrt"), "fastest_ompl": fastest,
+               "fastest_ompl_first_ms": ompl_first.get(fastest) if fastest else None,
+               "first_ms_by_planner": {p: (f if math.isfinite(f) else None) for p, f in sorted(first.items())},
+               "first_trials": trials.get(first_path_budget_ms), "cost": {}}
+        out["first_ratio"] = (out["first_ms"] / out["fastest_ompl_first_ms"]) if fastest else None
+        for b in budgets:
+            ompl = {p: cost[p, b] for p in planners if p != "gmmrrt"}
+            best = min(ompl, key=ompl.get) if ompl else None
+            ours = cost.get(("gmmrrt", b))
+            out["cost"]["%g" % b] = {"ours": ours, "best_ompl": ompl.get(best), "best_ompl_planner": best,
+                                     "met": None if best is None or ours is None else ours <= ompl[best],
+                                     "trials": trials[b]}
+        out["table"] = [{"planner": p, "setup_ms": setup.get(p), "first_ms": out["first_ms_by_planner"].get(p),
+                         "cost": {"%g" % b: cost[p, b] for b in budgets}} for p in planners]
+        problems[name] = out
+    return problems
+
+
+def problem_descriptions(text: str) -> Dict[str, str]:
+    """What gmmrrt-bench-all's headings say each problem is ("### Problem A (problem_A.txt, 3 trials)"
+    gives {"A": "problem_A.txt"}), so the report names the problems as the program does."""
+    return {m.group(1): m.group(2) for m in re.finditer(r"^### Problem (\S+) \((.*), \d+ trials\)$", text, re.M)}
 
 
 def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optional[str] = None,
@@ -278,19 +361,21 @@ def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optiona
     """gmmrrt-bench-all: our RRT* and every OMPL planner of the comparison on the problems of
     tests/data/bench_problems (path length, point robot), exact motion checks and set-up counted on
     both sides. Targets: our first path (set-up included) <= 0.5x the fastest OMPL planner's, and our
-    best cost at each moment <= the best OMPL planner's (medians over trials). With avoid_model, also
-    the social avoid scene (problem "S", task cost) of gmmrrt-bench-ompl; with approach_model, the
-    social approach scene ("AP"); with map_yaml, the floor-plan scene ("MAP", robot radius 0.3 m).
-    With arena_dir, the Planner Arena logs (one per problem and budget) go there; each is read back
-    and its runs counted against the JSON records, so a log Planner Arena would misread fails here."""
+    best cost at each moment <= the best OMPL planner's (medians over trials: see SEEDED_TRIALS for
+    which budgets run how many). With avoid_model, also the social avoid scene (problem "S", task
+    cost) of gmmrrt-bench-ompl; with approach_model, the social approach scene ("AP"); with map_yaml,
+    the floor-plan scene ("MAP", robot radius 0.3 m). With arena_dir, the Planner Arena logs (one per
+    problem and budget, each from the run that ran that budget) go there; each is read back and its
+    runs counted against the JSON records, so a log Planner Arena would misread fails here. quick:
+    one trial at the seeded run's budgets, no long run."""
     exe = bin_dir / "gmmrrt-bench-all"
     if not exe.is_file():
         raise BenchError(f"{exe} not built (OMPL missing?)")
     root = Path(__file__).resolve().parents[3]  # the repository (this file is tools/gmmrrt_tools/bench/)
-    budgets = ALL_PLANNERS_BUDGETS_MS[:3] if quick else ALL_PLANNERS_BUDGETS_MS
-    trials = 1 if quick else 3
-    first_trials = 1 if quick else FIRST_PATH_TRIALS
-    first_raw = raw.with_name(raw.stem + "_first" + raw.suffix)
+    long_budgets = () if quick else tuple(b for b in ALL_PLANNERS_BUDGETS_MS if b not in SEEDED_BUDGETS_MS)
+    seeded_raw = raw.with_name(raw.stem + "_seeds" + raw.suffix)
+    runs = [("seeded", 1 if quick else SEEDED_TRIALS, SEEDED_BUDGETS_MS, seeded_raw),
+            ("long", LONG_TRIALS, long_budgets, raw)]
     # The scenes' arguments, as run and as shown (paths relative to the repository).
     scene, scene_shown = [], []
     for flag, path, shown_path in (("--model", avoid_model, lambda q: q.name),
@@ -305,54 +390,28 @@ def run_all_planners(bin_dir: Path, quick: bool, raw: Path, avoid_model: Optiona
         for old in arena_dir.glob("*.log"):
             old.unlink()
         arena_args, arena_shown = ["--arena", str(arena_dir)], ["--arena", "build/" + arena_dir.name]
-
-    def run_args(n_trials: int, budget_list: str, json_name: str) -> List[str]:
-        return ["--trials", str(n_trials), "--budgets", budget_list, "--json", json_name]
-
     problems_dir = str(root / "tests" / "data" / "bench_problems")
-    cost_args = run_args(trials, ",".join("%g" % b for b in budgets), str(raw))
-    first_args = run_args(first_trials, "%g" % FIRST_PATH_BUDGET_MS, str(first_raw))
-    t0 = time.time()
-    text = _run([str(exe), "--problems", problems_dir] + cost_args + scene + arena_args, 3600)
-    recs = [json.loads(line) for line in raw.read_text().splitlines() if line.strip()]
-    arena = check_arena_logs(arena_dir, recs) if arena_dir else None
-    _run([str(exe), "--problems", problems_dir] + first_args + scene, 3600)
-    first_recs = [json.loads(line) for line in first_raw.read_text().splitlines() if line.strip()]
-
-    def by_planner(records: List[dict], problem: str) -> Dict[str, List[dict]]:
-        out: Dict[str, List[dict]] = {}
-        for r in records:
-            if r["problem"] == problem:
-                out.setdefault(r["planner"], []).append(r)
-        return out
-
-    problems: Dict[str, dict] = {}
-    for name in sorted({r["problem"] for r in recs}):
-        by = by_planner(recs, name)
-        first = {p: median([r["first_ms"] for r in v if r["first_ms"] is not None] or [INF])
-                 for p, v in by_planner(first_recs, name).items()}
-        ompl_first = {p: f for p, f in first.items() if p != "gmmrrt" and math.isfinite(f)}
-        fastest = min(ompl_first, key=ompl_first.get) if ompl_first else None
-        out = {"first_ms": first.get("gmmrrt"), "fastest_ompl": fastest,
-               "fastest_ompl_first_ms": ompl_first.get(fastest) if fastest else None, "cost": {},
-               "first_ms_by_planner": {p: (f if math.isfinite(f) else None) for p, f in sorted(first.items())}}
-        out["first_ratio"] = (out["first_ms"] / out["fastest_ompl_first_ms"]) if fastest else None
-        for b in budgets:
-            med = {p: median([r["cost"] if r["cost"] is not None else INF for r in v if r["budget_ms"] == b])
-                   for p, v in by.items()}
-            ompl = {p: c for p, c in med.items() if p != "gmmrrt"}
-            best = min(ompl, key=ompl.get)
-            out["cost"]["%g" % b] = {"ours": med.get("gmmrrt"), "best_ompl": ompl[best], "best_ompl_planner": best,
-                                     "met": med.get("gmmrrt", INF) <= ompl[best]}
-        problems[name] = out
     shown_exe = [str(exe.relative_to(root)) if root in exe.parents else str(exe), "--problems", "tests/data/bench_problems"]
-    shown = shown_exe + cost_args[:-1] + [raw.name] + scene_shown + arena_shown
-    first_shown = shown_exe + first_args[:-1] + [first_raw.name] + scene_shown
-    out = {"command": " ".join(shown), "first_path_command": " ".join(first_shown),
-           "first_path_trials": first_trials, "first_path_budget_ms": FIRST_PATH_BUDGET_MS,
-           "seconds": round(time.time() - t0, 1), "text": text.strip(), "problems": problems, "trials": trials}
-    if arena is not None:
-        out["arena_logs"] = arena
+    t0 = time.time()
+    recs: List[dict] = []
+    done: List[dict] = []
+    descriptions: Dict[str, str] = {}
+    for role, n_trials, budgets, json_path in runs:
+        if not budgets:
+            continue
+        args = ["--trials", str(n_trials), "--budgets", ",".join("%g" % b for b in budgets), "--json"]
+        t_run = time.time()
+        text = _run([str(exe), "--problems", problems_dir] + args + [str(json_path)] + scene + arena_args, 3600)
+        recs += _json_lines(json_path.read_text())
+        descriptions.update(problem_descriptions(text))
+        done.append({"role": role, "trials": n_trials, "budgets_ms": list(budgets),
+                     "seconds": round(time.time() - t_run, 1),
+                     "command": " ".join(shown_exe + args + [json_path.name] + scene_shown + arena_shown)})
+    out = {"runs": done, "first_path_budget_ms": FIRST_PATH_BUDGET_MS, "first_seed": FIRST_SEED,
+           "descriptions": descriptions, "problems": summarize_all_planners(recs),
+           "seconds": round(time.time() - t0, 1)}
+    if arena_dir:
+        out["arena_logs"] = check_arena_logs(arena_dir, recs)
     return out
 
 

@@ -39,6 +39,16 @@ def _seeds_statistic(si: dict) -> str:
     return f"medians over {len(seeds)} {'seed' if len(seeds) == 1 else 'seeds'} each side ({span})"
 
 
+def _over_seeds(n: Optional[int], first_seed: int = 1) -> str:
+    """The all-planner comparison's statistic over n trials: ours runs trial t with seed
+    first_seed + t; OMPL's planners draw from OMPL's unseeded generator (n runs each)."""
+    if not n:
+        return "trials not recorded"
+    if n == 1:
+        return f"1 seed (seed {first_seed})"
+    return f"medians over {n} seeds ({first_seed}..{first_seed + n - 1})"
+
+
 def _screened_on(si: dict) -> str:
     """Where our default candidates run in the same-iteration comparison: a sample above the
     learner's --screen-points default, all points at or below it."""
@@ -63,13 +73,17 @@ def evaluate_targets(res: dict) -> List[dict]:
         m = _get(res, "social", task, "first_solution_ms_median")
         t.append(_target(f"social {task}: median time to first solution", "<= 1 ms (paper 1.5 s)", m,
                          fmt(m, 3, " ms"), None if m is None else m <= 1.0))
+    seed0 = _get(res, "planners", "first_seed") or 1
     for name, pr in sorted((_get(res, "planners", "problems") or {}).items()):
         ratio_ = pr.get("first_ratio")
-        t.append(_target(f"problem {name}: first path incl. set-up vs fastest OMPL ({pr.get('fastest_ompl')})",
+        # Results from before the per-budget trial counts name no statistic rather than a wrong one.
+        nf = f"; {_over_seeds(pr['first_trials'], seed0)}" if pr.get("first_trials") else ""
+        t.append(_target(f"problem {name}: first path incl. set-up vs fastest OMPL ({pr.get('fastest_ompl')}{nf})",
                          "<= 0.5x", ratio_, fmt(ratio_, 2, "x") + f" ({fmt(pr.get('first_ms'), 3, ' ms')})",
                          None if ratio_ is None else ratio_ <= 0.5))
         for b, c in pr.get("cost", {}).items():
-            t.append(_target(f"problem {name}: best cost at {b} ms vs best OMPL ({c.get('best_ompl_planner')})",
+            nc = f"; {_over_seeds(c['trials'], seed0)}" if c.get("trials") else ""
+            t.append(_target(f"problem {name}: best cost at {b} ms vs best OMPL ({c.get('best_ompl_planner')}{nc})",
                              "<= it", c.get("ours"), f"{fmt(c.get('ours'), 4)} vs {fmt(c.get('best_ompl'), 4)}",
                              c.get("met")))
     b = _get(res, "memory", "bytes_per_node")
@@ -165,17 +179,36 @@ def _within_text(s: dict) -> str:
     return fmt(v, 1, " ms")
 
 
+def _budgets_statistic(costs: dict, seed0: int) -> str:
+    """Which budgets' costs are medians over how many seeds, from a problem's "cost" entries:
+    "at 1, 10 and 100 ms medians over 15 seeds (1..15), at 1000 ms medians over 3 seeds (1..3)"."""
+    groups: dict = {}
+    for b, c in costs.items():
+        groups.setdefault(c.get("trials"), []).append(b)
+    parts = []
+    for n, bs in groups.items():
+        at = bs[0] if len(bs) == 1 else ", ".join(bs[:-1]) + " and " + bs[-1]
+        parts.append(f"at {at} ms {_over_seeds(n, seed0)}")
+    return ", ".join(parts)
+
+
 def _planner_targets_summary(res: dict, pl: dict) -> List[str]:
     """Where the all-planner comparison's targets stand, scene by scene, with the run's load."""
     probs = pl.get("problems") or {}
     if not probs:
         return []
     load = f"load {res.get('load_before')} before, {res.get('load_after')} after, on {_get(res, 'host', 'nproc')} cores"
-    nf = pl.get("first_path_trials", pl.get("trials"))
+    seed0 = pl.get("first_seed") or 1
+    some = next(iter(probs.values()))
+    if "runs" in pl:
+        nf = _over_seeds(some.get("first_trials"), seed0)
+        costs_stat = _budgets_statistic(some.get("cost") or {}, seed0)
+    else:  # a result from before the seeded run: its first paths and costs came from separate runs
+        nf = f"medians over {pl.get('first_path_trials', pl.get('trials'))} seeds"
+        costs_stat = f"medians of {pl.get('trials')} trials"
     L = [f"**Targets, scene by scene** ({load}): first path including set-up <= 0.5x the fastest OMPL "
-         f"planner's (medians over {nf} seeds, one run each at a {fmt(pl.get('first_path_budget_ms'), 0)} ms "
-         f"budget: `{pl.get('first_path_command', pl.get('command'))}`), and best cost at every budget <= the "
-         f"best OMPL planner's (medians of {pl.get('trials')} trials, the tables above).", "",
+         f"planner's ({nf}, one run each at a {fmt(pl.get('first_path_budget_ms'), 0)} ms budget), and best "
+         f"cost at every budget <= the best OMPL planner's ({costs_stat}): the figures of the tables above.", "",
          "| problem | first path: ours / fastest OMPL | ratio | met | cost met at |  cost not met at |",
          "|---|---|---|---|---|---|"]
     for name, pr in sorted(probs.items()):
@@ -192,7 +225,8 @@ def _planner_targets_summary(res: dict, pl: dict) -> List[str]:
     planners = sorted({q for pr in probs.values() for q in (pr.get("first_ms_by_planner") or {})},
                       key=lambda q: (q != "gmmrrt", q))
     if planners:
-        L += ["", f"First path including set-up, ms (medians over {nf} seeds; `-`: no first path reported):", "",
+        L += ["", f"First path including set-up, ms ({nf} at {fmt(pl.get('first_path_budget_ms'), 0)} ms; `-`: no "
+              "first path reported):", "",
               "| planner | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]
         for q in planners:
             L.append(f"| {q} | " + " | ".join(fmt((probs[n].get("first_ms_by_planner") or {}).get(q), 3)
@@ -257,6 +291,61 @@ def observations(res: dict) -> List[str]:
                          + (f"; ours: {note}." if note else "."))
         notes.append(f"Our BIC sweep picked K = {k_o} (true K = {k_t}).")
     return notes
+
+
+def _ms_list(budgets_ms) -> str:
+    """[1.0, 10.0, 100.0] -> "1, 10 and 100"."""
+    bs = ["%g" % b for b in budgets_ms]
+    return bs[0] if len(bs) == 1 else ", ".join(bs[:-1]) + " and " + bs[-1]
+
+
+def _all_planner_runs(pl: dict) -> List[str]:
+    """How the all-planner figures were taken: the runs of gmmrrt-bench-all, their budgets and trials."""
+    runs = pl.get("runs")
+    if not runs:
+        return []
+    seed0 = pl.get("first_seed") or 1
+    fp = fmt(pl.get("first_path_budget_ms"), 0)
+    seeded = max(runs, key=lambda r: r["trials"])
+    L = [f"Every figure of a (problem, planner, budget) cell is a median over that budget's trials, the same "
+         f"trials for every planner; trial t runs ours with seed {seed0} + t, while OMPL's planners draw from "
+         "OMPL's own generator, which the program does not seed (for them, a seed is one more run). The program "
+         "runs " + ("twice, on disjoint budgets: " if len(runs) > 1 else "once: ")
+         + "; ".join(f"{_ms_list(r['budgets_ms'])} ms: {_over_seeds(r['trials'], seed0)}" for r in runs)
+         + f". Set-up and first path: {_over_seeds(seeded['trials'], seed0)}, from the runs at {fp} ms (a shorter "
+         "run that ended without a path has no first-path time; a run that reports no first path is left out). "
+         "Short budgets run over many seeds because a first path's time, and with it the cost at 1 and 10 ms, is "
+         "heavy-tailed over seeds (on the floor plan our first path ranges over several times its median across "
+         "seeds, so a 1 ms run may or may not have a path); the 1000 ms budget runs fewer for time (15 trials "
+         "there would take 12 planners x 6 scenes x 15 x 1 s = 18 minutes).", ""]
+    L += [f"- `{r['command']}` ({_over_seeds(r['trials'], seed0)} at {_ms_list(r['budgets_ms'])} ms; "
+          f"{r.get('seconds')} s)" for r in runs]
+    return L + [""]
+
+
+def _all_planner_tables(pl: dict) -> List[str]:
+    """One table per problem from the medians of summarize_all_planners: the same figures the targets
+    judge, each column headed by the trials it is a median over."""
+    seed0 = pl.get("first_seed") or 1
+    fp = fmt(pl.get("first_path_budget_ms"), 0)
+    L = []
+    for name, pr in sorted((pl.get("problems") or {}).items()):
+        costs = pr.get("cost") or {}
+        what = (pl.get("descriptions") or {}).get(name)
+        L += [f"### Problem {name}" + (f" ({what})" if what else ""), "",
+              f"Set-up and first path: {_over_seeds(pr.get('first_trials'), seed0)} at {fp} ms; cost: "
+              f"{_budgets_statistic(costs, seed0)}.", "",
+              "| planner | set-up ms | first path incl. set-up ms | "
+              + " | ".join(f"cost @ {b} ms ({c.get('trials')} {'seed' if c.get('trials') == 1 else 'seeds'})"
+                           for b, c in costs.items()) + " |",
+              "|---|---|---|" + "---|" * len(costs)]
+        for row in pr.get("table") or []:
+            cells = [fmt(row.get("setup_ms"), 3), fmt(row.get("first_ms"), 3) if row.get("first_ms") is not None
+                     else "-"] + [fmt(row["cost"].get(b), 4) if row["cost"].get(b) is not None else "none"
+                                  for b in costs]
+            L.append(f"| {row['planner']} | " + " | ".join(cells) + " |")
+        L.append("")
+    return L
 
 
 def _err(section) -> Optional[str]:
@@ -381,7 +470,7 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
     if _err(pl):
         L += [f"Not run: {_err(pl)}", ""]
     else:
-        L += [f"`{pl.get('command')}` ({pl.get('seconds')} s). Point robot, path length, problems of "
+        L += ["Point robot, path length, problems of "
               "`tests/data/bench_problems/` (A disc, B cluttered, C narrow passage; optima 10.8112, 26.2074, "
               "11.4639); S, the social avoid scene of the OMPL RRT* section (task cost, the avoid model "
               "above; ours GMM-RRT* with uniform sampling); AP, the social approach scene of the social "
@@ -401,23 +490,31 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
               "every planner's set-up and first path are timed from the same state (before, a planner that "
               "stops at its first path ran right after a few-microsecond run of its own, still cached, and an "
               "anytime one after a run of its own of up to a second); cost @ t = "
-              "the cost a run of budget t returns (median over trials, `none`: no exactly free path); first "
+              "the cost a run of budget t returns (`none`: no exactly free path); first "
               "path = set-up + time to the first solution (OMPL's intermediate-solution callback, or the "
               "solve's duration when it stopped early; `-`: the planner reports neither). OMPL checks motions "
               "exactly (circles, boxes, raster) like ours, and every returned path of both sides is re-checked "
               "segment by segment (ours: the best path as `gmmrrt_planner_best_path` returns it). In S and AP "
               "both sides' cost is OMPL's objective (its trapezoid rule at its motion-check resolution) "
-              "evaluated on the path each side returns; our planner searches with its own midpoint rule.", "",
-              pl.get("text", ""), ""]
+              "evaluated on the path each side returns; our planner searches with its own midpoint rule.", ""]
+        L += _all_planner_runs(pl)
+        if pl.get("runs"):
+            L += _all_planner_tables(pl)
+        else:  # a result from before the seeded run: the program's own tables
+            L += [f"`{pl.get('command')}` ({pl.get('seconds')} s)", "", pl.get("text", ""), ""]
         if pl.get("note"):
             L += [pl["note"], ""]
         L += _planner_targets_summary(res, pl)
         if pl.get("arena_logs"):
             logs = pl["arena_logs"]
+            per_run = "; ".join(f"the {_ms_list(r['budgets_ms'])} ms logs hold the {r['trials']} runs per planner of "
+                                f"the run that ran {'that budget' if len(r['budgets_ms']) == 1 else 'those budgets'}"
+                                for r in pl.get("runs") or [])
             L += [f"**Planner Arena.** The same runs are written as ompl::tools::Benchmark logs, one per problem "
-                  f"and budget ({len(logs)} files, `build/bench-arena/<problem>_<budget>ms.log`, "
-                  f"{sum(x['bytes'] for x in logs) // 1024} KB together; read back and counted against the JSON "
-                  "records by the harness). Run properties: `best cost`, `first solution time` (s, set-up "
+                  f"and budget{' (' + per_run + ')' if per_run else ''}: {len(logs)} files, "
+                  f"`build/bench-arena/<problem>_<budget>ms.log`, "
+                  f"{sum(x['bytes'] for x in logs) // 1024} KB together, read back and counted against the JSON "
+                  "records by the harness. Run properties: `best cost`, `first solution time` (s, set-up "
                   "included), `setup time` (s), `solved` (an exactly free path), `time` (s, set-up + solve). "
                   f"The MAP logs are kept as an example: {pl.get('arena_example', 'bench/arena/')}. To look at them: "
                   "`ompl_benchmark_statistics.py build/bench-arena/*.log -d bench.db` (the script is in OMPL's "
