@@ -199,7 +199,7 @@ def _all_planner_records():
             # First paths and set-up at 1 and 10 ms are far off: only the 100 ms runs may count.
             first, setup = (0.01 * (t + 1), 0.001 * (t + 1)) if b == 100.0 else (5.0, 1.0)
             recs.append(_all_rec("gmmrrt", b, t, ours_cost, first, setup))
-            # RRTConnect reports no first path in trial 14 (left out of its median).
+            # RRTConnect finds a path in trial 14 without reporting when (left out of its median).
             recs.append(_all_rec("RRTConnect", b, t, 11.0 if b == 1.0 else 9.95,
                                  (None if t == 14 else 0.1 * (t + 1)) if b == 100.0 else 7.0, 0.1))
     for t, (ours, peer) in enumerate(((10.5, 10.8), (10.4, 10.7), (10.6, 10.9))):
@@ -226,7 +226,7 @@ def test_all_planner_first_paths_come_from_the_first_path_budget_only():
     pr = summarize_all_planners(_all_planner_records())["MAP"]
     assert pr["first_trials"] == 15
     assert pr["first_ms"] == pytest.approx(0.08)  # 0.01..0.15, the 8th
-    # RRTConnect: trials 0..13 report 0.1..1.4 (trial 14 none): median (0.7 + 0.8) / 2
+    # RRTConnect: trials 0..13 report 0.1..1.4 (trial 14 a path, no time): median (0.7 + 0.8) / 2
     assert pr["fastest_ompl"] == "RRTConnect"
     assert pr["fastest_ompl_first_ms"] == pytest.approx(0.75)
     assert pr["first_ratio"] == pytest.approx(0.08 / 0.75)
@@ -235,6 +235,26 @@ def test_all_planner_first_paths_come_from_the_first_path_budget_only():
     assert rows["gmmrrt"]["setup_ms"] == pytest.approx(0.008)
     assert rows["gmmrrt"]["first_ms"] == pr["first_ms"]
     assert rows["gmmrrt"]["cost"]["1"] == pr["cost"]["1"]["ours"]
+
+
+def test_all_planner_runs_without_a_path_count_as_never():
+    """A planner with a path in one run of fifteen has no median first path (the other fourteen
+    count as never), so it cannot be the fastest on that one lucky run; and a budget where neither
+    side has a path is not a met target."""
+    recs = _all_planner_records()
+    for t in range(15):
+        for b in (1.0, 10.0, 100.0):
+            lucky = t == 0 and b == 100.0
+            recs.append(_all_rec("ABITstar", b, t, 9.0 if lucky else None, 0.001 if lucky else None, 0.1))
+    for t in range(3):
+        recs.append(_all_rec("ABITstar", 1000.0, t, None, None, 0.1))
+    pr = summarize_all_planners(recs)["MAP"]
+    assert pr["first_ms_by_planner"]["ABITstar"] is None  # never, in 14 of 15
+    assert pr["fastest_ompl"] == "RRTConnect"
+    none = [_all_rec(p, b, t, None, None, 0.1) for p in ("gmmrrt", "RRTConnect") for b in (1.0, 10.0, 100.0)
+            for t in range(15)]
+    c = summarize_all_planners(none)["MAP"]["cost"]["1"]
+    assert c["met"] is False
 
 
 def test_all_planner_summary_refuses_two_runs_on_one_budget_and_uneven_trials():

@@ -49,7 +49,12 @@ def test_a_bad_problem_line_is_named(tmp_path):
     assert "needs a 'bounds', a 'start' and a 'goal'" in str(e.value)
 
 
-def test_summary_counts_runs_without_a_path():
+def test_summary_counts_runs_without_a_path_as_never():
     s = first_paths.summarise([{"iteration": 3, "ms": 0.1}, None, {"iteration": 7, "ms": 0.3}])
     assert s["seeds"] == 3 and s["with_path"] == 2
-    assert s["iterations_median"] == 5 and s["iterations_max"] == 7
+    # [3, never, 7]: the median is 7, the 90th percentile and the slowest are never (null).
+    assert s["iterations_median"] == 7 and s["iterations_p90"] is None and s["iterations_max"] is None
+    assert s["first_solution_ms_median"] == 0.3 and s["first_solution_ms_mean"] is None
+    full = first_paths.summarise([{"iteration": k, "ms": 0.1 * k} for k in range(1, 11)])
+    assert full["iterations_p90"] == 9 and full["iterations_max"] == 10  # nearest rank
+    assert abs(full["first_solution_ms_mean"] - 0.55) < 1e-12

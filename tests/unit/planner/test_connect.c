@@ -90,17 +90,17 @@ static void check_tree(gmmrrt_planner_t *p, int length_cost)
     assert_true(isfinite(path.cost) && path.cost > 0.0);
 }
 
-/* The median of nine values (sorts v). */
-static int64_t median9(int64_t *v)
+/* The median of n values, n odd (sorts v). */
+static int64_t median_of(int64_t *v, int n)
 {
-    for (int a = 0; a < 9; ++a)
-        for (int b = a + 1; b < 9; ++b)
+    for (int a = 0; a < n; ++a)
+        for (int b = a + 1; b < n; ++b)
             if (v[b] < v[a]) {
                 const int64_t t = v[a];
                 v[a] = v[b];
                 v[b] = t;
             }
-    return v[4];
+    return v[n / 2];
 }
 
 static void test_narrow_passage_is_found_in_fewer_iterations(void **state)
@@ -120,7 +120,7 @@ static void test_narrow_passage_is_found_in_fewer_iterations(void **state)
             (on ? with : without)[s] = run_to_first_path(t.p, 200000);
             test_planner_free(&t);
         }
-    const int64_t med_with = median9(with), med_without = median9(without);
+    const int64_t med_with = median_of(with, SEEDS), med_without = median_of(without, SEEDS);
     printf("narrow passage: iterations to the first path, median of %d seeds: connect %lld, RRT* alone %lld\n",
            SEEDS, (long long)med_with, (long long)med_without);
     assert_true(med_with < med_without);
@@ -251,9 +251,10 @@ static gmmrrt_problem_t three_rooms(void)
 static void test_dynamic_domains_spare_edge_tests_in_rooms(void **state)
 {
     (void)state;
-    int64_t tests[2][9], iterations[2][9];
+    enum { SEEDS = 9 };
+    int64_t tests[2][SEEDS], iterations[2][SEEDS];
     for (int on = 0; on <= 1; ++on)
-        for (int s = 0; s < 9; ++s) {
+        for (int s = 0; s < SEEDS; ++s) {
             gmmrrt_planner_config_t cfg = point_robot_config(GMMRRT_PLANNER_RRT_STAR);
             cfg.seed = (uint64_t)s + 1;
             cfg.step_m = 0.2 * hypot(20.0, 12.0); /* the benchmark's: OMPL's range, 0.2 x the extent */
@@ -265,16 +266,18 @@ static void test_dynamic_domains_spare_edge_tests_in_rooms(void **state)
             assert_int_equal(gmmrrt_planner_set_problem(t.p, &pr), GMMRRT_OK);
             iterations[on][s] = run_to_first_path(t.p, 200000);
             tests[on][s] = t.p->connect.edge_tests;
-            assert_true(tests[on][s] > 0); /* the first path came from the connect phase */
+            /* The first path came from the connect phase: within its iteration cap, which hands
+             * over to RRT* alone. */
+            assert_true(iterations[on][s] < cfg.connect_max_iterations);
             if (on && s == 0)
                 check_tree(t.p, 1);
             test_planner_free(&t);
         }
-    const int64_t tests_off = median9(tests[0]), tests_on = median9(tests[1]);
-    printf("three rooms: edge tests to the first path, median of 9 seeds: domains %lld, without %lld "
+    const int64_t tests_off = median_of(tests[0], SEEDS), tests_on = median_of(tests[1], SEEDS);
+    printf("three rooms: edge tests to the first path, median of %d seeds: domains %lld, without %lld "
            "(iterations %lld, %lld)\n",
-           (long long)tests_on, (long long)tests_off, (long long)median9(iterations[1]),
-           (long long)median9(iterations[0]));
+           SEEDS, (long long)tests_on, (long long)tests_off, (long long)median_of(iterations[1], SEEDS),
+           (long long)median_of(iterations[0], SEEDS));
     assert_true(tests_on < tests_off);
 
     gmmrrt_planner_config_t bad = point_robot_config(GMMRRT_PLANNER_RRT_STAR);

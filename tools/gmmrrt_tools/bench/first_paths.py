@@ -23,6 +23,8 @@ import sys
 from pathlib import Path
 from typing import List, Optional
 
+from gmmrrt_tools.bench.stats import clean, median, quantile
+
 
 def problem_args(path: Path) -> List[str]:
     """gmmrrt-plan's arguments for a benchmark problem file (tests/data/bench_problems/README.md):
@@ -58,7 +60,7 @@ def problem_args(path: Path) -> List[str]:
 def extent_args(bounds: List[float]) -> List[str]:
     """OMPL's defaults on the bounds, as the all-planner benchmark gives both sides."""
     extent = math.hypot(bounds[2] - bounds[0], bounds[3] - bounds[1])
-    return ["--step", "%.4f" % (0.2 * extent), "--edge-resolution", "%.5f" % (0.01 * extent)]
+    return ["--step", repr(0.2 * extent), "--edge-resolution", repr(0.01 * extent)]
 
 
 def first_path(plan: str, args: List[str], seed: int, iterations: int) -> Optional[dict]:
@@ -78,15 +80,16 @@ def first_path(plan: str, args: List[str], seed: int, iterations: int) -> Option
 
 
 def summarise(runs: List[Optional[dict]]) -> dict:
+    """Median, 90th percentile (nearest rank) and slowest of the iterations, median and mean of the
+    time; a run without a path counts as never (infinite, as every benchmark statistic does:
+    stats.median), so these are JSON null when it weighs in."""
+    its = [None if r is None else r["iteration"] for r in runs]
+    ms = [None if r is None else r["ms"] for r in runs]
     found = [r for r in runs if r is not None]
-    its = sorted(r["iteration"] for r in found)
-    ms = [r["ms"] for r in found]
-    out = {"seeds": len(runs), "with_path": len(found)}
-    if found:
-        out.update({"iterations_median": statistics.median(its), "iterations_p90": its[int(0.9 * (len(its) - 1))],
-                    "iterations_max": its[-1], "first_solution_ms_median": round(statistics.median(ms), 4),
-                    "first_solution_ms_mean": round(statistics.mean(ms), 4)})
-    return out
+    return clean({"seeds": len(runs), "with_path": len(found), "iterations_median": median(its),
+                  "iterations_p90": quantile(its, 0.9), "iterations_max": quantile(its, 1.0),
+                  "first_solution_ms_median": median(ms),
+                  "first_solution_ms_mean": statistics.mean(r["ms"] for r in found) if len(found) == len(runs) else None})
 
 
 def main(argv: Optional[List[str]] = None) -> int:

@@ -271,8 +271,8 @@ ALL_PLANNERS_BUDGETS_MS = (1.0, 10.0, 100.0, 1000.0)
 #   short budget's cost are heavy-tailed over seeds (on the floor plan our iterations to the first
 #   path range over several times their median, and a 1 ms run's cost depends on whether its first
 #   path came inside the budget), so a few seeds would be a sample of those seeds, not of the planner.
-# - the long run: LONG_TRIALS trials at the other budgets (1000 ms): 15 trials there would take
-#   12 planners x 6 scenes x 15 x 1 s = 18 minutes.
+# - the long run: LONG_TRIALS trials at the other budgets (1000 ms), where SEEDED_TRIALS would
+#   multiply the bench's longest part by five (the report says by how much).
 # First paths and set-up times are read from the seeded run's FIRST_PATH_BUDGET_MS runs only: a
 # shorter run that ended without a path has no first-path time.
 SEEDED_TRIALS = 15
@@ -293,8 +293,9 @@ def summarize_all_planners(records: List[dict], first_path_budget_ms: float = FI
 
     Every statistic is a median over the trials of one budget, the same trials for every planner:
     cost @ b over the runs of budget b (a run without an exactly free path counts as infinite),
-    set-up and first path (set-up included) over the runs of first_path_budget_ms (runs that report
-    no first path left out; none left: infinite). Returns {problem: {"first_ms", "fastest_ompl",
+    set-up and first path (set-up included) over the runs of first_path_budget_ms (a run without a
+    path counts as infinite; a run with a path but no first-path time is left out; none left:
+    infinite). Returns {problem: {"first_ms", "fastest_ompl",
     "fastest_ompl_first_ms", "first_ratio", "first_ms_by_planner", "first_trials", "cost": {"<b>":
     {"ours", "best_ompl", "best_ompl_planner", "met", "trials"}}, "table": [one row per planner in
     the program's order: {"planner", "setup_ms", "first_ms", "cost": {"<b>": median}}]}}.
@@ -325,7 +326,11 @@ def summarize_all_planners(records: List[dict], first_path_budget_ms: float = FI
         cost = {(p, b): median(INF if r["cost"] is None else r["cost"] for r in cell[p, b])
                 for p in planners for b in budgets}
         first_runs = {p: cell.get((p, first_path_budget_ms), []) for p in planners}
-        first = {p: median([r["first_ms"] for r in rs if r["first_ms"] is not None] or [INF])
+        # A run with no path counts as never (infinite), as stats.median keeps it; only a run that
+        # found a path without reporting when (a planner without the callback) is left out, and a
+        # planner all of whose runs are such reports no first path.
+        first = {p: median([INF if r["cost"] is None else r["first_ms"] for r in rs
+                            if r["cost"] is None or r["first_ms"] is not None] or [INF])
                  for p, rs in first_runs.items() if rs}
         setup = {p: _median_or_none([r["setup_ms"] for r in rs if r["setup_ms"] is not None])
                  for p, rs in first_runs.items()}
@@ -341,7 +346,7 @@ def summarize_all_planners(records: List[dict], first_path_budget_ms: float = FI
             best = min(ompl, key=ompl.get) if ompl else None
             ours = cost.get(("gmmrrt", b))
             out["cost"]["%g" % b] = {"ours": ours, "best_ompl": ompl.get(best), "best_ompl_planner": best,
-                                     "met": None if best is None or ours is None else ours <= ompl[best],
+                                     "met": None if best is None or ours is None else (math.isfinite(ours) and ours <= ompl[best]),
                                      "trials": trials[b]}
         out["table"] = [{"planner": p, "setup_ms": setup.get(p), "first_ms": out["first_ms_by_planner"].get(p),
                          "cost": {"%g" % b: cost[p, b] for b in budgets}} for p in planners]

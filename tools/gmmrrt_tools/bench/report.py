@@ -293,6 +293,20 @@ def observations(res: dict) -> List[str]:
     return notes
 
 
+def _long_budget_minutes(pl: dict, seeded: dict, runs: List[dict]) -> str:
+    """What the other runs' budgets would cost at the seeded run's trials: planners x scenes x
+    trials x budget."""
+    probs = pl.get("problems") or {}
+    planners = {row["planner"] for pr in probs.values() for row in (pr.get("table") or [])}
+    long_ms = sum(b for r in runs if r is not seeded for b in r["budgets_ms"])
+    seeded_trials = seeded.get("trials")
+    if not (planners and probs and seeded_trials and long_ms):
+        return "several times as long"
+    minutes = len(planners) * len(probs) * int(seeded_trials) * long_ms / 60000.0
+    return (f"{len(planners)} planners x {len(probs)} scenes x {seeded_trials} x {_ms_list([long_ms])} ms = "
+            f"{minutes:.0f} minutes")
+
+
 def _ms_list(budgets_ms) -> str:
     """[1.0, 10.0, 100.0] -> "1, 10 and 100"."""
     bs = ["%g" % b for b in budgets_ms]
@@ -313,11 +327,12 @@ def _all_planner_runs(pl: dict) -> List[str]:
          "runs " + ("twice, on disjoint budgets: " if len(runs) > 1 else "once: ")
          + "; ".join(f"{_ms_list(r['budgets_ms'])} ms: {_over_seeds(r['trials'], seed0)}" for r in runs)
          + f". Set-up and first path: {_over_seeds(seeded['trials'], seed0)}, from the runs at {fp} ms (a shorter "
-         "run that ended without a path has no first-path time; a run that reports no first path is left out). "
+         "run that ended without a path has no first-path time; a run with no path within it counts as never, and "
+         "a run that found a path without reporting when is left out). "
          "Short budgets run over many seeds because a first path's time, and with it the cost at 1 and 10 ms, is "
          "heavy-tailed over seeds (on the floor plan our first path ranges over several times its median across "
-         "seeds, so a 1 ms run may or may not have a path); the 1000 ms budget runs fewer for time (15 trials "
-         "there would take 12 planners x 6 scenes x 15 x 1 s = 18 minutes).", ""]
+         "seeds, so a 1 ms run may or may not have a path); the longer budgets run fewer trials for time "
+         f"(the seeded run's trials there would take {_long_budget_minutes(pl, seeded, runs)}).", ""]
     L += [f"- `{r['command']}` ({_over_seeds(r['trials'], seed0)} at {_ms_list(r['budgets_ms'])} ms; "
           f"{r.get('seconds')} s)" for r in runs]
     return L + [""]
