@@ -630,9 +630,18 @@ double Update(const Layout& l, const Eigen::ArrayXi& labels, Eigen::ArrayXd* bes
       int mixed = 0;
       for (int q = 1; q < size; ++q) mixed |= lab[q] ^ one;
       const bool same = mixed == 0;
-      if (same) count[one] += static_cast<double>(size);  // integers: exact in any grouping
-      else
-        for (int q = 0; q < size; ++q) count[lab[q]] += 1.0;
+      // Runs of equal labels (ends after run_end[i]) for a group of several: the points' additions
+      // in point order, each run's in a register rather than through memory.
+      int run_end[kGroupPoints];
+      int runs = 0;
+      if (same) {
+        count[one] += static_cast<double>(size);  // integers: exact in any grouping
+      } else {
+        for (int q = 1; q < size; ++q)
+          if (lab[q] != lab[q - 1]) run_end[runs++] = q;
+        run_end[runs++] = size;
+        for (int i = 0, q = 0; i < runs; q = run_end[i++]) count[lab[q]] += static_cast<double>(run_end[i] - q);
+      }
       for (int c = 0; c < l.d; ++c) {
         const bool angle = IsAngleDim(mask, c);
         const double* xc = x.col(c).data() + first;
@@ -643,9 +652,15 @@ double Update(const Layout& l, const Eigen::ArrayXi& labels, Eigen::ArrayXd* bes
             for (int q = 0; q < size; ++q) diff[q] = Wrap(diff[q]);
           shift(c, one) += GroupSum(diff, size);
         } else {
-          for (int q = 0; q < size; ++q) {
-            const double v = xc[q] - (*centers)(c, lab[q]);
-            shift(c, lab[q]) += angle ? Wrap(v) : v;
+          for (int i = 0, q = 0; i < runs; ++i) {
+            const int a = lab[q];
+            const double center = (*centers)(c, a);
+            double acc = shift(c, a);
+            for (; q < run_end[i]; ++q) {
+              const double v = xc[q] - center;
+              acc += angle ? Wrap(v) : v;
+            }
+            shift(c, a) = acc;
           }
         }
       }
