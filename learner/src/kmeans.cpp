@@ -91,6 +91,17 @@ static_assert(kTaskGroups * kGroupPoints == detail::kPassTaskPoints, "a task is 
 // this relative margin (see the file comment).
 constexpr double kBoundMargin = 1e-12;
 
+// The sum of a group's values in a fixed order: eight interleaved partial sums (independent
+// chains, which vectorise), then added pairwise.
+inline double GroupSum(const double* v, int size) {
+  double acc[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  int q = 0;
+  for (; q + 8 <= size; q += 8)
+    for (int j = 0; j < 8; ++j) acc[j] += v[q + j];
+  for (int j = 0; q < size; ++q, ++j) acc[j] += v[q];
+  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+}
+
 // The points' columns and groups: what every pass below reads.
 struct Layout {
   const Eigen::MatrixXd* x = nullptr;
@@ -99,6 +110,7 @@ struct Layout {
   uint32_t mask = 0;
   Eigen::Index groups = 0;
   Eigen::MatrixXd lo, hi;  // D x groups: each group's bounding box
+  Eigen::MatrixXd xsum;    // D x groups: each group's sum of each plain dimension (GroupSum)
   int threads = 1;
   bool prune = true;
 
@@ -124,10 +136,12 @@ void MakeLayout(const Eigen::MatrixXd& x, uint32_t mask, const KMeansOptions& o,
   l->groups = (l->n + kGroupPoints - 1) / kGroupPoints;
   l->lo.resize(l->d, l->groups);
   l->hi.resize(l->d, l->groups);
+  l->xsum.setZero(l->d, l->groups);
   l->ForGroups([l](Eigen::Index g) {
     const Eigen::Index first = l->First(g), last = first + l->Size(g);
     for (int c = 0; c < l->d; ++c) {
       const double* xc = l->x->col(c).data();
+      if (!IsAngleDim(l->mask, c)) l->xsum(c, g) = GroupSum(xc + first, l->Size(g));
       double lo = xc[first], hi = lo;
       for (Eigen::Index p = first + 1; p < last; ++p) {
         lo = std::min(lo, xc[p]);
@@ -188,17 +202,6 @@ inline void GroupDistances(const Layout& l, Eigen::Index g, const double* center
       for (int q = 0; q < size; ++q) d2[q] += (xc[q] - cc) * (xc[q] - cc);
     }
   }
-}
-
-// The sum of a group's values in a fixed order: eight interleaved partial sums (independent
-// chains, which vectorise), then added pairwise.
-inline double GroupSum(const double* v, int size) {
-  double acc[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  int q = 0;
-  for (; q + 8 <= size; q += 8)
-    for (int j = 0; j < 8; ++j) acc[j] += v[q + j];
-  for (int j = 0; q < size; ++q, ++j) acc[j] += v[q];
-  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
 }
 
 Eigen::Index UniformIndex(Eigen::Index n, std::mt19937_64* rng) {
@@ -601,10 +604,13 @@ double Inertia(const Layout& l, const Eigen::MatrixXd& centers, const Eigen::Arr
   return inertia;
 }
 
-// Moves the centers to their clusters' means; returns the summed squared center shift. The
-// sums of x - center per cluster are taken per task (in group order; a group whose points all
-// have one label, most of them in spatial order, by GroupSum's independent partial sums rather
-// than one dependent chain of additions per point) and the tasks' sums are added in task order.
+// Moves the centers to their clusters' means; returns the summed squared center shift. The sums
+// per cluster, of x for a plain dimension and of the wrapped x - center for an angle (whose mean
+// is taken about the center), are taken per task in group order and the tasks' sums added in
+// task order. A group whose points all have one label (most, in spatial order) adds its plain
+// dimensions' sums from the layout (computed once, as the pass over its points would by
+// GroupSum) and its angles' by GroupSum's independent partial sums; a group of several labels
+// adds its points in order.
 // An empty cluster takes the point farthest from its center by *best, which is first recomputed
 // (Inertia) unless best_current says it holds every point's distance (not after AssignBounded).
 double Update(const Layout& l, const Eigen::ArrayXi& labels, Eigen::ArrayXd* best, bool best_current,
@@ -645,21 +651,21 @@ double Update(const Layout& l, const Eigen::ArrayXi& labels, Eigen::ArrayXd* bes
       for (int c = 0; c < l.d; ++c) {
         const bool angle = IsAngleDim(mask, c);
         const double* xc = x.col(c).data() + first;
-        if (same) {
+        if (same && !angle) {
+          shift(c, one) += l.xsum(c, g);
+        } else if (same) {
           const double center = (*centers)(c, one);
-          for (int q = 0; q < size; ++q) diff[q] = xc[q] - center;
-          if (angle)
-            for (int q = 0; q < size; ++q) diff[q] = Wrap(diff[q]);
+          for (int q = 0; q < size; ++q) diff[q] = Wrap(xc[q] - center);
           shift(c, one) += GroupSum(diff, size);
         } else {
           for (int i = 0, q = 0; i < runs; ++i) {
             const int a = lab[q];
             const double center = (*centers)(c, a);
             double acc = shift(c, a);
-            for (; q < run_end[i]; ++q) {
-              const double v = xc[q] - center;
-              acc += angle ? Wrap(v) : v;
-            }
+            if (angle)
+              for (; q < run_end[i]; ++q) acc += Wrap(xc[q] - center);
+            else
+              for (; q < run_end[i]; ++q) acc += xc[q];
             shift(c, a) = acc;
           }
         }
@@ -677,7 +683,8 @@ double Update(const Layout& l, const Eigen::ArrayXi& labels, Eigen::ArrayXd* bes
   Eigen::MatrixXd previous = *centers;
   for (Eigen::Index c = 0; c < k; ++c) {
     if (count[c] > 0.0) {
-      centers->col(c) += shift.col(c) / count[c];
+      for (int j = 0; j < l.d; ++j)
+        (*centers)(j, c) = IsAngleDim(mask, j) ? (*centers)(j, c) + shift(j, c) / count[c] : shift(j, c) / count[c];
     } else {
       // An empty cluster takes the point farthest from its center (deterministic).
       Eigen::Index far = 0;
