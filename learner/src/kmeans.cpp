@@ -613,8 +613,10 @@ double Inertia(const Layout& l, const Eigen::MatrixXd& centers, const Eigen::Arr
 // adds its points in order.
 // An empty cluster takes the point farthest from its center by *best, which is first recomputed
 // (Inertia) unless best_current says it holds every point's distance (not after AssignBounded).
+// group_label (if not null, GroupBounds::label of the same labels): a group with a label there
+// is known to have one label, which saves reading its points' labels.
 double Update(const Layout& l, const Eigen::ArrayXi& labels, Eigen::ArrayXd* best, bool best_current,
-              Eigen::MatrixXd* centers) {
+              Eigen::MatrixXd* centers, const std::vector<int>* group_label) {
   const Eigen::MatrixXd& x = *l.x;
   const uint32_t mask = l.mask;
   const Eigen::Index k = centers->cols(), n = l.n;
@@ -634,7 +636,8 @@ double Update(const Layout& l, const Eigen::ArrayXi& labels, Eigen::ArrayXd* bes
       const int* lab = labels.data() + first;
       const int one = lab[0];
       int mixed = 0;
-      for (int q = 1; q < size; ++q) mixed |= lab[q] ^ one;
+      if (!group_label || (*group_label)[static_cast<size_t>(g)] < 0)
+        for (int q = 1; q < size; ++q) mixed |= lab[q] ^ one;
       const bool same = mixed == 0;
       // Runs of equal labels (ends after run_end[i]) for a group of several: the points' additions
       // in point order, each run's in a register rather than through memory.
@@ -771,7 +774,7 @@ Status KMeans(const Eigen::MatrixXd& points, uint32_t angle_mask, const KMeansOp
     while (it < options.max_iterations) {
       ++it;
       previous = centers;
-      const double shift = Update(layout, labels, &best, best_current, &centers);
+      const double shift = Update(layout, labels, &best, best_current, &centers, bounds ? &bounds->label : nullptr);
       bool changed = true;
       if (bounds) {
         MakeMoves(angle_mask, previous, centers, bounds->slack2, &moves);
