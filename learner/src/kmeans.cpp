@@ -243,7 +243,8 @@ void SeedPlusPlus(const Layout& l, int k, std::mt19937_64* rng, Eigen::MatrixXd*
     const int size = l.Size(g);
     gsum[g] = GroupSum(closest.data() + first, size);
     double m = 0.0;
-    for (int q = 0; q < size; ++q) m = std::max(m, closest[first + q]);
+    const double* cl = closest.data() + first;
+    for (int q = 0; q < size; ++q) m = cl[q] > m ? cl[q] : m;
     gmax[g] = m;
   };
   {
@@ -275,7 +276,8 @@ void SeedPlusPlus(const Layout& l, int k, std::mt19937_64* rng, Eigen::MatrixXd*
           continue;
         }
         GroupDistances(l, g, cand.col(t).data(), d2);
-        for (int q = 0; q < size; ++q) d2[q] = std::min(closest[first + q], d2[q]);
+        const double* cl = closest.data() + first;
+        for (int q = 0; q < size; ++q) d2[q] = d2[q] < cl[q] ? d2[q] : cl[q];  // min, without a branch
         out = GroupSum(d2, size);
       }
     });
@@ -298,7 +300,8 @@ void SeedPlusPlus(const Layout& l, int k, std::mt19937_64* rng, Eigen::MatrixXd*
       double d2[kGroupPoints];
       const Eigen::Index first = l.First(g);
       GroupDistances(l, g, bc, d2);
-      for (int q = 0; q < l.Size(g); ++q) closest[first + q] = std::min(closest[first + q], d2[q]);
+      double* cl = closest.data() + first;
+      for (int q = 0; q < l.Size(g); ++q) cl[q] = d2[q] < cl[q] ? d2[q] : cl[q];
       refresh(g);
     });
   }
