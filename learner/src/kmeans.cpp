@@ -456,27 +456,28 @@ void ScanGroup(const Layout& l, Eigen::Index g, const Eigen::MatrixXd& centers, 
   const int size = l.Size(g);
   double d2[kGroupPoints];
   GroupDistances(l, g, centers.col(cand[0]).data(), bst);
-  for (int q = 0; q < size; ++q) lab[q] = cand[0];
-  // The smallest distance of any point to a center other than its nearest: a center's distances
-  // count for every point but those it is nearest to, whose earlier nearest counts instead.
-  double second = skipped_low;
+  // Each point's smallest distance to a center other than its nearest (sec): a center's distance
+  // counts for every point but those it is nearest to, whose earlier nearest counts instead.
+  // Selections, not branches: which way they go depends on the data.
+  // As Eigen array operations, which vectorise (the compiler left the plain loop's selections as
+  // branches, which the data mispredict): closer = d2 < bst; the labels are held as doubles
+  // (exact for these integers) so that every operand has one width. The distances are >= +0, so
+  // min and max give the same bits as the selections they stand for.
+  double sec_data[kGroupPoints], lab_data[kGroupPoints];
+  Eigen::Map<Eigen::ArrayXd> best_q(bst, size), d2_q(d2, size), sec(sec_data, size), labd(lab_data, size);
+  sec.setConstant(skipped_low);
+  labd.setConstant(cand[0]);
   for (int i = 1; i < n_cand; ++i) {
-    const int c = cand[i];
-    GroupDistances(l, g, centers.col(c).data(), d2);
-    for (int q = 0; q < size; ++q) {
-      const bool closer = d2[q] < bst[q];
-      second = std::min(second, closer ? bst[q] : d2[q]);
-      bst[q] = closer ? d2[q] : bst[q];
-      lab[q] = closer ? c : lab[q];
-    }
+    GroupDistances(l, g, centers.col(cand[i]).data(), d2);
+    labd = (d2_q < best_q).select(static_cast<double>(cand[i]), labd);
+    sec = sec.min(d2_q.max(best_q));
+    best_q = best_q.min(d2_q);
   }
+  for (int q = 0; q < size; ++q) lab[q] = static_cast<int>(lab_data[q]);
   if (!bounds) return;
   int mixed = 0;
-  double far = 0.0;
-  for (int q = 0; q < size; ++q) {
-    mixed |= lab[q] ^ lab[0];
-    far = std::max(far, bst[q]);
-  }
+  for (int q = 0; q < size; ++q) mixed |= lab[q] ^ lab[0];
+  const double far = best_q.maxCoeff(), second = std::min(skipped_low, sec.minCoeff());
   const size_t gi = static_cast<size_t>(g);
   bounds->label[gi] = mixed != 0 ? -1 : lab[0];
   bounds->upper[gi] = UpperDistance(far, bounds->slack2);
@@ -575,7 +576,7 @@ bool AssignBounded(const Layout& l, const Eigen::MatrixXd& centers, const Moves&
       double* bst = best->data() + l.First(g);
       GroupDistances(l, g, centers.col(a).data(), bst);
       double far = 0.0;
-      for (int q = 0; q < l.Size(g); ++q) far = std::max(far, bst[q]);
+      for (int q = 0; q < l.Size(g); ++q) far = bst[q] > far ? bst[q] : far;
       bounds->upper[gi] = UpperDistance(far, slack2);
       if (Rules(moves, a, bounds->upper[gi], lower, slack2)) return;
     }
