@@ -110,7 +110,7 @@ struct Layout {
   uint32_t mask = 0;
   Eigen::Index groups = 0;
   Eigen::MatrixXd lo, hi;  // D x groups: each group's bounding box
-  Eigen::MatrixXd xsum;    // D x groups: each group's sum of each plain dimension (GroupSum)
+  Eigen::MatrixXd xsum;    // D x groups: each group's sum of each dimension (GroupSum)
   int threads = 1;
   bool prune = true;
 
@@ -136,12 +136,12 @@ void MakeLayout(const Eigen::MatrixXd& x, uint32_t mask, const KMeansOptions& o,
   l->groups = (l->n + kGroupPoints - 1) / kGroupPoints;
   l->lo.resize(l->d, l->groups);
   l->hi.resize(l->d, l->groups);
-  l->xsum.setZero(l->d, l->groups);
+  l->xsum.resize(l->d, l->groups);
   l->ForGroups([l](Eigen::Index g) {
     const Eigen::Index first = l->First(g), last = first + l->Size(g);
     for (int c = 0; c < l->d; ++c) {
       const double* xc = l->x->col(c).data();
-      if (!IsAngleDim(l->mask, c)) l->xsum(c, g) = GroupSum(xc + first, l->Size(g));
+      l->xsum(c, g) = GroupSum(xc + first, l->Size(g));
       double lo = xc[first], hi = lo;
       for (Eigen::Index p = first + 1; p < last; ++p) {
         lo = std::min(lo, xc[p]);
@@ -720,31 +720,20 @@ Status KMeans(const Eigen::MatrixXd& points, uint32_t angle_mask, const KMeansOp
                              std::to_string(options.k) + " clusters");
   Layout layout;
   MakeLayout(points, angle_mask, options, &layout);
-  // scikit-learn's tolerance: 1e-4 of the mean per-dimension variance (sums per task, then in
-  // task order).
-  const long tasks = layout.Tasks();
+  // scikit-learn's tolerance: 1e-4 of the mean per-dimension variance (sums per group by
+  // GroupSum, then in group order).
   const int d = layout.d;
   const double inv_n = 1.0 / static_cast<double>(layout.n);
-  Eigen::MatrixXd part(d, tasks);
-  auto for_tasks = [&](auto f) {  // f(task, first point, end point)
-    detail::ParallelFor(layout.threads, tasks, [&](long t) {
-      const Eigen::Index first = layout.First(t * kTaskGroups);
-      f(t, first, std::min<Eigen::Index>(layout.n, first + kTaskGroups * kGroupPoints));
-    });
-  };
-  for_tasks([&](long t, Eigen::Index first, Eigen::Index end) {
+  const Eigen::VectorXd mean = layout.xsum.rowwise().sum() * inv_n;
+  Eigen::MatrixXd part(d, layout.groups);
+  layout.ForGroups([&](Eigen::Index g) {
+    double dev2[kGroupPoints];
+    const Eigen::Index first = layout.First(g);
+    const int size = layout.Size(g);
     for (int c = 0; c < d; ++c) {
-      double sum = 0.0;
-      for (Eigen::Index p = first; p < end; ++p) sum += points(p, c);
-      part(c, t) = sum;
-    }
-  });
-  const Eigen::VectorXd mean = part.rowwise().sum() * inv_n;
-  for_tasks([&](long t, Eigen::Index first, Eigen::Index end) {
-    for (int c = 0; c < d; ++c) {
-      double sum = 0.0;
-      for (Eigen::Index p = first; p < end; ++p) sum += (points(p, c) - mean[c]) * (points(p, c) - mean[c]);
-      part(c, t) = sum;
+      const double* xc = points.col(c).data() + first;
+      for (int q = 0; q < size; ++q) dev2[q] = (xc[q] - mean[c]) * (xc[q] - mean[c]);
+      part(c, g) = GroupSum(dev2, size);
     }
   });
   const double shift_tol = 1e-4 * part.sum() * inv_n / d;
