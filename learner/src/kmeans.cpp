@@ -315,11 +315,11 @@ void SeedPlusPlus(const Layout& l, int k, std::mt19937_64* rng, Eigen::MatrixXd*
 // any other center; label[g] = a. label[g] = -1: a group of several labels, no bounds.
 //
 // The computed squared distances that decide the labels differ from the exact ones by rounding
-// only: at most a few hundred ulps of S^2, S^2 the squared diagonal of the data's box (the
+// only: at most about (D + 10) ulps of S^2, S^2 the squared diagonal of the data's box (the
 // differences are of points and centers inside it, and a wrapped difference errs by a few ulps
-// of 2 pi, which only happens when the box spans more than pi), for D up to a few thousand (the
-// bounds are used up to kMaxBoundedDim). slack2 = 1e-12 S^2 covers those errors with a wide
-// margin, and every step below keeps a bound on the safe side of the exact value by at least
+// of 2 pi, which only happens when the box spans more than pi), so below 2.5e-13 S^2 for
+// D <= kMaxBoundedDim (higher D runs without these bounds). slack2 = 1e-12 S^2 covers those
+// errors, and every step below keeps a bound on the safe side of the exact value by at least
 // part of it, so a group the bounds keep is nearer its own center than any other in the
 // computed distances, strictly (a tie is rescanned).
 struct GroupBounds {
