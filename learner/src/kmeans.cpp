@@ -11,7 +11,10 @@
 // the same floating-point operations as the point distances on the box's corners, which are
 // monotone in each coordinate, so a skipped center is farther than the kept one from every
 // point in the group as computed, not only in exact arithmetic; a relative margin of 1e-12
-// covers a compiler that contracts the sums differently. The work runs on up to
+// covers a compiler that contracts the sums differently. The Lloyd passes after the first also
+// carry an upper and a lower distance bound per group across passes (Hamerly's bounds, SDM 2010,
+// per group: GroupBounds), moved by how far the centers moved, so a group of one label far from
+// every other center keeps its labels without a distance computed. The work runs on up to
 // KMeansOptions::threads threads in tasks of a fixed number of groups, and everything that is
 // summed is summed per group and then in group order, so any thread count gives the same bits.
 #include "gmmrrt_learner/kmeans.hpp"
@@ -88,6 +91,17 @@ static_assert(kTaskGroups * kGroupPoints == detail::kPassTaskPoints, "a task is 
 // this relative margin (see the file comment).
 constexpr double kBoundMargin = 1e-12;
 
+// The sum of a group's values in a fixed order: eight interleaved partial sums (independent
+// chains, which vectorise), then added pairwise.
+inline double GroupSum(const double* v, int size) {
+  double acc[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  int q = 0;
+  for (; q + 8 <= size; q += 8)
+    for (int j = 0; j < 8; ++j) acc[j] += v[q + j];
+  for (int j = 0; q < size; ++q, ++j) acc[j] += v[q];
+  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+}
+
 // The points' columns and groups: what every pass below reads.
 struct Layout {
   const Eigen::MatrixXd* x = nullptr;
@@ -96,6 +110,7 @@ struct Layout {
   uint32_t mask = 0;
   Eigen::Index groups = 0;
   Eigen::MatrixXd lo, hi;  // D x groups: each group's bounding box
+  Eigen::MatrixXd xsum;    // D x groups: each group's sum of each dimension (GroupSum)
   int threads = 1;
   bool prune = true;
 
@@ -121,10 +136,12 @@ void MakeLayout(const Eigen::MatrixXd& x, uint32_t mask, const KMeansOptions& o,
   l->groups = (l->n + kGroupPoints - 1) / kGroupPoints;
   l->lo.resize(l->d, l->groups);
   l->hi.resize(l->d, l->groups);
+  l->xsum.resize(l->d, l->groups);
   l->ForGroups([l](Eigen::Index g) {
     const Eigen::Index first = l->First(g), last = first + l->Size(g);
     for (int c = 0; c < l->d; ++c) {
       const double* xc = l->x->col(c).data();
+      l->xsum(c, g) = GroupSum(xc + first, l->Size(g));
       double lo = xc[first], hi = lo;
       for (Eigen::Index p = first + 1; p < last; ++p) {
         lo = std::min(lo, xc[p]);
@@ -187,17 +204,6 @@ inline void GroupDistances(const Layout& l, Eigen::Index g, const double* center
   }
 }
 
-// The sum of a group's values in a fixed order: eight interleaved partial sums (independent
-// chains, which vectorise), then added pairwise.
-inline double GroupSum(const double* v, int size) {
-  double acc[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  int q = 0;
-  for (; q + 8 <= size; q += 8)
-    for (int j = 0; j < 8; ++j) acc[j] += v[q + j];
-  for (int j = 0; q < size; ++q, ++j) acc[j] += v[q];
-  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
-}
-
 Eigen::Index UniformIndex(Eigen::Index n, std::mt19937_64* rng) {
   return std::min<Eigen::Index>(static_cast<Eigen::Index>(Uniform01(rng) * static_cast<double>(n)), n - 1);
 }
@@ -237,7 +243,8 @@ void SeedPlusPlus(const Layout& l, int k, std::mt19937_64* rng, Eigen::MatrixXd*
     const int size = l.Size(g);
     gsum[g] = GroupSum(closest.data() + first, size);
     double m = 0.0;
-    for (int q = 0; q < size; ++q) m = std::max(m, closest[first + q]);
+    const double* cl = closest.data() + first;
+    for (int q = 0; q < size; ++q) m = cl[q] > m ? cl[q] : m;
     gmax[g] = m;
   };
   {
@@ -269,7 +276,8 @@ void SeedPlusPlus(const Layout& l, int k, std::mt19937_64* rng, Eigen::MatrixXd*
           continue;
         }
         GroupDistances(l, g, cand.col(t).data(), d2);
-        for (int q = 0; q < size; ++q) d2[q] = std::min(closest[first + q], d2[q]);
+        const double* cl = closest.data() + first;
+        for (int q = 0; q < size; ++q) d2[q] = d2[q] < cl[q] ? d2[q] : cl[q];  // min, without a branch
         out = GroupSum(d2, size);
       }
     });
@@ -292,19 +300,220 @@ void SeedPlusPlus(const Layout& l, int k, std::mt19937_64* rng, Eigen::MatrixXd*
       double d2[kGroupPoints];
       const Eigen::Index first = l.First(g);
       GroupDistances(l, g, bc, d2);
-      for (int q = 0; q < l.Size(g); ++q) closest[first + q] = std::min(closest[first + q], d2[q]);
+      double* cl = closest.data() + first;
+      for (int q = 0; q < l.Size(g); ++q) cl[q] = d2[q] < cl[q] ? d2[q] : cl[q];
       refresh(g);
     });
   }
 }
 
-// Assigns every point to its nearest center (ties: the lower index); returns the inertia (summed
-// per group, then in group order). Per group, only the centers whose lower bound is within the
-// smallest upper bound can hold a nearest center; they are visited in index order, so labels and
-// distances are those of a scan over all centers. changed (if not null; *labels then holds the
-// previous pass's labels): whether any label differs from before.
+// Bounds carried from one assignment pass to the next, per group of points (Hamerly, "Making
+// k-means even faster", SDM 2010, with one upper and one lower bound per group instead of per
+// point; the triangle inequality holds for the wrapped metric too). For a group whose points
+// all have one label a: upper[g] >= the exact distance (Euclidean, angle dimensions wrapped)
+// from any of its points to center a, lower[g] <= the exact distance from any of its points to
+// any other center; label[g] = a. label[g] = -1: a group of several labels, no bounds.
+//
+// The computed squared distances that decide the labels differ from the exact ones by rounding
+// only: at most about (D + 10) ulps of S^2, S^2 the squared diagonal of the data's box (the
+// differences are of points and centers inside it, and a wrapped difference errs by a few ulps
+// of 2 pi, which only happens when the box spans more than pi), so below 2.5e-13 S^2 for
+// D <= kMaxBoundedDim (higher D runs without these bounds). slack2 = 1e-12 S^2 covers those
+// errors, and every step below keeps a bound on the safe side of the exact value by at least
+// part of it, so a group the bounds keep is nearer its own center than any other in the
+// computed distances, strictly (a tie is rescanned).
+struct GroupBounds {
+  std::vector<double> upper, lower;
+  std::vector<int> label;
+  double slack2 = 0.0;
+};
+constexpr int kMaxBoundedDim = 1024;
+
+// How the centers moved in the last update, for the bounded pass: drift[c] >= the exact
+// distance center c moved; drift_max and drift_next the largest and second largest drift
+// (drift_arg moved most), so the other centers of center a moved at most drift_max, or
+// drift_next for a = drift_arg. keep[a]: a group of center a whose upper bound is below it is
+// within half the distance from a to every other center, less a margin, so no other center can
+// be nearer to any of its points (Hamerly's second test).
+struct Moves {
+  std::vector<double> drift, keep;
+  double drift_max = 0.0, drift_next = 0.0;
+  int drift_arg = -1;
+};
+
+// Upper bound on an exact distance from a computed squared one (slack2 as in GroupBounds).
+inline double UpperDistance(double d2, double slack2) { return std::sqrt(d2 + slack2); }
+// Lower bound on an exact distance from a computed squared one (or a box's lower bound on it).
+inline double LowerDistance(double d2, double slack2) { return std::sqrt(std::max(0.0, d2 - slack2)); }
+
+// The moves of the centers from previous to centers (both D x K, angle rows wrapped), and the
+// keep thresholds of the new centers, for the bounded pass after an update.
+void MakeMoves(uint32_t mask, const Eigen::MatrixXd& previous, const Eigen::MatrixXd& centers, double slack2,
+               Moves* m) {
+  const Eigen::Index k = centers.cols();
+  Eigen::MatrixXd moved = centers - previous;
+  WrapAngleRows(mask, &moved);
+  m->drift.resize(static_cast<size_t>(k));
+  m->drift_max = m->drift_next = 0.0;
+  m->drift_arg = -1;
+  for (Eigen::Index c = 0; c < k; ++c) {
+    const double drift = UpperDistance(moved.col(c).squaredNorm(), slack2);
+    m->drift[static_cast<size_t>(c)] = drift;
+    if (drift > m->drift_max) {
+      m->drift_next = m->drift_max;
+      m->drift_max = drift;
+      m->drift_arg = static_cast<int>(c);
+    } else {
+      m->drift_next = std::max(m->drift_next, drift);
+    }
+  }
+  // A point within h - g of center a, h half the exact distance from a to its nearest other
+  // center and g = sqrt(slack2), is farther than h + g from every other center: 2 g more than
+  // from its own, which the computed squares cannot undo (4 slack2 of room against their errors).
+  const double g = std::sqrt(slack2);
+  m->keep.assign(static_cast<size_t>(k), -1.0);
+  Eigen::VectorXd diff(centers.rows());
+  for (Eigen::Index a = 0; a < k; ++a) {
+    double nearest2 = std::numeric_limits<double>::infinity();
+    for (Eigen::Index c = 0; c < k; ++c) {
+      if (c == a) continue;
+      diff = centers.col(c) - centers.col(a);
+      for (Eigen::Index j = 0; j < diff.size(); ++j)
+        if (IsAngleDim(mask, j)) diff[j] = Wrap(diff[j]);
+      nearest2 = std::min(nearest2, diff.squaredNorm());
+    }
+    m->keep[static_cast<size_t>(a)] = 0.5 * LowerDistance(nearest2, slack2) - g;
+  }
+}
+
+// The centers that can be nearest to a point of group g: those whose box lower bound is within
+// the smallest box upper bound, in index order, into cand (*n_cand of them); *skipped_low gets the
+// smallest box lower bound of the others (infinity if none).
+void GroupCandidates(const Layout& l, Eigen::Index g, const Eigen::MatrixXd& centers,
+                     const std::vector<double>& by_dim, int* cand, int* n_cand, double* skipped_low) {
+  const int k = static_cast<int>(centers.cols());
+  double low_small[64];
+  std::vector<double> low_big;  // more than 64 centers (GMMRRT_MAX_K is below that)
+  double* low = low_small;
+  if (k > 64) {
+    low_big.resize(k);
+    low = low_big.data();
+  }
+  double threshold = std::numeric_limits<double>::infinity();
+  if (l.mask == 0u && k <= 64) {
+    // BoxBounds for all centers at once, dimension by dimension (the same operations in the
+    // same order, so the same values; a loop over centers that vectorises).
+    double up[64];
+    for (int c = 0; c < k; ++c) low[c] = up[c] = 0.0;
+    for (int j = 0; j < l.d; ++j) {
+      const double lo = l.lo(j, g), hi = l.hi(j, g);
+      const double* cj = by_dim.data() + static_cast<size_t>(j) * k;
+      for (int c = 0; c < k; ++c) {
+        double near, far;
+        DimensionBounds(lo - cj[c], hi - cj[c], &near, &far);
+        low[c] += near * near;
+        up[c] += far * far;
+      }
+    }
+    for (int c = 0; c < k; ++c) threshold = std::min(threshold, up[c]);
+  } else {
+    for (int c = 0; c < k; ++c) {
+      double upper;
+      BoxBounds(l, g, centers.col(c).data(), &low[c], &upper);
+      threshold = std::min(threshold, upper);
+    }
+  }
+  threshold = l.prune ? threshold * (1.0 + kBoundMargin) : std::numeric_limits<double>::infinity();
+  int n = 0;
+  double skipped = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < k; ++c) {
+    if (low[c] > threshold)
+      skipped = std::min(skipped, low[c]);
+    else
+      cand[n++] = c;
+  }
+  *n_cand = n;
+  *skipped_low = skipped;
+}
+
+// Group g's labels (ties: the lower index) and squared distances to the nearest center into
+// lab and bst (Size(g) values each), from GroupCandidates' centers visited in index order: the
+// labels and distances of a scan over all centers. With bounds, group g's GroupBounds entries
+// are set: from the largest distance to the nearest center, and from the smallest of the second
+// smallest computed distances among the candidates and the box lower bounds of the others.
+void ScanGroup(const Layout& l, Eigen::Index g, const Eigen::MatrixXd& centers, const std::vector<double>& by_dim,
+               double* bst, int* lab, GroupBounds* bounds) {
+  std::vector<int> cand_big;
+  int cand_small[64];
+  int* cand = cand_small;
+  if (centers.cols() > 64) {
+    cand_big.resize(static_cast<size_t>(centers.cols()));
+    cand = cand_big.data();
+  }
+  int n_cand;
+  double skipped_low;
+  GroupCandidates(l, g, centers, by_dim, cand, &n_cand, &skipped_low);
+  const int size = l.Size(g);
+  double d2[kGroupPoints];
+  GroupDistances(l, g, centers.col(cand[0]).data(), bst);
+  // Each point's smallest distance to a center other than its nearest (sec): a center's distance
+  // counts for every point but those it is nearest to, whose earlier nearest counts instead.
+  // Selections, not branches: which way they go depends on the data.
+  // As Eigen array operations, which vectorise (the compiler left the plain loop's selections as
+  // branches, which the data mispredict): closer = d2 < bst; the labels are held as doubles
+  // (exact for these integers) so that every operand has one width. The distances are >= +0, so
+  // min and max give the same bits as the selections they stand for.
+  double sec_data[kGroupPoints], lab_data[kGroupPoints];
+  Eigen::Map<Eigen::ArrayXd> best_q(bst, size), d2_q(d2, size), sec(sec_data, size), labd(lab_data, size);
+  sec.setConstant(skipped_low);
+  labd.setConstant(cand[0]);
+  for (int i = 1; i < n_cand; ++i) {
+    GroupDistances(l, g, centers.col(cand[i]).data(), d2);
+    labd = (d2_q < best_q).select(static_cast<double>(cand[i]), labd);
+    sec = sec.min(d2_q.max(best_q));
+    best_q = best_q.min(d2_q);
+  }
+  for (int q = 0; q < size; ++q) lab[q] = static_cast<int>(lab_data[q]);
+  if (!bounds) return;
+  int mixed = 0;
+  for (int q = 0; q < size; ++q) mixed |= lab[q] ^ lab[0];
+  const double far = best_q.maxCoeff(), second = std::min(skipped_low, sec.minCoeff());
+  const size_t gi = static_cast<size_t>(g);
+  bounds->label[gi] = mixed != 0 ? -1 : lab[0];
+  bounds->upper[gi] = UpperDistance(far, bounds->slack2);
+  bounds->lower[gi] = LowerDistance(second, bounds->slack2);
+}
+
+// Squared distances of group g's points to their own centers (labels lab) into bst: the values
+// a scan gives them (GroupDistances, once per label in the group).
+void OwnDistances(const Layout& l, Eigen::Index g, const Eigen::MatrixXd& centers, const int* lab, double* bst) {
+  const int size = l.Size(g);
+  int mixed = 0;
+  for (int q = 1; q < size; ++q) mixed |= lab[q] ^ lab[0];
+  if (mixed == 0) {
+    GroupDistances(l, g, centers.col(lab[0]).data(), bst);
+    return;
+  }
+  double d2[kGroupPoints];
+  bool filled[kGroupPoints] = {};
+  for (int start = 0; start < size; ++start) {
+    if (filled[start]) continue;
+    const int a = lab[start];
+    GroupDistances(l, g, centers.col(a).data(), d2);
+    for (int q = start; q < size; ++q)
+      if (lab[q] == a) {
+        bst[q] = d2[q];
+        filled[q] = true;
+      }
+  }
+}
+
+// Assigns every point to its nearest center (ties: the lower index) by scanning every group;
+// returns the inertia (summed per group, then in group order). Labels and distances are those
+// of a scan over all centers. changed (if not null; *labels then holds the previous pass's
+// labels): whether any label differs from before. bounds (if not null): set for every group.
 double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* labels, Eigen::ArrayXd* best,
-              bool* changed) {
+              bool* changed, GroupBounds* bounds) {
   const int k = static_cast<int>(centers.cols());
   labels->resize(l.n);
   best->resize(l.n);
@@ -314,58 +523,11 @@ double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* l
   for (int j = 0; j < l.d; ++j)
     for (int c = 0; c < k; ++c) by_dim[static_cast<size_t>(j) * k + c] = centers(j, c);
   l.ForGroups([&](Eigen::Index g) {
-    double lower[64], d2[kGroupPoints];
-    std::vector<double> lower_big;  // more than 64 centers (GMMRRT_MAX_K is below that)
-    double* low = lower;
-    if (k > 64) {
-      lower_big.resize(k);
-      low = lower_big.data();
-    }
-    double threshold = std::numeric_limits<double>::infinity();
-    if (l.mask == 0u && k <= 64) {
-      // BoxBounds for all centers at once, dimension by dimension (the same operations in the
-      // same order, so the same values; a loop over centers that vectorises).
-      double up[64];
-      for (int c = 0; c < k; ++c) low[c] = up[c] = 0.0;
-      for (int j = 0; j < l.d; ++j) {
-        const double lo = l.lo(j, g), hi = l.hi(j, g);
-        const double* cj = by_dim.data() + static_cast<size_t>(j) * k;
-        for (int c = 0; c < k; ++c) {
-          double near, far;
-          DimensionBounds(lo - cj[c], hi - cj[c], &near, &far);
-          low[c] += near * near;
-          up[c] += far * far;
-        }
-      }
-      for (int c = 0; c < k; ++c) threshold = std::min(threshold, up[c]);
-    } else {
-      for (int c = 0; c < k; ++c) {
-        double upper;
-        BoxBounds(l, g, centers.col(c).data(), &low[c], &upper);
-        threshold = std::min(threshold, upper);
-      }
-    }
-    threshold = l.prune ? threshold * (1.0 + kBoundMargin) : std::numeric_limits<double>::infinity();
     const Eigen::Index first = l.First(g);
     const int size = l.Size(g);
     double* bst = best->data() + first;
     int lab[kGroupPoints];  // copied out below, compared with the previous labels on the way
-    bool started = false;
-    for (int c = 0; c < k; ++c) {
-      if (low[c] > threshold) continue;
-      if (!started) {
-        GroupDistances(l, g, centers.col(c).data(), bst);
-        for (int q = 0; q < size; ++q) lab[q] = c;
-        started = true;
-        continue;
-      }
-      GroupDistances(l, g, centers.col(c).data(), d2);
-      for (int q = 0; q < size; ++q) {
-        const bool closer = d2[q] < bst[q];
-        bst[q] = closer ? d2[q] : bst[q];
-        lab[q] = closer ? c : lab[q];
-      }
-    }
+    ScanGroup(l, g, centers, by_dim, bst, lab, bounds);
     group_sum[static_cast<size_t>(g)] = GroupSum(bst, size);
     int* out = labels->data() + first;
     int differ = 0;
@@ -380,11 +542,85 @@ double Assign(const Layout& l, const Eigen::MatrixXd& centers, Eigen::ArrayXi* l
   return inertia;
 }
 
-// Moves the centers to their clusters' means; returns the summed squared center shift. The
-// sums of x - center per cluster are taken per task (in group order; a group whose points all
-// have one label, most of them in spatial order, by GroupSum's independent partial sums rather
-// than one dependent chain of additions per point) and the tasks' sums are added in task order.
-double Update(const Layout& l, const Eigen::ArrayXi& labels, const Eigen::ArrayXd& best, Eigen::MatrixXd* centers) {
+// Whether a group of center a with bounds upper and lower (as in GroupBounds) keeps its labels:
+// below center a's keep threshold, or every other center farther than its own from each of its
+// points by more than the computed squares can err (less than slack2 each).
+inline bool Rules(const Moves& moves, int a, double upper, double lower, double slack2) {
+  return upper < moves.keep[static_cast<size_t>(a)] || (lower > upper && lower * lower - upper * upper > 2.0 * slack2);
+}
+
+// The assignment after an update with bounds (set by the last pass, with *labels): a group of
+// one label whose bounds, moved by moves, still rule every other center out keeps its labels
+// without a distance computed (nor its distances in *best: those are left as they were); any
+// other group is scanned (ScanGroup) and its bounds set anew. Returns whether any label changed;
+// the labels are those of a scan over all centers.
+bool AssignBounded(const Layout& l, const Eigen::MatrixXd& centers, const Moves& moves, Eigen::ArrayXi* labels,
+                   Eigen::ArrayXd* best, GroupBounds* bounds) {
+  const int k = static_cast<int>(centers.cols());
+  std::vector<char> group_changed(static_cast<size_t>(l.groups), 0);
+  std::vector<double> by_dim(static_cast<size_t>(l.d) * k);  // center c's coordinate j at [j k + c]
+  for (int j = 0; j < l.d; ++j)
+    for (int c = 0; c < k; ++c) by_dim[static_cast<size_t>(j) * k + c] = centers(j, c);
+  const double slack2 = bounds->slack2;
+  l.ForGroups([&](Eigen::Index g) {
+    const size_t gi = static_cast<size_t>(g);
+    const int a = bounds->label[gi];
+    if (a >= 0) {
+      const double upper = bounds->upper[gi] + moves.drift[static_cast<size_t>(a)];
+      const double lower = std::max(0.0, bounds->lower[gi] - (a == moves.drift_arg ? moves.drift_next : moves.drift_max));
+      bounds->upper[gi] = upper;
+      bounds->lower[gi] = lower;
+      if (Rules(moves, a, upper, lower, slack2)) return;
+      // Hamerly's tightening: the upper bound from the points' distances to their moved center
+      // (which are then in *best), before the scan.
+      double* bst = best->data() + l.First(g);
+      GroupDistances(l, g, centers.col(a).data(), bst);
+      double far = 0.0;
+      for (int q = 0; q < l.Size(g); ++q) far = bst[q] > far ? bst[q] : far;
+      bounds->upper[gi] = UpperDistance(far, slack2);
+      if (Rules(moves, a, bounds->upper[gi], lower, slack2)) return;
+    }
+    const Eigen::Index first = l.First(g);
+    const int size = l.Size(g);
+    int lab[kGroupPoints];
+    ScanGroup(l, g, centers, by_dim, best->data() + first, lab, bounds);
+    int* out = labels->data() + first;
+    int differ = 0;
+    for (int q = 0; q < size; ++q) differ |= out[q] ^ lab[q];
+    for (int q = 0; q < size; ++q) out[q] = lab[q];
+    group_changed[gi] = differ != 0;
+  });
+  return std::find(group_changed.begin(), group_changed.end(), 1) != group_changed.end();
+}
+
+// The inertia of the labels (summed per group, then in group order, as Assign does) with each
+// point's squared distance to its own center put into *best: after AssignBounded, the values a
+// scan over all centers would have given.
+double Inertia(const Layout& l, const Eigen::MatrixXd& centers, const Eigen::ArrayXi& labels, Eigen::ArrayXd* best) {
+  std::vector<double> group_sum(static_cast<size_t>(l.groups));
+  l.ForGroups([&](Eigen::Index g) {
+    double* bst = best->data() + l.First(g);
+    OwnDistances(l, g, centers, labels.data() + l.First(g), bst);
+    group_sum[static_cast<size_t>(g)] = GroupSum(bst, l.Size(g));
+  });
+  double inertia = 0.0;
+  for (double v : group_sum) inertia += v;
+  return inertia;
+}
+
+// Moves the centers to their clusters' means; returns the summed squared center shift. The sums
+// per cluster, of x for a plain dimension and of the wrapped x - center for an angle (whose mean
+// is taken about the center), are taken per task in group order and the tasks' sums added in
+// task order. A group whose points all have one label (most, in spatial order) adds its plain
+// dimensions' sums from the layout (computed once, as the pass over its points would by
+// GroupSum) and its angles' by GroupSum's independent partial sums; a group of several labels
+// adds its points in order.
+// An empty cluster takes the point farthest from its center by *best, which is first recomputed
+// (Inertia) unless best_current says it holds every point's distance (not after AssignBounded).
+// group_label (if not null, GroupBounds::label of the same labels): a group with a label there
+// is known to have one label, which saves reading its points' labels.
+double Update(const Layout& l, const Eigen::ArrayXi& labels, Eigen::ArrayXd* best, bool best_current,
+              Eigen::MatrixXd* centers, const std::vector<int>* group_label) {
   const Eigen::MatrixXd& x = *l.x;
   const uint32_t mask = l.mask;
   const Eigen::Index k = centers->cols(), n = l.n;
@@ -403,24 +639,41 @@ double Update(const Layout& l, const Eigen::ArrayXi& labels, const Eigen::ArrayX
       const int size = l.Size(g);
       const int* lab = labels.data() + first;
       const int one = lab[0];
-      bool same = true;
-      for (int q = 1; q < size; ++q) same = same && lab[q] == one;
-      if (same) count[one] += static_cast<double>(size);  // integers: exact in any grouping
-      else
-        for (int q = 0; q < size; ++q) count[lab[q]] += 1.0;
+      int mixed = 0;
+      if (!group_label || (*group_label)[static_cast<size_t>(g)] < 0)
+        for (int q = 1; q < size; ++q) mixed |= lab[q] ^ one;
+      const bool same = mixed == 0;
+      // Runs of equal labels (ends after run_end[i]) for a group of several: the points' additions
+      // in point order, each run's in a register rather than through memory.
+      int run_end[kGroupPoints];
+      int runs = 0;
+      if (same) {
+        count[one] += static_cast<double>(size);  // integers: exact in any grouping
+      } else {
+        for (int q = 1; q < size; ++q)
+          if (lab[q] != lab[q - 1]) run_end[runs++] = q;
+        run_end[runs++] = size;
+        for (int i = 0, q = 0; i < runs; q = run_end[i++]) count[lab[q]] += static_cast<double>(run_end[i] - q);
+      }
       for (int c = 0; c < l.d; ++c) {
         const bool angle = IsAngleDim(mask, c);
         const double* xc = x.col(c).data() + first;
-        if (same) {
+        if (same && !angle) {
+          shift(c, one) += l.xsum(c, g);
+        } else if (same) {
           const double center = (*centers)(c, one);
-          for (int q = 0; q < size; ++q) diff[q] = xc[q] - center;
-          if (angle)
-            for (int q = 0; q < size; ++q) diff[q] = Wrap(diff[q]);
+          for (int q = 0; q < size; ++q) diff[q] = Wrap(xc[q] - center);
           shift(c, one) += GroupSum(diff, size);
         } else {
-          for (int q = 0; q < size; ++q) {
-            const double v = xc[q] - (*centers)(c, lab[q]);
-            shift(c, lab[q]) += angle ? Wrap(v) : v;
+          for (int i = 0, q = 0; i < runs; ++i) {
+            const int a = lab[q];
+            const double center = (*centers)(c, a);
+            double acc = shift(c, a);
+            if (angle)
+              for (; q < run_end[i]; ++q) acc += Wrap(xc[q] - center);
+            else
+              for (; q < run_end[i]; ++q) acc += xc[q];
+            shift(c, a) = acc;
           }
         }
       }
@@ -432,17 +685,19 @@ double Update(const Layout& l, const Eigen::ArrayXi& labels, const Eigen::ArrayX
     shift += task_shift[static_cast<size_t>(t)];
     count += task_count[static_cast<size_t>(t)];
   }
+  if (!best_current && (count.array() == 0.0).any()) Inertia(l, *centers, labels, best);
   std::vector<bool> taken(n, false);
   Eigen::MatrixXd previous = *centers;
   for (Eigen::Index c = 0; c < k; ++c) {
     if (count[c] > 0.0) {
-      centers->col(c) += shift.col(c) / count[c];
+      for (int j = 0; j < l.d; ++j)
+        (*centers)(j, c) = IsAngleDim(mask, j) ? (*centers)(j, c) + shift(j, c) / count[c] : shift(j, c) / count[c];
     } else {
       // An empty cluster takes the point farthest from its center (deterministic).
       Eigen::Index far = 0;
       double far_d2 = -1.0;
       for (Eigen::Index p = 0; p < n; ++p)
-        if (!taken[p] && best[p] > far_d2) { far_d2 = best[p]; far = p; }
+        if (!taken[p] && (*best)[p] > far_d2) { far_d2 = (*best)[p]; far = p; }
       taken[far] = true;
       centers->col(c) = x.row(far).transpose();
     }
@@ -465,49 +720,65 @@ Status KMeans(const Eigen::MatrixXd& points, uint32_t angle_mask, const KMeansOp
                              std::to_string(options.k) + " clusters");
   Layout layout;
   MakeLayout(points, angle_mask, options, &layout);
-  // scikit-learn's tolerance: 1e-4 of the mean per-dimension variance (sums per task, then in
-  // task order).
-  const long tasks = layout.Tasks();
+  // scikit-learn's tolerance: 1e-4 of the mean per-dimension variance (sums per group by
+  // GroupSum, then in group order).
   const int d = layout.d;
   const double inv_n = 1.0 / static_cast<double>(layout.n);
-  Eigen::MatrixXd part(d, tasks);
-  auto for_tasks = [&](auto f) {  // f(task, first point, end point)
-    detail::ParallelFor(layout.threads, tasks, [&](long t) {
-      const Eigen::Index first = layout.First(t * kTaskGroups);
-      f(t, first, std::min<Eigen::Index>(layout.n, first + kTaskGroups * kGroupPoints));
-    });
-  };
-  for_tasks([&](long t, Eigen::Index first, Eigen::Index end) {
+  const Eigen::VectorXd mean = layout.xsum.rowwise().sum() * inv_n;
+  Eigen::MatrixXd part(d, layout.groups);
+  layout.ForGroups([&](Eigen::Index g) {
+    double dev2[kGroupPoints];
+    const Eigen::Index first = layout.First(g);
+    const int size = layout.Size(g);
     for (int c = 0; c < d; ++c) {
-      double sum = 0.0;
-      for (Eigen::Index p = first; p < end; ++p) sum += points(p, c);
-      part(c, t) = sum;
-    }
-  });
-  const Eigen::VectorXd mean = part.rowwise().sum() * inv_n;
-  for_tasks([&](long t, Eigen::Index first, Eigen::Index end) {
-    for (int c = 0; c < d; ++c) {
-      double sum = 0.0;
-      for (Eigen::Index p = first; p < end; ++p) sum += (points(p, c) - mean[c]) * (points(p, c) - mean[c]);
-      part(c, t) = sum;
+      const double* xc = points.col(c).data() + first;
+      for (int q = 0; q < size; ++q) dev2[q] = (xc[q] - mean[c]) * (xc[q] - mean[c]);
+      part(c, g) = GroupSum(dev2, size);
     }
   });
   const double shift_tol = 1e-4 * part.sum() * inv_n / d;
+  // The Lloyd passes after the first carry bounds per group (GroupBounds), allocated once here;
+  // without pruning every pass scans every center.
+  GroupBounds group_bounds;
+  GroupBounds* bounds = nullptr;
+  if (options.prune && d <= kMaxBoundedDim) {
+    double diagonal2 = 0.0;  // S^2 of GroupBounds
+    for (int c = 0; c < d; ++c) {
+      const double extent = layout.hi.row(c).maxCoeff() - layout.lo.row(c).minCoeff();
+      diagonal2 += extent * extent;
+    }
+    const size_t groups = static_cast<size_t>(layout.groups);
+    group_bounds.upper.resize(groups);
+    group_bounds.lower.resize(groups);
+    group_bounds.label.resize(groups);
+    group_bounds.slack2 = 1e-12 * diagonal2;
+    bounds = &group_bounds;
+  }
   result->inertia = std::numeric_limits<double>::infinity();
-  Eigen::MatrixXd centers;
+  Eigen::MatrixXd centers, previous;
   Eigen::ArrayXi labels;
   Eigen::ArrayXd best;
+  Moves moves;
   for (int r = 0; r < options.restarts; ++r) {
     SeedPlusPlus(layout, options.k, rng, &centers);
-    double inertia = Assign(layout, centers, &labels, &best, nullptr);
+    double inertia = Assign(layout, centers, &labels, &best, nullptr, bounds);
+    bool best_current = true;  // best holds every point's distance to its center
     int it = 0;
     while (it < options.max_iterations) {
       ++it;
-      const double shift = Update(layout, labels, best, &centers);
+      previous = centers;
+      const double shift = Update(layout, labels, &best, best_current, &centers, bounds ? &bounds->label : nullptr);
       bool changed = true;
-      inertia = Assign(layout, centers, &labels, &best, &changed);
+      if (bounds) {
+        MakeMoves(angle_mask, previous, centers, bounds->slack2, &moves);
+        changed = AssignBounded(layout, centers, moves, &labels, &best, bounds);
+        best_current = false;
+      } else {
+        inertia = Assign(layout, centers, &labels, &best, &changed, nullptr);
+      }
       if (!changed || shift <= shift_tol) break;
     }
+    if (!best_current) inertia = Inertia(layout, centers, labels, &best);
     if (inertia < result->inertia) {
       result->inertia = inertia;
       result->centers = centers;

@@ -23,8 +23,10 @@ struct KMeansOptions {
                             // (scikit-learn's rule) or no label changes
   int threads = 1;          // threads for the seeding, assignment and update passes, >= 1; the
                             // result is the same bits for any value
-  bool prune = true;        // skip the centers that box bounds rule out (kmeans.cpp); false
-                            // computes every distance: the same bits (tests compare the two)
+  bool prune = true;        // skip the centers that box bounds rule out, and the groups of
+                            // points that bounds carried across Lloyd passes rule out
+                            // (kmeans.cpp); false computes every distance: the same bits (tests
+                            // compare the two)
   bool IsValid(std::string* error) const;
 };
 
@@ -43,8 +45,9 @@ void SquaredDistances(const Eigen::MatrixXd& points, const Eigen::VectorXd& cent
 // Clusters the ROWS of points (N x D, finite, angle columns in (-pi, pi]); rows keep each
 // dimension contiguous so that distances vectorise. rng is advanced deterministically. Faster
 // when consecutive points lie close together (FitMixture's spatial order for D = 2): the
-// seeding and the assignment skip centers by the bounding boxes of 64 consecutive points,
-// without changing a bit of the result (kmeans.cpp).
+// seeding and the assignment skip centers by the bounding boxes of 64 consecutive points, and
+// the Lloyd passes skip such groups by distance bounds carried from pass to pass, without
+// changing a bit of the result (kmeans.cpp). Allocates O(N) once per call.
 // kInvalidArgument for bad options or K > N.
 Status KMeans(const Eigen::MatrixXd& points, uint32_t angle_mask, const KMeansOptions& options,
               std::mt19937_64* rng, KMeansResult* result);

@@ -107,7 +107,9 @@ Eigen::MatrixXd StripOrdered(const Eigen::MatrixXd& x) {
 }
 
 // The k-means test cases: overlapping blobs in D = 2 and D = 3, a lattice (equidistant points:
-// ties between centers), and blobs across the +-pi seam of an angle on dimension 1.
+// ties between centers), blobs across the +-pi seam of an angle on dimension 1, and the D = 2
+// blobs moved far from the origin (1e6: the differences lose 20 bits to the coordinates, which
+// the bounds carried across Lloyd passes must allow for).
 struct KMeansCase {
   Eigen::MatrixXd rows;
   uint32_t mask;
@@ -131,6 +133,9 @@ std::vector<KMeansCase> KMeansCases() {
     for (int j = 0; j < 41; ++j) lattice.col(41 * i + j) << i, j;
   cases.push_back({lattice.transpose(), 0u, 4});
   cases.push_back({StripOrdered(test_support::Sample(seam, 2u, 33)), 2u, 5});
+  Eigen::MatrixXd far = StripOrdered(test_support::Sample(blobs2, 0, 34));
+  far.array() += 1e6;
+  cases.push_back({far, 0u, 9});
   return cases;
 }
 
