@@ -30,13 +30,14 @@
  * Not used with walking people (gmmrrt_connect_reset says why) nor by gmm-rrt (a baseline whose
  * staged sampling is the point).
  *
- * Dynamic domains (cfg.connect_domains; Yershova, Jaillet, Simeon and LaValle, "Dynamic-Domain
- * RRTs", ICRA 2005): a node whose step was once blocked stands at the border of the free space
+ * Dynamic domains on the further tries (cfg.connect_domains; after Yershova, Jaillet, Simeon and
+ * LaValle, "Dynamic-Domain RRTs", ICRA 2005): a node whose step was once blocked stands at the border of the free space
  * (a wall, or a room's side), and a target far from it mostly lies behind that border. Such a
  * node is tried for a target beyond one step (step_m) only when it is the tree's nearest node,
  * the try RRT-Connect itself makes; as a further try (GMMRRT_CONNECT_TRIES) it is skipped without
- * a collision test. The domain's radius is the step itself, so there is no constant to set: a
- * blocked node still takes every target its one unsteered edge reaches. Why: on a floor plan most
+ * a collision test. Unlike their RRT the nearest node is never restricted, the domain's radius
+ * is the step itself and does not adapt, and the flag is never cleared, so there is no constant to
+ * set: a blocked node still takes every target its one unsteered edge reaches. Why: on a floor plan most
  * of the phase's time went to edges from nodes in a room towards targets behind its walls, and
  * tested again and again from the same nodes; docs/planner.md has the measurement.
  */

@@ -74,8 +74,8 @@ typedef struct {
                                   without a path and RRT* goes on alone from the root, so the
                                   phase's work (its trees' linear scans grow with them) is bounded */
     int32_t connect_domains;   /* 1: a connect-tree node whose step was once blocked is tried for a
-                                  target beyond one step only as the nearest node (dynamic domains,
-                                  Yershova et al. 2005; connect.c); 0: every try checks its edge */
+                                  target beyond one step only as the nearest node (after the dynamic
+                                  domains of Yershova et al. 2005; connect.c); 0: every try checks its edge */
     double w_length;           /* >= 0, weight of length in the edge cost */
     double w_task;             /* >= 0, weight of the task cost c(f) (paper Sect. 4) */
     int32_t task_cost;         /* gmmrrt_task_cost_kind_t (default PAPER; a model that is not over
