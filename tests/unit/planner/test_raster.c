@@ -283,6 +283,73 @@ static void test_windowed_field_is_the_full_one_capped(void **state)
     free(win.mem);
 }
 
+/* The four-corner bound as raster.h defines it, written out here: the point's cell's corners
+ * (floor and the next, clamped to the lattice), each valid one's field less the point's distance
+ * to it, the largest; -infinity when none is valid. */
+static double four_corner_definition(const gmmrrt_raster_t *r, double x, double y)
+{
+    const double dx = x - r->origin_x, dy = y - r->origin_y;
+    const double u = (dx * r->cos_yaw + dy * r->sin_yaw) * r->inv_resolution_m;
+    const double v = (-dx * r->sin_yaw + dy * r->cos_yaw) * r->inv_resolution_m;
+    double best = -INFINITY;
+    for (int di = 0; di <= 1; ++di)
+        for (int dj = 0; dj <= 1; ++dj) {
+            int32_t i = (int32_t)fmin(fmax(floor(u) + di, 0.0), (double)r->width);
+            int32_t j = (int32_t)fmin(fmax(floor(v) + dj, 0.0), (double)r->height);
+            if (!(u >= 0.0))
+                i = 0;
+            if (!(v >= 0.0))
+                j = 0;
+            if (i < r->valid_i0 || i >= r->valid_i1 || j < r->valid_j0 || j >= r->valid_j1)
+                continue;
+            const double lb = field_at(r, i, j) - hypot(i - u, j - v) * r->resolution_m;
+            best = lb > best ? lb : best;
+        }
+    return best;
+}
+
+/* The bound a search reads (inline where the four corners are all valid, raster_bound.h; the
+ * general code elsewhere) is the definition above: at random points on and off the raster, on
+ * its window's edges and on cell corners, rotated or not, with the whole field and a window. */
+static void test_clearance_bound_is_its_definition_everywhere(void **state)
+{
+    (void)state;
+    raster_block_t b;
+    make_raster(&b, 60 * 40, 60);
+    gmmrrt_rng_t g;
+    gmmrrt_rng_seed(&g, 29);
+    long interior = 0, other = 0;
+    for (int round = 0; round < 8; ++round) {
+        random_raster_at(&b.r, &g, 60, 40, 0.03, round % 2, round % 4 < 2);
+        if (round < 4)
+            assert_int_equal(gmmrrt_raster_update_distance(&b.r, 0, 0.0), GMMRRT_OK);
+        else
+            assert_int_equal(gmmrrt_raster_update_distance_window(&b.r, 0, 0.0, b.r.origin_x - 1.0, b.r.origin_y - 1.0,
+                                                                  b.r.origin_x + 2.0, b.r.origin_y + 1.5, 0.6),
+                             GMMRRT_OK);
+        for (int q = 0; q < 20000; ++q) {
+            double u = rnd(&g, -3, 63), v = rnd(&g, -3, 43);
+            if (q % 5 == 0) { /* on a corner, or on the valid window's last corners */
+                u = floor(u);
+                v = floor(v);
+            } else if (q % 5 == 1) {
+                u = (double)b.r.valid_i1 - 1.0 + rnd(&g, -1e-9, 1e-9);
+                v = (double)b.r.valid_j1 - 1.0 + rnd(&g, -1e-9, 1e-9);
+            }
+            double x, y;
+            to_world(&b.r, u, v, &x, &y);
+            const double got = gmmrrt_raster_clearance_bound(&b.r, x, y), want = four_corner_definition(&b.r, x, y);
+            if (!(got == want || fabs(got - want) <= 1e-12 * (1.0 + fabs(want))))
+                fail_msg("round %d at (%.12g, %.12g) cells: bound %.17g, definition %.17g", round, u, v, got, want);
+            const int inside = u >= b.r.valid_i0 && u < b.r.valid_i1 - 1 && v >= b.r.valid_j0 && v < b.r.valid_j1 - 1;
+            interior += inside;
+            other += !inside;
+        }
+    }
+    assert_true(interior > 10000 && other > 10000); /* both the inline case and the general one ran */
+    free(b.mem);
+}
+
 static void test_scans_mark_clear_ignore_and_decay(void **state)
 {
     (void)state;
@@ -424,6 +491,7 @@ int main(void)
         cmocka_unit_test(test_distance_field_matches_brute_force),
         cmocka_unit_test(test_clearance_bound_is_a_lower_bound),
         cmocka_unit_test(test_windowed_field_is_the_full_one_capped),
+        cmocka_unit_test(test_clearance_bound_is_its_definition_everywhere),
         cmocka_unit_test(test_scans_mark_clear_ignore_and_decay),
         cmocka_unit_test(test_geometry_beyond_capacity_is_refused),
         cmocka_unit_test(test_world_with_raster_keeps_the_robot_radius),
