@@ -102,6 +102,13 @@ inline double GroupSum(const double* v, int size) {
   return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
 }
 
+// 1 when the size labels all equal lab[0] (a group of one label), without a branch per label.
+inline bool OneLabel(const int* lab, int size) {
+  int mixed = 0;
+  for (int q = 1; q < size; ++q) mixed |= lab[q] ^ lab[0];
+  return mixed == 0;
+}
+
 // The points' columns and groups: what every pass below reads.
 struct Layout {
   const Eigen::MatrixXd* x = nullptr;
@@ -372,14 +379,13 @@ void MakeMoves(uint32_t mask, const Eigen::MatrixXd& previous, const Eigen::Matr
   // from its own, which the computed squares cannot undo (4 slack2 of room against their errors).
   const double g = std::sqrt(slack2);
   m->keep.assign(static_cast<size_t>(k), -1.0);
-  Eigen::VectorXd diff(centers.rows());
+  Eigen::MatrixXd diff(centers.rows(), 1);
   for (Eigen::Index a = 0; a < k; ++a) {
     double nearest2 = std::numeric_limits<double>::infinity();
     for (Eigen::Index c = 0; c < k; ++c) {
       if (c == a) continue;
       diff = centers.col(c) - centers.col(a);
-      for (Eigen::Index j = 0; j < diff.size(); ++j)
-        if (IsAngleDim(mask, j)) diff[j] = Wrap(diff[j]);
+      WrapAngleRows(mask, &diff);
       nearest2 = std::min(nearest2, diff.squaredNorm());
     }
     m->keep[static_cast<size_t>(a)] = 0.5 * LowerDistance(nearest2, slack2) - g;
@@ -475,11 +481,9 @@ void ScanGroup(const Layout& l, Eigen::Index g, const Eigen::MatrixXd& centers, 
   }
   for (int q = 0; q < size; ++q) lab[q] = static_cast<int>(lab_data[q]);
   if (!bounds) return;
-  int mixed = 0;
-  for (int q = 0; q < size; ++q) mixed |= lab[q] ^ lab[0];
   const double far = best_q.maxCoeff(), second = std::min(skipped_low, sec.minCoeff());
   const size_t gi = static_cast<size_t>(g);
-  bounds->label[gi] = mixed != 0 ? -1 : lab[0];
+  bounds->label[gi] = OneLabel(lab, size) ? lab[0] : -1;
   bounds->upper[gi] = UpperDistance(far, bounds->slack2);
   bounds->lower[gi] = LowerDistance(second, bounds->slack2);
 }
@@ -488,9 +492,7 @@ void ScanGroup(const Layout& l, Eigen::Index g, const Eigen::MatrixXd& centers, 
 // a scan gives them (GroupDistances, once per label in the group).
 void OwnDistances(const Layout& l, Eigen::Index g, const Eigen::MatrixXd& centers, const int* lab, double* bst) {
   const int size = l.Size(g);
-  int mixed = 0;
-  for (int q = 1; q < size; ++q) mixed |= lab[q] ^ lab[0];
-  if (mixed == 0) {
+  if (OneLabel(lab, size)) {
     GroupDistances(l, g, centers.col(lab[0]).data(), bst);
     return;
   }
@@ -639,10 +641,7 @@ double Update(const Layout& l, const Eigen::ArrayXi& labels, Eigen::ArrayXd* bes
       const int size = l.Size(g);
       const int* lab = labels.data() + first;
       const int one = lab[0];
-      int mixed = 0;
-      if (!group_label || (*group_label)[static_cast<size_t>(g)] < 0)
-        for (int q = 1; q < size; ++q) mixed |= lab[q] ^ one;
-      const bool same = mixed == 0;
+      const bool same = (group_label && (*group_label)[static_cast<size_t>(g)] >= 0) || OneLabel(lab, size);
       // Runs of equal labels (ends after run_end[i]) for a group of several: the points' additions
       // in point order, each run's in a register rather than through memory.
       int run_end[kGroupPoints];
