@@ -187,8 +187,7 @@ def _budgets_statistic(costs: dict, seed0: int) -> str:
         groups.setdefault(c.get("trials"), []).append(b)
     parts = []
     for n, bs in groups.items():
-        at = bs[0] if len(bs) == 1 else ", ".join(bs[:-1]) + " and " + bs[-1]
-        parts.append(f"at {at} ms {_over_seeds(n, seed0)}")
+        parts.append(f"at {_ms_list(float(b) for b in bs)} ms {_over_seeds(n, seed0)}")
     return ", ".join(parts)
 
 
@@ -308,7 +307,7 @@ def _long_budget_minutes(pl: dict, seeded: dict, runs: List[dict]) -> str:
 
 
 def _ms_list(budgets_ms) -> str:
-    """[1.0, 10.0, 100.0] -> "1, 10 and 100"."""
+    """[1.0, 10.0, 100.0] (any iterable) -> "1, 10 and 100"."""
     bs = ["%g" % b for b in budgets_ms]
     return bs[0] if len(bs) == 1 else ", ".join(bs[:-1]) + " and " + bs[-1]
 
