@@ -49,15 +49,20 @@ constexpr double kNegligible = -37.0;
 constexpr long kCullPoints = 64;
 static_assert(kCullPoints % 4 == 0 && kBlock % kCullPoints == 0, "groups must hold whole vectors and blocks");
 
+// Component slots: GMMRRT_MAX_K rounded up to whole vectors of the widest kernel (4 lanes), so the
+// culling bounds (ActiveTerms) load the parameters of 4 components at a time.
+constexpr int kParamSlots = (GMMRRT_MAX_K + 3) / 4 * 4;
+
 // Per component: mean, the rows of L^-1 scaled by sqrt(1/2) (which folds the 1/2 of the
 // exponent), the log coefficient, a lower bound of the smallest eigenvalue of the quadratic form
-// (for culling); and the image offsets on dimension 1.
+// (for culling); and the image offsets on dimension 1. Slots k..kParamSlots-1 hold a harmless
+// finite component (unit scale at 0), which the kernel masks out.
 struct Params2d {
   int k = 0;
   int images = 1;
   bool cull = true;
-  double mu0[GMMRRT_MAX_K], mu1[GMMRRT_MAX_K], a[GMMRRT_MAX_K], b[GMMRRT_MAX_K], c[GMMRRT_MAX_K],
-      coef[GMMRRT_MAX_K], lam[GMMRRT_MAX_K];
+  double mu0[kParamSlots], mu1[kParamSlots], a[kParamSlots], b[kParamSlots], c[kParamSlots],
+      coef[kParamSlots], lam[kParamSlots];
   double offset1[3] = {0.0, 2.0 * M_PI, -2.0 * M_PI};  // ImageOffsets' order: n = 0, +1, -1
 };
 
@@ -149,6 +154,10 @@ double EStep2d(const Mixture& m, const double* x0, const double* x1, Eigen::Inde
     const double a2 = p.a[i] * p.a[i], b2 = p.b[i] * p.b[i], c2 = p.c[i] * p.c[i];
     const double disc = std::sqrt((a2 + b2 - c2) * (a2 + b2 - c2) + 4.0 * b2 * c2);
     p.lam[i] = (1.0 - 1e-9) * 2.0 * a2 * c2 / (a2 + b2 + c2 + disc);
+  }
+  for (int i = p.k; i < kParamSlots; ++i) {
+    p.mu0[i] = p.mu1[i] = p.b[i] = p.coef[i] = 0.0;
+    p.a[i] = p.c[i] = p.lam[i] = 1.0;
   }
   // The points are cut into chunks of a fixed size (independent of the thread count); each
   // chunk sums into its own slot and the slots are added in chunk order: the same bits for
