@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "parallel.hpp"
@@ -69,6 +70,12 @@ struct Params2d {
 struct MomentPtrs {
   double *n, *m0, *m1, *s00, *s01, *s11;
 };
+
+// The kernel's scratch for one group of points: each term's values, and with the angle each
+// component's wrapped differences (kCullPoints doubles each).
+long KernelScratchDoubles(const Params2d& p) {
+  return static_cast<long>(p.k * p.images + (p.images == 3 ? p.k : 0)) * kCullPoints;
+}
 
 }  // namespace
 
@@ -170,13 +177,15 @@ double EStep2d(const Mixture& m, const double* x0, const double* x1, Eigen::Inde
     double* slot = slots.data() + static_cast<size_t>(c) * (6 * p.k + 1);
     MomentPtrs out{slot, slot + p.k, slot + 2 * p.k, slot + 3 * p.k, slot + 4 * p.k, slot + 5 * p.k};
     const long first = c * kChunkPoints, count = std::min(kChunkPoints, n - first);
+    // One small block per task (at most 29 KB for K = 19 with the angle), not per point.
+    const std::unique_ptr<double[]> scratch(new double[static_cast<size_t>(KernelScratchDoubles(p))]);
 #ifdef GMMRRT_ESTEP_HAVE_AVX2
     if (avx2 && EStep2dAvx2Available()) {
-      slot[6 * p.k] = kernel_avx2::Kernel(p, x0 + first, x1 + first, count, point_ll + first, &out);
+      slot[6 * p.k] = kernel_avx2::Kernel(p, x0 + first, x1 + first, count, point_ll + first, &out, scratch.get());
       return;
     }
 #endif
-    slot[6 * p.k] = kernel_baseline::Kernel(p, x0 + first, x1 + first, count, point_ll + first, &out);
+    slot[6 * p.k] = kernel_baseline::Kernel(p, x0 + first, x1 + first, count, point_ll + first, &out, scratch.get());
   });
   (void)avx2;
   std::vector<double>* dst[6] = {&moments->n, &moments->m0, &moments->m1, &moments->s00, &moments->s01, &moments->s11};
