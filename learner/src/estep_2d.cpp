@@ -45,8 +45,10 @@ constexpr double kNegligible = -37.0;
 
 // Points per group whose terms are culled together (ActiveTerms in the kernel): the
 // points are in spatial order (FitMixture), so a group's bounding box is small, and on the
-// benchmark data (K = 19) about a third of the terms survive it; the bounds cost about 50
-// operations per term and group, which 64 points repay. A multiple of both lane counts.
+// benchmark data (K = 19) about a fifth of the terms survive it; the bounds cost about 1 200
+// instructions per group with K = 19 (4 components per vector), 19 per point. Groups of 128
+// would now cost a little less on the benchmark fit (docs/learner.md), but the culling tests'
+// clumps of points are placed for groups of 64. A multiple of both lane counts.
 constexpr long kCullPoints = 64;
 static_assert(kCullPoints % 4 == 0 && kBlock % kCullPoints == 0, "groups must hold whole vectors and blocks");
 
