@@ -179,7 +179,7 @@ double EStep2d(const Mixture& m, const double* x0, const double* x1, Eigen::Inde
     double* slot = slots.data() + static_cast<size_t>(c) * (6 * p.k + 1);
     MomentPtrs out{slot, slot + p.k, slot + 2 * p.k, slot + 3 * p.k, slot + 4 * p.k, slot + 5 * p.k};
     const long first = c * kChunkPoints, count = std::min(kChunkPoints, n - first);
-    // One small block per task (at most 29 KB for K = 19 with the angle), not per point.
+    // One block per task (38 KB for K = 19 with the angle, 9.5 KB without), not per point.
     const std::unique_ptr<double[]> scratch(new double[static_cast<size_t>(KernelScratchDoubles(p))]);
 #ifdef GMMRRT_ESTEP_HAVE_AVX2
     if (avx2 && EStep2dAvx2Available()) {
