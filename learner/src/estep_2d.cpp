@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "parallel.hpp"
@@ -44,26 +45,39 @@ constexpr double kNegligible = -37.0;
 
 // Points per group whose terms are culled together (ActiveTerms in the kernel): the
 // points are in spatial order (FitMixture), so a group's bounding box is small, and on the
-// benchmark data (K = 19) about a third of the terms survive it; the bounds cost about 50
-// operations per term and group, which 64 points repay. A multiple of both lane counts.
+// benchmark data (K = 19) about a fifth of the terms survive it; the bounds cost about 1 200
+// instructions per group with K = 19 (4 components per vector), 19 per point. Groups of 128
+// would now cost a little less on the benchmark fit (docs/learner.md), but the culling tests'
+// clumps of points are placed for groups of 64. A multiple of both lane counts.
 constexpr long kCullPoints = 64;
 static_assert(kCullPoints % 4 == 0 && kBlock % kCullPoints == 0, "groups must hold whole vectors and blocks");
 
+// Component slots: GMMRRT_MAX_K rounded up to whole vectors of the widest kernel (4 lanes), so the
+// culling bounds (ActiveTerms) load the parameters of 4 components at a time.
+constexpr int kParamSlots = (GMMRRT_MAX_K + 3) / 4 * 4;
+
 // Per component: mean, the rows of L^-1 scaled by sqrt(1/2) (which folds the 1/2 of the
 // exponent), the log coefficient, a lower bound of the smallest eigenvalue of the quadratic form
-// (for culling); and the image offsets on dimension 1.
+// (for culling); and the image offsets on dimension 1. Slots k..kParamSlots-1 hold a harmless
+// finite component (unit scale at 0), which the kernel masks out.
 struct Params2d {
   int k = 0;
   int images = 1;
   bool cull = true;
-  double mu0[GMMRRT_MAX_K], mu1[GMMRRT_MAX_K], a[GMMRRT_MAX_K], b[GMMRRT_MAX_K], c[GMMRRT_MAX_K],
-      coef[GMMRRT_MAX_K], lam[GMMRRT_MAX_K];
+  double mu0[kParamSlots], mu1[kParamSlots], a[kParamSlots], b[kParamSlots], c[kParamSlots],
+      coef[kParamSlots], lam[kParamSlots];
   double offset1[3] = {0.0, 2.0 * M_PI, -2.0 * M_PI};  // ImageOffsets' order: n = 0, +1, -1
 };
 
 struct MomentPtrs {
   double *n, *m0, *m1, *s00, *s01, *s11;
 };
+
+// The kernel's scratch for one group of points: each term's values, and with the angle each
+// component's wrapped differences (kCullPoints doubles each).
+long KernelScratchDoubles(const Params2d& p) {
+  return static_cast<long>(p.k * p.images + (p.images == 3 ? p.k : 0)) * kCullPoints;
+}
 
 }  // namespace
 
@@ -150,6 +164,10 @@ double EStep2d(const Mixture& m, const double* x0, const double* x1, Eigen::Inde
     const double disc = std::sqrt((a2 + b2 - c2) * (a2 + b2 - c2) + 4.0 * b2 * c2);
     p.lam[i] = (1.0 - 1e-9) * 2.0 * a2 * c2 / (a2 + b2 + c2 + disc);
   }
+  for (int i = p.k; i < kParamSlots; ++i) {
+    p.mu0[i] = p.mu1[i] = p.b[i] = p.coef[i] = 0.0;
+    p.a[i] = p.c[i] = p.lam[i] = 1.0;
+  }
   // The points are cut into chunks of a fixed size (independent of the thread count); each
   // chunk sums into its own slot and the slots are added in chunk order: the same bits for
   // any number of threads.
@@ -161,13 +179,15 @@ double EStep2d(const Mixture& m, const double* x0, const double* x1, Eigen::Inde
     double* slot = slots.data() + static_cast<size_t>(c) * (6 * p.k + 1);
     MomentPtrs out{slot, slot + p.k, slot + 2 * p.k, slot + 3 * p.k, slot + 4 * p.k, slot + 5 * p.k};
     const long first = c * kChunkPoints, count = std::min(kChunkPoints, n - first);
+    // One block per task (38 KB for K = 19 with the angle, 9.5 KB without), not per point.
+    const std::unique_ptr<double[]> scratch(new double[static_cast<size_t>(KernelScratchDoubles(p))]);
 #ifdef GMMRRT_ESTEP_HAVE_AVX2
     if (avx2 && EStep2dAvx2Available()) {
-      slot[6 * p.k] = kernel_avx2::Kernel(p, x0 + first, x1 + first, count, point_ll + first, &out);
+      slot[6 * p.k] = kernel_avx2::Kernel(p, x0 + first, x1 + first, count, point_ll + first, &out, scratch.get());
       return;
     }
 #endif
-    slot[6 * p.k] = kernel_baseline::Kernel(p, x0 + first, x1 + first, count, point_ll + first, &out);
+    slot[6 * p.k] = kernel_baseline::Kernel(p, x0 + first, x1 + first, count, point_ll + first, &out, scratch.get());
   });
   (void)avx2;
   std::vector<double>* dst[6] = {&moments->n, &moments->m0, &moments->m1, &moments->s00, &moments->s01, &moments->s11};

@@ -2,7 +2,8 @@
 // benchmark's and generic 2-D features without angles, and the planner's (d, theta) features
 // with theta wrapped (angle on dimension 1, 3 images as in gmm.h). It returns the same quantities as the general E-step of em.cpp (component_terms.hpp):
 // per-point log-likelihood and the responsibility-weighted moments around the current means,
-// in one fused pass, without heap allocation and with a closed-form 2x2 Mahalanobis term.
+// in one fused pass, without heap allocation per point (one scratch block per task of 8192
+// points) and with a closed-form 2x2 Mahalanobis term.
 #ifndef GMMRRT_LEARNER_ESTEP_2D_HPP
 #define GMMRRT_LEARNER_ESTEP_2D_HPP
 
