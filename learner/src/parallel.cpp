@@ -1,4 +1,4 @@
-// parallel.cpp - ParallelFor and AvailableCores (contract in parallel.hpp).
+// parallel.cpp - ParallelFor, ParallelSession and AvailableCores (contract in parallel.hpp).
 //
 // The helper threads are kept between calls: a fit makes about a hundred parallel passes (each
 // E-step, k-means assignment, update and seeding step), and starting and joining threads for
@@ -6,6 +6,16 @@
 // a few percent of a 50 ms fit and the part that did not shrink with a second core. A call that
 // finds the pool busy (another thread's pass, or a pass started from inside a task) or runs in
 // a process forked after the pool started takes its own threads as before.
+//
+// A pass is handed over without a lock: the caller publishes the pass and then bumps the
+// generation; a polling helper sees the generation and starts. Locks and condition variables
+// are only for threads that went to sleep. That matters beyond the cost of a system call:
+// Linux puts a thread woken by another on the waker's CPU when it can (wake-affine placement),
+// so a helper woken for a pass, or blocked for a moment on a mutex the caller holds, starts
+// its share on the caller's CPU, and the two share one CPU until the load balancer moves one.
+// On the benchmark fit with 2 threads the helper slept between 65 and 90 of a fit's 85-100
+// passes, and started on the caller's CPU in 77-96 of them (docs/learner.md). Hence
+// ParallelSession: while one is open the threads do not sleep between passes.
 #include "parallel.hpp"
 
 #include <sched.h>
@@ -29,12 +39,13 @@ namespace {
 
 thread_local bool in_pool_task = false;
 
-// How long a pool thread polls before it sleeps: for the helpers, after a pass, for the next one;
-// for the caller, at the end of a pass, for the helpers' last tasks. A fit's passes follow one
-// another with little serial work between them (a few to tens of microseconds), and waking a
-// sleeping thread through the scheduler costs more on a virtual machine (an idle vCPU is
-// halted); the polling is bounded so that an idle pool costs nothing after it, and short (100 us
-// gave the same wall time on the benchmark fit for more CPU: docs/learner.md).
+// Open ParallelSessions of more than one thread, in the whole process.
+std::atomic<int> open_sessions{0};
+
+// How long a pool thread polls before it sleeps when no session is open: for the helpers, after
+// a pass, for the next one; for the caller, at the end of a pass, for the helpers' last tasks.
+// Short, so that an idle pool costs nothing after it (100 us gave the same wall time on the
+// benchmark fit for more CPU: docs/learner.md).
 constexpr auto kPollFor = std::chrono::microseconds(20);
 
 inline void CpuRelax() {
@@ -45,14 +56,20 @@ inline void CpuRelax() {
 #endif
 }
 
-// Polls done() for up to kPollFor; true when it held.
+// Polls done() until it holds, or for kPollFor while no session is open; true when it held.
 template <typename F>
 bool PollUntil(const F& done) {
-  const auto until = std::chrono::steady_clock::now() + kPollFor;
+  auto until = std::chrono::steady_clock::now() + kPollFor;
   for (unsigned i = 1;; ++i) {
     if (done()) return true;
     CpuRelax();
-    if (i % 64 == 0 && std::chrono::steady_clock::now() > until) return done();
+    if (i % 64 == 0) {
+      const auto now = std::chrono::steady_clock::now();
+      if (open_sessions.load(std::memory_order_relaxed) > 0)
+        until = now + kPollFor;  // the poll's limit starts when the last session closes
+      else if (now > until)
+        return done();
+    }
   }
 }
 
@@ -70,20 +87,34 @@ class Pool {
     if (in_pool_task || getpid() != pid_) return false;
     std::unique_lock<std::mutex> busy(busy_, std::try_to_lock);
     if (!busy.owns_lock()) return false;
-    std::unique_lock<std::mutex> lock(m_);
-    while (static_cast<int>(threads_.size()) < helpers) {
-      const int id = static_cast<int>(threads_.size());
-      threads_.emplace_back([this, id] { Work(id); });
-      threads_.back().detach();
+    bool wake;
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      const uint64_t published = generation_.load(std::memory_order_relaxed);
+      while (static_cast<int>(threads_.size()) < helpers) {
+        const int id = static_cast<int>(threads_.size());
+        threads_.emplace_back([this, id, published] { Work(id, published); });
+        threads_.back().detach();
+      }
     }
-    task_ = &task;
-    n_tasks_ = n_tasks;
-    next_.store(0);
-    helpers_ = helpers;
-    active_.store(helpers);
-    generation_.store(generation_.load() + 1);
-    lock.unlock();
-    wake_.notify_all();
+    // The pass is published as a sequence lock: an odd generation while its fields are written,
+    // the next even one when they are complete. A wanted helper is waited for (active_), so the
+    // fields change only when every wanted helper of the last pass has counted out; a helper the
+    // last pass did not want may still be reading them, and tells by the generation.
+    // (Release stores: a helper that reads a new field's value also sees the odd generation.)
+    generation_.store(generation_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+    task_.store(&task, std::memory_order_release);
+    n_tasks_.store(n_tasks, std::memory_order_release);
+    next_.store(0, std::memory_order_release);
+    helpers_.store(helpers, std::memory_order_release);
+    active_.store(helpers, std::memory_order_release);
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      // Under m_, so that a helper about to sleep either sees it or is already waiting.
+      generation_.store(generation_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
+      wake = sleeping_ > 0;
+    }
+    if (wake) wake_.notify_all();
     // A task that throws on this thread ends only this thread's share: the helpers still hold
     // `task` (the caller's) and the pass's counters, so the exception waits for them before it
     // leaves, and the pool is whole for the next pass. (A throw on a helper ends the process,
@@ -96,43 +127,62 @@ class Pool {
       failed = std::current_exception();
     }
     in_pool_task = false;
-    PollUntil([this] { return active_.load() == 0; });
-    lock.lock();
-    done_.wait(lock, [this] { return active_.load() == 0; });
-    task_ = nullptr;
+    if (!PollUntil([this] { return active_.load(std::memory_order_acquire) == 0; })) {
+      std::unique_lock<std::mutex> lock(m_);
+      done_.wait(lock, [this] { return active_.load(std::memory_order_acquire) == 0; });
+    }
     if (failed) std::rethrow_exception(failed);
     return true;
   }
 
+  long Sleeps() const { return sleeps_.load(); }
+
  private:
-  void Work(int id) {
+  // A helper thread: `seen` is the last generation it has acted on (at first, the one published
+  // when it was made: it was made for the next pass).
+  void Work(int id, uint64_t seen) {
     in_pool_task = true;
-    uint64_t seen = 0;
     for (;;) {
-      PollUntil([this, seen] { return generation_.load() != seen; });
-      std::unique_lock<std::mutex> lock(m_);
-      wake_.wait(lock, [this, seen] { return generation_.load() != seen; });
-      seen = generation_.load();
-      if (id >= helpers_) continue;  // not wanted for this pass
-      const std::function<void(long task)>* task = task_;
-      const long n_tasks = n_tasks_;
-      lock.unlock();
+      const auto started = [this, &seen] {
+        const uint64_t g = generation_.load(std::memory_order_acquire);
+        return g != seen && g % 2 == 0;
+      };
+      if (!PollUntil(started)) {
+        std::unique_lock<std::mutex> lock(m_);
+        ++sleeping_;
+        if (!started()) sleeps_.fetch_add(1);
+        wake_.wait(lock, started);
+        --sleeping_;
+      }
+      const uint64_t g = generation_.load(std::memory_order_acquire);
+      if (g == seen || g % 2 != 0) continue;
+      const int helpers = helpers_.load(std::memory_order_acquire);
+      const long n_tasks = n_tasks_.load(std::memory_order_acquire);
+      const std::function<void(long task)>* task = task_.load(std::memory_order_acquire);
+      if (generation_.load(std::memory_order_relaxed) != g) continue;  // rewritten meanwhile
+      seen = g;
+      if (id >= helpers) continue;  // not wanted for this pass
+      // Wanted: the pass cannot end, nor its fields change, before this thread counts out.
       RunTasks(&next_, n_tasks, *task);
-      lock.lock();
-      if (active_.fetch_sub(1) == 1) done_.notify_one();
+      if (active_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+        std::lock_guard<std::mutex> lock(m_);  // the caller checks active_ under m_ before it sleeps
+        done_.notify_one();
+      }
     }
   }
 
   const pid_t pid_ = getpid();
   std::mutex busy_;  // held for a whole pass
-  std::mutex m_;     // guards the fields below
+  std::mutex m_;     // guards threads_ and sleeping_, and orders sleeping against waking
   std::condition_variable wake_, done_;
   std::vector<std::thread> threads_;
-  const std::function<void(long task)>* task_ = nullptr;
-  long n_tasks_ = 0;
+  int sleeping_ = 0;             // helpers waiting on wake_
+  std::atomic<long> sleeps_{0};  // times a helper went to sleep (for tests)
+  // The pass, published by the generation (TryRun).
+  std::atomic<const std::function<void(long task)>*> task_{nullptr};
+  std::atomic<long> n_tasks_{0};
   std::atomic<long> next_{0};
-  int helpers_ = 0;
-  // Written under m_; also polled without it (PollUntil), hence atomic.
+  std::atomic<int> helpers_{0};
   std::atomic<int> active_{0};  // wanted helpers still running this pass
   std::atomic<uint64_t> generation_{0};
 };
@@ -165,6 +215,16 @@ void ParallelFor(int threads, long n_tasks, const std::function<void(long task)>
   for (std::thread& t : pool) t.join();
   if (failed) std::rethrow_exception(failed);
 }
+
+ParallelSession::ParallelSession(int threads) : open_(threads > 1 && threads <= AvailableCores()) {
+  if (open_) open_sessions.fetch_add(1);
+}
+
+ParallelSession::~ParallelSession() {
+  if (open_) open_sessions.fetch_sub(1);
+}
+
+long PoolHelperSleeps() { return ThePool().Sleeps(); }
 
 int AvailableCores() {
   cpu_set_t set;

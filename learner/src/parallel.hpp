@@ -19,6 +19,27 @@ namespace detail {
 // another thread ends the process (std::terminate), as from any std::thread.
 void ParallelFor(int threads, long n_tasks, const std::function<void(long task)>& task);
 
+// While a session is open (in any thread of the process), the pool's threads poll for the next
+// pass and for the end of a pass instead of sleeping after a few microseconds: open one around
+// a run of passes with little serial work between them (a fit), so that the threads stay on
+// their own CPUs (parallel.cpp says why sleeping moves them). It costs the polling thread's CPU
+// during the serial work, so it opens only when 1 < threads <= AvailableCores() (with more
+// threads than CPUs a polling thread would take the CPU from the one it waits for); otherwise
+// it does nothing. Sessions nest.
+class ParallelSession {
+ public:
+  explicit ParallelSession(int threads);
+  ~ParallelSession();
+  ParallelSession(const ParallelSession&) = delete;
+  ParallelSession& operator=(const ParallelSession&) = delete;
+
+ private:
+  const bool open_;
+};
+
+// Times a pool thread has gone to sleep waiting for a pass, since the process started (for tests).
+long PoolHelperSleeps();
+
 // Points per task of the fit's passes over all points outside the E-step (the input's checks and
 // copies, the spatial order, the data moments, the hard assignment's sums): fixed, so what is
 // summed per task and then added in task order is the same bits for any thread count.

@@ -9,6 +9,7 @@
 // subsample: deterministic, and the fit on all points still recovers the generating mixture.
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -501,6 +502,37 @@ void test_parallel_for_runs_every_task_once(void** state) {
   }
 }
 
+// While a ParallelSession is open the pool's threads do not sleep between passes, even with
+// gaps of milliseconds between them (a sleeping helper is woken onto the caller's CPU:
+// parallel.cpp); once it closes they sleep again after their short poll. With fewer than two
+// CPUs a session does nothing, and the helpers sleep in the gaps as without one.
+static void test_a_session_keeps_the_pool_awake_between_passes(void** state) {
+  (void)state;
+  using namespace gmmrrt::learn::detail;
+  const auto nothing = [](long) {};
+  const auto gap = [] { std::this_thread::sleep_for(std::chrono::milliseconds(2)); };
+  const bool opens = AvailableCores() >= 2;
+  ParallelFor(2, 4, nothing);  // the pool has its helper
+  {
+    const ParallelSession session(2);
+    ParallelFor(2, 4, nothing);  // a helper asleep before the session is woken by this pass
+    const long before = PoolHelperSleeps();
+    for (int r = 0; r < 20; ++r) {
+      gap();
+      ParallelFor(2, 4, nothing);
+    }
+    if (opens)
+      assert_int_equal(PoolHelperSleeps(), before);
+    else
+      assert_true(PoolHelperSleeps() > before);
+  }
+  // Closed: the helper sleeps after its poll (waited for up to 10 s, for a loaded machine).
+  ParallelFor(2, 4, nothing);
+  const long before = PoolHelperSleeps();
+  for (int w = 0; w < 5000 && PoolHelperSleeps() == before; ++w) gap();
+  assert_true(PoolHelperSleeps() > before);
+}
+
 // The spatial order against a plain twin: each point's Morton index of its cell in a 64 x 64
 // grid over the bounding box, then a stable sort by it. The parallel counting sort must give the
 // same permutation on any thread count: points in several tasks of 8192 (30 000 here), a
@@ -547,6 +579,7 @@ static void test_spatial_order_matches_a_stable_sort_on_any_thread_count(void** 
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_parallel_for_runs_every_task_once),
+      cmocka_unit_test(test_a_session_keeps_the_pool_awake_between_passes),
       cmocka_unit_test(test_vector_exp_matches_std_exp),
       cmocka_unit_test(test_vector_log_matches_std_log),
       cmocka_unit_test(test_fused_estep_matches_the_density_and_direct_moments),
