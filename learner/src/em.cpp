@@ -619,8 +619,6 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   // The checks and copies below run on the fit's threads, in tasks of points (parallel.hpp).
   const int threads = options.threads > 0 ? options.threads : detail::AvailableCores();
   const long tasks = detail::PassTasks(static_cast<long>(n));
-  // The fit's passes follow one another closely: its threads stay awake between them.
-  const detail::ParallelSession session(threads);
   {
     std::vector<Eigen::Index> first_bad(static_cast<size_t>(tasks), -1);  // c D + j, or -1
     detail::ParallelFor(threads, tasks, [&](long t) {

@@ -1,4 +1,4 @@
-// parallel.cpp - ParallelFor, ParallelSession and AvailableCores (contract in parallel.hpp).
+// parallel.cpp - ParallelFor and AvailableCores (contract in parallel.hpp).
 //
 // The helper threads are kept between calls: a fit makes about a hundred parallel passes (each
 // E-step, k-means assignment, update and seeding step), and starting and joining threads for
@@ -7,15 +7,16 @@
 // finds the pool busy (another thread's pass, or a pass started from inside a task) or runs in
 // a process forked after the pool started takes its own threads as before.
 //
-// A pass is handed over without a lock: the caller publishes the pass and then bumps the
-// generation; a polling helper sees the generation and starts. Locks and condition variables
-// are only for threads that went to sleep. That matters beyond the cost of a system call:
-// Linux puts a thread woken by another on the waker's CPU when it can (wake-affine placement),
-// so a helper woken for a pass, or blocked for a moment on a mutex the caller holds, starts
-// its share on the caller's CPU, and the two share one CPU until the load balancer moves one.
-// On the benchmark fit with 2 threads the helper slept between 65 and 90 of a fit's 85-100
-// passes, and started on the caller's CPU in 77-96 of them (docs/learner.md). Hence
-// ParallelSession: while one is open the threads do not sleep between passes.
+// Helpers join a pass; the caller waits only for those that joined. A helper that slept is woken
+// through the scheduler, which on this 2-CPU virtual machine took about 250 us a pass on the
+// benchmark fit (measured: docs/learner.md), longer than many of a fit's passes; a caller that
+// waited for it would run those passes at one thread's speed plus the wake-up. Now the caller
+// runs the pass with whoever is there, and a late helper joins what is left, or nothing.
+// The caller also waits for the joined helpers' last tasks by polling (a sleeping caller woken
+// by a helper is put on the helper's CPU, beside it), and no thread takes a lock on the way of a
+// pass unless another is asleep (a thread that blocks on a taken mutex is woken the same way).
+// The polls are short when the pool has more threads than the process has CPUs: a polling
+// thread would then take the CPU from the thread it waits for.
 #include "parallel.hpp"
 
 #include <sched.h>
@@ -28,6 +29,7 @@
 #include <cstdint>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -37,16 +39,21 @@ namespace detail {
 
 namespace {
 
+using Task = std::function<void(long task)>;
+
 thread_local bool in_pool_task = false;
 
-// Open ParallelSessions of more than one thread, in the whole process.
-std::atomic<int> open_sessions{0};
-
-// How long a pool thread polls before it sleeps when no session is open: for the helpers, after
-// a pass, for the next one; for the caller, at the end of a pass, for the helpers' last tasks.
-// Short, so that an idle pool costs nothing after it (100 us gave the same wall time on the
-// benchmark fit for more CPU: docs/learner.md).
+// How long a helper polls for the next pass once the caller has finished its share of the last
+// one: a fit's passes follow one another with a few to tens of microseconds of serial work
+// between them. While the caller still works on a pass the next comes soon, and the helper
+// polls on, for up to kHelperPollCap in all (a pass whose tasks are whole fits, as restarts side
+// by side are, would otherwise keep it polling for a fit's time). Short and bounded, so an idle
+// pool costs nothing after it (docs/learner.md).
 constexpr auto kPollFor = std::chrono::microseconds(20);
+constexpr auto kHelperPollCap = std::chrono::microseconds(1000);
+// How long the caller polls for the joined helpers' last tasks before it sleeps: a task is
+// 8192 points, well under this; the bound matters only when a helper's CPU is taken away.
+constexpr auto kCallerPollFor = std::chrono::microseconds(2000);
 
 inline void CpuRelax() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -56,135 +63,173 @@ inline void CpuRelax() {
 #endif
 }
 
-// Polls done() until it holds, or for kPollFor while no session is open; true when it held.
-template <typename F>
-bool PollUntil(const F& done) {
-  auto until = std::chrono::steady_clock::now() + kPollFor;
+// Polls done() until it holds, for up to `limit` after the last time busy() held and `cap` in
+// all; true when done.
+template <typename Done, typename Busy>
+bool PollUntil(const Done& done, const Busy& busy, std::chrono::microseconds limit, std::chrono::microseconds cap) {
+  const auto start = std::chrono::steady_clock::now();
+  auto until = start + limit;
   for (unsigned i = 1;; ++i) {
     if (done()) return true;
     CpuRelax();
     if (i % 64 == 0) {
       const auto now = std::chrono::steady_clock::now();
-      if (open_sessions.load(std::memory_order_relaxed) > 0)
-        until = now + kPollFor;  // the poll's limit starts when the last session closes
-      else if (now > until)
-        return done();
+      if (busy()) until = now + limit;
+      if (now > until || now > start + cap) return done();
     }
   }
 }
 
-void RunTasks(std::atomic<long>* next, long n_tasks, const std::function<void(long task)>& task) {
-  for (long t = next->fetch_add(1); t < n_tasks; t = next->fetch_add(1)) task(t);
+// Runs the tasks left in the pass (claimed from *next) on this thread. On the caller (failed set)
+// a throwing task ends the pass: the exception is kept and the counter is moved past the end,
+// so that no thread starts another task (those running finish). On a helper a throw ends the
+// process.
+void RunTasks(std::atomic<long>* next, long n_tasks, const Task* task, std::exception_ptr* failed) {
+  for (long t = next->fetch_add(1); t < n_tasks; t = next->fetch_add(1)) {
+    if (failed == nullptr) {
+      (*task)(t);
+      continue;
+    }
+    try {
+      (*task)(t);
+    } catch (...) {
+      *failed = std::current_exception();
+      next->store(n_tasks);
+      return;
+    }
+  }
 }
 
 // Helper threads waiting for passes. Never destroyed (a static destructor would have to join
 // threads that may be blocked at exit); the threads end with the process.
+//
+// A pass is published as a sequence lock: the generation is odd while the caller writes its
+// fields, the next even number when they are complete. A helper joins a pass by counting itself
+// into joined_ and then finding the generation unchanged; the caller, before it writes the next
+// pass's fields, makes the generation odd and waits until no helper is counted in (a helper that
+// counted in after that sees the odd generation and counts out without touching anything). So
+// the fields never change under a joined helper, and a helper that joins late finds the task
+// counter past the end and runs nothing.
 class Pool {
  public:
   // Runs the pass with up to `helpers` pool threads beside the caller; false (nothing run) when
   // the pool is in use or belongs to another process (fork).
-  bool TryRun(int helpers, long n_tasks, const std::function<void(long task)>& task) {
+  bool TryRun(int helpers, long n_tasks, const Task& task) {
     if (in_pool_task || getpid() != pid_) return false;
     std::unique_lock<std::mutex> busy(busy_, std::try_to_lock);
     if (!busy.owns_lock()) return false;
-    bool wake;
     {
       std::lock_guard<std::mutex> lock(m_);
-      const uint64_t published = generation_.load(std::memory_order_relaxed);
-      while (static_cast<int>(threads_.size()) < helpers) {
-        const int id = static_cast<int>(threads_.size());
-        threads_.emplace_back([this, id, published] { Work(id, published); });
-        threads_.back().detach();
+      const uint64_t published = generation_.load();
+      try {
+        while (static_cast<int>(threads_.size()) < helpers) {
+          const int id = static_cast<int>(threads_.size());
+          threads_.emplace_back([this, id, published] { Work(id, published); });
+          threads_.back().detach();
+        }
+      } catch (const std::system_error&) {  // no more threads: run with those there are
+        helpers = static_cast<int>(threads_.size());
       }
+      if (helpers == 0) return false;
     }
-    // The pass is published as a sequence lock: an odd generation while its fields are written,
-    // the next even one when they are complete. A wanted helper is waited for (active_), so the
-    // fields change only when every wanted helper of the last pass has counted out; a helper the
-    // last pass did not want may still be reading them, and tells by the generation.
-    // (Release stores: a helper that reads a new field's value also sees the odd generation.)
-    generation_.store(generation_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
-    task_.store(&task, std::memory_order_release);
-    n_tasks_.store(n_tasks, std::memory_order_release);
-    next_.store(0, std::memory_order_release);
-    helpers_.store(helpers, std::memory_order_release);
-    active_.store(helpers, std::memory_order_release);
-    {
-      std::lock_guard<std::mutex> lock(m_);
-      // Under m_, so that a helper about to sleep either sees it or is already waiting.
-      generation_.store(generation_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
-      wake = sleeping_ > 0;
+    const bool short_polls = helpers + 1 > cores_;
+    generation_.fetch_add(1);  // odd: the fields are being written
+    WaitUntilNoneJoined(short_polls);  // late joiners of the last pass count out
+    task_.store(&task);
+    n_tasks_.store(n_tasks);
+    next_.store(0);
+    helpers_.store(helpers);
+    short_polls_.store(short_polls);
+    caller_working_.store(true);
+    generation_.fetch_add(1);  // even: published
+    if (sleeping_.load() > 0) {
+      // A helper counts itself asleep under m_ before it looks at the generation a last time:
+      // taking m_ here waits until it is in wait(), so the notification cannot come too early.
+      { std::lock_guard<std::mutex> lock(m_); }
+      wake_.notify_all();
     }
-    if (wake) wake_.notify_all();
-    // A task that throws on this thread ends only this thread's share: the helpers still hold
-    // `task` (the caller's) and the pass's counters, so the exception waits for them before it
-    // leaves, and the pool is whole for the next pass. (A throw on a helper ends the process,
-    // as it did from a std::thread.)
     std::exception_ptr failed;
     in_pool_task = true;
-    try {
-      RunTasks(&next_, n_tasks, task);
-    } catch (...) {
-      failed = std::current_exception();
-    }
+    RunTasks(&next_, n_tasks, &task, &failed);
     in_pool_task = false;
-    if (!PollUntil([this] { return active_.load(std::memory_order_acquire) == 0; })) {
-      std::unique_lock<std::mutex> lock(m_);
-      done_.wait(lock, [this] { return active_.load(std::memory_order_acquire) == 0; });
-    }
+    caller_working_.store(false);
+    WaitUntilNoneJoined(short_polls);  // every task is claimed; joined helpers finish theirs
     if (failed) std::rethrow_exception(failed);
     return true;
   }
 
+  long Joins() const { return joins_.load(); }
   long Sleeps() const { return sleeps_.load(); }
 
  private:
-  // A helper thread: `seen` is the last generation it has acted on (at first, the one published
+  // Waits until no helper is counted into a pass: polling first, then asleep on done_ (the last
+  // helper out wakes a caller that counted itself asleep, the same way as wake_ above).
+  void WaitUntilNoneJoined(bool short_polls) {
+    const auto done = [this] { return joined_.load() == 0; };
+    if (PollUntil(done, [] { return false; }, short_polls ? kPollFor : kCallerPollFor,
+                  short_polls ? kPollFor : kCallerPollFor))
+      return;
+    std::unique_lock<std::mutex> lock(m_);
+    caller_sleeping_.store(true);
+    done_.wait(lock, done);
+    caller_sleeping_.store(false);
+  }
+
+  // A helper thread: `seen` is the last generation it has looked at (at first, the one published
   // when it was made: it was made for the next pass).
   void Work(int id, uint64_t seen) {
     in_pool_task = true;
+    const auto published = [this, &seen] {
+      const uint64_t g = generation_.load();
+      return g != seen && g % 2 == 0;
+    };
+    const auto caller_working = [this] {
+      return caller_working_.load(std::memory_order_relaxed) && !short_polls_.load(std::memory_order_relaxed);
+    };
     for (;;) {
-      const auto started = [this, &seen] {
-        const uint64_t g = generation_.load(std::memory_order_acquire);
-        return g != seen && g % 2 == 0;
-      };
-      if (!PollUntil(started)) {
+      if (!PollUntil(published, caller_working, kPollFor, kHelperPollCap)) {
         std::unique_lock<std::mutex> lock(m_);
-        ++sleeping_;
-        if (!started()) sleeps_.fetch_add(1);
-        wake_.wait(lock, started);
-        --sleeping_;
+        sleeping_.fetch_add(1);
+        if (!published()) sleeps_.fetch_add(1);
+        wake_.wait(lock, published);
+        sleeping_.fetch_sub(1);
       }
-      const uint64_t g = generation_.load(std::memory_order_acquire);
+      const uint64_t g = generation_.load();
       if (g == seen || g % 2 != 0) continue;
-      const int helpers = helpers_.load(std::memory_order_acquire);
-      const long n_tasks = n_tasks_.load(std::memory_order_acquire);
-      const std::function<void(long task)>* task = task_.load(std::memory_order_acquire);
-      if (generation_.load(std::memory_order_relaxed) != g) continue;  // rewritten meanwhile
       seen = g;
-      if (id >= helpers) continue;  // not wanted for this pass
-      // Wanted: the pass cannot end, nor its fields change, before this thread counts out.
-      RunTasks(&next_, n_tasks, *task);
-      if (active_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
-        std::lock_guard<std::mutex> lock(m_);  // the caller checks active_ under m_ before it sleeps
+      joined_.fetch_add(1);
+      if (generation_.load() == g && id < helpers_.load()) {
+        joins_.fetch_add(1, std::memory_order_relaxed);
+        RunTasks(&next_, n_tasks_.load(), task_.load(), nullptr);
+      }
+      if (joined_.fetch_sub(1) == 1 && caller_sleeping_.load()) {
+        { std::lock_guard<std::mutex> lock(m_); }  // as for wake_: the caller is in wait()
         done_.notify_one();
       }
     }
   }
 
   const pid_t pid_ = getpid();
+  const int cores_ = AvailableCores();
   std::mutex busy_;  // held for a whole pass
-  std::mutex m_;     // guards threads_ and sleeping_, and orders sleeping against waking
+  std::mutex m_;     // guards threads_; orders going to sleep against waking (above)
   std::condition_variable wake_, done_;
   std::vector<std::thread> threads_;
-  int sleeping_ = 0;             // helpers waiting on wake_
-  std::atomic<long> sleeps_{0};  // times a helper went to sleep (for tests)
-  // The pass, published by the generation (TryRun).
-  std::atomic<const std::function<void(long task)>*> task_{nullptr};
+  std::atomic<long> joins_{0}, sleeps_{0};
+  // The pass (published by the generation, above) and the sleepers. Sequentially consistent
+  // atomics throughout: the handshakes (count in, then read the generation, against: make it
+  // odd, then read the count; count asleep, then read the generation, against: publish, then
+  // read the sleepers) need it, and the cost is nothing next to a pass.
+  std::atomic<const Task*> task_{nullptr};
   std::atomic<long> n_tasks_{0};
   std::atomic<long> next_{0};
   std::atomic<int> helpers_{0};
-  std::atomic<int> active_{0};  // wanted helpers still running this pass
+  std::atomic<bool> short_polls_{false};     // more threads than CPUs: poll briefly
+  std::atomic<bool> caller_working_{false};  // the caller is running its share of the pass
+  std::atomic<int> joined_{0};               // helpers in the current pass
   std::atomic<uint64_t> generation_{0};
+  std::atomic<int> sleeping_{0};             // helpers asleep on wake_ (counted under m_)
+  std::atomic<bool> caller_sleeping_{false};  // the caller asleep on done_ (set under m_)
 };
 
 Pool& ThePool() {
@@ -194,7 +239,7 @@ Pool& ThePool() {
 
 }  // namespace
 
-void ParallelFor(int threads, long n_tasks, const std::function<void(long task)>& task) {
+void ParallelFor(int threads, long n_tasks, const Task& task) {
   const long workers = std::min<long>(std::max(threads, 1), n_tasks);
   if (workers <= 1) {
     for (long t = 0; t < n_tasks; ++t) task(t);
@@ -202,28 +247,20 @@ void ParallelFor(int threads, long n_tasks, const std::function<void(long task)>
   }
   if (ThePool().TryRun(static_cast<int>(workers - 1), n_tasks, task)) return;
   std::atomic<long> next{0};
-  auto work = [&next, n_tasks, &task]() { RunTasks(&next, n_tasks, task); };
   std::vector<std::thread> pool;
   pool.reserve(static_cast<size_t>(workers - 1));
-  for (long w = 1; w < workers; ++w) pool.emplace_back(work);
-  std::exception_ptr failed;  // as in the pool: a throw here waits for the other threads
   try {
-    work();
-  } catch (...) {
-    failed = std::current_exception();
+    for (long w = 1; w < workers; ++w)
+      pool.emplace_back([&next, n_tasks, &task] { RunTasks(&next, n_tasks, &task, nullptr); });
+  } catch (const std::system_error&) {  // no more threads: run with those there are
   }
+  std::exception_ptr failed;  // as in the pool: the pass ends, running tasks finish, then it leaves
+  RunTasks(&next, n_tasks, &task, &failed);
   for (std::thread& t : pool) t.join();
   if (failed) std::rethrow_exception(failed);
 }
 
-ParallelSession::ParallelSession(int threads) : open_(threads > 1 && threads <= AvailableCores()) {
-  if (open_) open_sessions.fetch_add(1);
-}
-
-ParallelSession::~ParallelSession() {
-  if (open_) open_sessions.fetch_sub(1);
-}
-
+long PoolHelperJoins() { return ThePool().Joins(); }
 long PoolHelperSleeps() { return ThePool().Sleeps(); }
 
 int AvailableCores() {
