@@ -725,10 +725,12 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
             L += [f"- Armadillo's second core: {fmt(si.get('second_core_armadillo'), 2, 'x')} (wall; a loaded machine "
                   "has no free core to give)",
                   f"- The machine's second CPU on this work: {fmt(si.get('second_core_machine'), 2, 'x')}: two copies of "
-                  "our one-start fit on 1 thread started together, each its own process, finish the pair in "
-                  f"{fmt(_get(si, 'ours_one_pair', 'fit_ms_median'), 0, ' ms')} (median of the later one) against "
-                  f"{fmt(_get(si, 'ours_one_1', 'fit_ms_median'), 0, ' ms')} for one alone; 2 x alone / pair is what "
-                  "a second CPU gives work that shares nothing, so about the most a second thread can buy here",
+                  "our one-start fit on 1 thread, each its own process, read the points and then start their fits "
+                  "together (`--ready-line`); the slower of the two takes "
+                  f"{fmt(_get(si, 'ours_one_pair', 'fit_ms_median'), 0, ' ms')} (median) against "
+                  f"{fmt(_get(si, 'ours_one_1', 'fit_ms_median'), 0, ' ms')} for one alone. 2 x alone / pair is what "
+                  "the second CPU gives work that shares nothing: a reference point for what a second thread can "
+                  "buy on this machine at this time (not a bound: two threads share one copy of the data)",
                   "- commands, shown for the first seed (seed S runs the same with `--seed S`, Armadillo's last "
                   "argument S, scikit-learn's `random_state=S`): "
                   f"`{((_get(si, 'ours_2', 'runs') or [{}])[0]).get('command')}`; "
