@@ -11,12 +11,9 @@
 // through the scheduler, which on this 2-CPU virtual machine took about 250 us a pass on the
 // benchmark fit (measured: docs/learner.md), longer than many of a fit's passes; a caller that
 // waited for it would run those passes at one thread's speed plus the wake-up. Now the caller
-// runs the pass with whoever is there, and a late helper joins what is left, or nothing.
-// The caller also waits for the joined helpers' last tasks by polling (a sleeping caller woken
-// by a helper is put on the helper's CPU, beside it), and no thread takes a lock on the way of a
-// pass unless another is asleep (a thread that blocks on a taken mutex is woken the same way).
-// The polls are short when the pool has more threads than the process has CPUs: a polling
-// thread would then take the CPU from the thread it waits for.
+// runs the pass with whoever is there, and a late helper joins what is left, or nothing. No
+// thread takes a lock on the way of a pass unless another is asleep (a thread blocked on a
+// taken mutex is woken through the scheduler too, and Linux puts it on the waker's CPU).
 #include "parallel.hpp"
 
 #include <sched.h>
@@ -43,17 +40,13 @@ using Task = std::function<void(long task)>;
 
 thread_local bool in_pool_task = false;
 
-// How long a helper polls for the next pass once the caller has finished its share of the last
-// one: a fit's passes follow one another with a few to tens of microseconds of serial work
-// between them. While the caller still works on a pass the next comes soon, and the helper
-// polls on, for up to kHelperPollCap in all (a pass whose tasks are whole fits, as restarts side
-// by side are, would otherwise keep it polling for a fit's time). Short and bounded, so an idle
-// pool costs nothing after it (docs/learner.md).
+// How long a thread polls before it sleeps: a helper, after a pass, for the next one; the
+// caller, at the end of a pass, for the joined helpers' last tasks. A fit's passes follow one
+// another with a few to tens of microseconds of serial work between them. Short and bounded,
+// so an idle pool costs nothing after it, and so that a polling thread takes little from the
+// other CPU: longer polls (100 us to 1 ms, or polling through a whole fit) were no faster on
+// this machine, and polling through a fit was slower (docs/learner.md).
 constexpr auto kPollFor = std::chrono::microseconds(20);
-constexpr auto kHelperPollCap = std::chrono::microseconds(1000);
-// How long the caller polls for the joined helpers' last tasks before it sleeps: a task is
-// 8192 points, well under this; the bound matters only when a helper's CPU is taken away.
-constexpr auto kCallerPollFor = std::chrono::microseconds(2000);
 
 inline void CpuRelax() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -63,20 +56,14 @@ inline void CpuRelax() {
 #endif
 }
 
-// Polls done() until it holds, for up to `limit` after the last time busy() held and `cap` in
-// all; true when done.
-template <typename Done, typename Busy>
-bool PollUntil(const Done& done, const Busy& busy, std::chrono::microseconds limit, std::chrono::microseconds cap) {
-  const auto start = std::chrono::steady_clock::now();
-  auto until = start + limit;
+// Polls done() for up to kPollFor; true when it held.
+template <typename Done>
+bool PollUntil(const Done& done) {
+  const auto until = std::chrono::steady_clock::now() + kPollFor;
   for (unsigned i = 1;; ++i) {
     if (done()) return true;
     CpuRelax();
-    if (i % 64 == 0) {
-      const auto now = std::chrono::steady_clock::now();
-      if (busy()) until = now + limit;
-      if (now > until || now > start + cap) return done();
-    }
+    if (i % 64 == 0 && std::chrono::steady_clock::now() > until) return done();
   }
 }
 
@@ -132,15 +119,12 @@ class Pool {
       }
       if (helpers == 0) return false;
     }
-    const bool short_polls = helpers + 1 > cores_;
     generation_.fetch_add(1);  // odd: the fields are being written
-    WaitUntilNoneJoined(short_polls);  // late joiners of the last pass count out
+    WaitUntilNoneJoined();     // late joiners of the last pass count out
     task_.store(&task);
     n_tasks_.store(n_tasks);
     next_.store(0);
     helpers_.store(helpers);
-    short_polls_.store(short_polls);
-    caller_working_.store(true);
     generation_.fetch_add(1);  // even: published
     if (sleeping_.load() > 0) {
       // A helper counts itself asleep under m_ before it looks at the generation a last time:
@@ -152,8 +136,7 @@ class Pool {
     in_pool_task = true;
     RunTasks(&next_, n_tasks, &task, &failed);
     in_pool_task = false;
-    caller_working_.store(false);
-    WaitUntilNoneJoined(short_polls);  // every task is claimed; joined helpers finish theirs
+    WaitUntilNoneJoined();  // every task is claimed; joined helpers finish theirs
     if (failed) std::rethrow_exception(failed);
     return true;
   }
@@ -164,11 +147,9 @@ class Pool {
  private:
   // Waits until no helper is counted into a pass: polling first, then asleep on done_ (the last
   // helper out wakes a caller that counted itself asleep, the same way as wake_ above).
-  void WaitUntilNoneJoined(bool short_polls) {
+  void WaitUntilNoneJoined() {
     const auto done = [this] { return joined_.load() == 0; };
-    if (PollUntil(done, [] { return false; }, short_polls ? kPollFor : kCallerPollFor,
-                  short_polls ? kPollFor : kCallerPollFor))
-      return;
+    if (PollUntil(done)) return;
     std::unique_lock<std::mutex> lock(m_);
     caller_sleeping_.store(true);
     done_.wait(lock, done);
@@ -183,11 +164,8 @@ class Pool {
       const uint64_t g = generation_.load();
       return g != seen && g % 2 == 0;
     };
-    const auto caller_working = [this] {
-      return caller_working_.load(std::memory_order_relaxed) && !short_polls_.load(std::memory_order_relaxed);
-    };
     for (;;) {
-      if (!PollUntil(published, caller_working, kPollFor, kHelperPollCap)) {
+      if (!PollUntil(published)) {
         std::unique_lock<std::mutex> lock(m_);
         sleeping_.fetch_add(1);
         if (!published()) sleeps_.fetch_add(1);
@@ -210,7 +188,6 @@ class Pool {
   }
 
   const pid_t pid_ = getpid();
-  const int cores_ = AvailableCores();
   std::mutex busy_;  // held for a whole pass
   std::mutex m_;     // guards threads_; orders going to sleep against waking (above)
   std::condition_variable wake_, done_;
@@ -224,8 +201,6 @@ class Pool {
   std::atomic<long> n_tasks_{0};
   std::atomic<long> next_{0};
   std::atomic<int> helpers_{0};
-  std::atomic<bool> short_polls_{false};     // more threads than CPUs: poll briefly
-  std::atomic<bool> caller_working_{false};  // the caller is running its share of the pass
   std::atomic<int> joined_{0};               // helpers in the current pass
   std::atomic<uint64_t> generation_{0};
   std::atomic<int> sleeping_{0};             // helpers asleep on wake_ (counted under m_)
