@@ -6,6 +6,14 @@
 // a few percent of a 50 ms fit and the part that did not shrink with a second core. A call that
 // finds the pool busy (another thread's pass, or a pass started from inside a task) or runs in
 // a process forked after the pool started takes its own threads as before.
+//
+// Helpers join a pass; the caller waits only for those that joined. A helper that slept is woken
+// through the scheduler, which on this 2-CPU virtual machine took about 250 us a pass on the
+// benchmark fit (measured: docs/learner.md), longer than many of a fit's passes; a caller that
+// waited for it would run those passes at one thread's speed plus the wake-up. Now the caller
+// runs the pass with whoever is there, and a late helper joins what is left, or nothing. No
+// thread takes a lock on the way of a pass unless another is asleep (a thread blocked on a
+// taken mutex is woken through the scheduler too, and Linux puts it on the waker's CPU).
 #include "parallel.hpp"
 
 #include <sched.h>
@@ -18,6 +26,7 @@
 #include <cstdint>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -27,14 +36,16 @@ namespace detail {
 
 namespace {
 
+using Task = std::function<void(long task)>;
+
 thread_local bool in_pool_task = false;
 
-// How long a pool thread polls before it sleeps: for the helpers, after a pass, for the next one;
-// for the caller, at the end of a pass, for the helpers' last tasks. A fit's passes follow one
-// another with little serial work between them (a few to tens of microseconds), and waking a
-// sleeping thread through the scheduler costs more on a virtual machine (an idle vCPU is
-// halted); the polling is bounded so that an idle pool costs nothing after it, and short (100 us
-// gave the same wall time on the benchmark fit for more CPU: docs/learner.md).
+// How long a thread polls before it sleeps: a helper, after a pass, for the next one; the
+// caller, at the end of a pass, for the joined helpers' last tasks. A fit's passes follow one
+// another with a few to tens of microseconds of serial work between them. Short and bounded,
+// so an idle pool costs nothing after it, and so that a polling thread takes little from the
+// other CPU: longer polls (100 us to 1 ms, or polling through a whole fit) were no faster on
+// this machine, and polling through a fit was slower (docs/learner.md).
 constexpr auto kPollFor = std::chrono::microseconds(20);
 
 inline void CpuRelax() {
@@ -46,8 +57,8 @@ inline void CpuRelax() {
 }
 
 // Polls done() for up to kPollFor; true when it held.
-template <typename F>
-bool PollUntil(const F& done) {
+template <typename Done>
+bool PollUntil(const Done& done) {
   const auto until = std::chrono::steady_clock::now() + kPollFor;
   for (unsigned i = 1;; ++i) {
     if (done()) return true;
@@ -56,85 +67,144 @@ bool PollUntil(const F& done) {
   }
 }
 
-void RunTasks(std::atomic<long>* next, long n_tasks, const std::function<void(long task)>& task) {
-  for (long t = next->fetch_add(1); t < n_tasks; t = next->fetch_add(1)) task(t);
+// Runs the tasks left in the pass (claimed from *next) on this thread. On the caller (failed set)
+// a throwing task ends the pass: the exception is kept and the counter is moved past the end,
+// so that no thread starts another task (those running finish). On a helper a throw ends the
+// process.
+void RunTasks(std::atomic<long>* next, long n_tasks, const Task* task, std::exception_ptr* failed) {
+  for (long t = next->fetch_add(1); t < n_tasks; t = next->fetch_add(1)) {
+    if (failed == nullptr) {
+      (*task)(t);
+      continue;
+    }
+    try {
+      (*task)(t);
+    } catch (...) {
+      *failed = std::current_exception();
+      next->store(n_tasks);
+      return;
+    }
+  }
 }
 
 // Helper threads waiting for passes. Never destroyed (a static destructor would have to join
 // threads that may be blocked at exit); the threads end with the process.
+//
+// A pass is published as a sequence lock: the generation is odd while the caller writes its
+// fields, the next even number when they are complete. A helper joins a pass by counting itself
+// into joined_ and then finding the generation unchanged; the caller, before it writes the next
+// pass's fields, makes the generation odd and waits until no helper is counted in (a helper that
+// counted in after that sees the odd generation and counts out without touching anything). So
+// the fields never change under a joined helper, and a helper that joins late finds the task
+// counter past the end and runs nothing.
 class Pool {
  public:
   // Runs the pass with up to `helpers` pool threads beside the caller; false (nothing run) when
   // the pool is in use or belongs to another process (fork).
-  bool TryRun(int helpers, long n_tasks, const std::function<void(long task)>& task) {
+  bool TryRun(int helpers, long n_tasks, const Task& task) {
     if (in_pool_task || getpid() != pid_) return false;
     std::unique_lock<std::mutex> busy(busy_, std::try_to_lock);
     if (!busy.owns_lock()) return false;
-    std::unique_lock<std::mutex> lock(m_);
-    while (static_cast<int>(threads_.size()) < helpers) {
-      const int id = static_cast<int>(threads_.size());
-      threads_.emplace_back([this, id] { Work(id); });
-      threads_.back().detach();
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      const uint64_t published = generation_.load();
+      try {
+        while (static_cast<int>(threads_.size()) < helpers) {
+          const int id = static_cast<int>(threads_.size());
+          threads_.emplace_back([this, id, published] { Work(id, published); });
+          threads_.back().detach();
+        }
+      } catch (const std::system_error&) {  // no more threads: run with those there are
+        helpers = static_cast<int>(threads_.size());
+      }
+      if (helpers == 0) return false;
     }
-    task_ = &task;
-    n_tasks_ = n_tasks;
+    generation_.fetch_add(1);  // odd: the fields are being written
+    WaitUntilNoneJoined();     // late joiners of the last pass count out
+    task_.store(&task);
+    n_tasks_.store(n_tasks);
     next_.store(0);
-    helpers_ = helpers;
-    active_.store(helpers);
-    generation_.store(generation_.load() + 1);
-    lock.unlock();
-    wake_.notify_all();
-    // A task that throws on this thread ends only this thread's share: the helpers still hold
-    // `task` (the caller's) and the pass's counters, so the exception waits for them before it
-    // leaves, and the pool is whole for the next pass. (A throw on a helper ends the process,
-    // as it did from a std::thread.)
+    helpers_.store(helpers);
+    generation_.fetch_add(1);  // even: published
+    if (sleeping_.load() > 0) {
+      // A helper counts itself asleep under m_ before it looks at the generation a last time:
+      // taking m_ here waits until it is in wait(), so the notification cannot come too early.
+      { std::lock_guard<std::mutex> lock(m_); }
+      wake_.notify_all();
+    }
     std::exception_ptr failed;
     in_pool_task = true;
-    try {
-      RunTasks(&next_, n_tasks, task);
-    } catch (...) {
-      failed = std::current_exception();
-    }
+    RunTasks(&next_, n_tasks, &task, &failed);
     in_pool_task = false;
-    PollUntil([this] { return active_.load() == 0; });
-    lock.lock();
-    done_.wait(lock, [this] { return active_.load() == 0; });
-    task_ = nullptr;
+    WaitUntilNoneJoined();  // every task is claimed; joined helpers finish theirs
     if (failed) std::rethrow_exception(failed);
     return true;
   }
 
+  long Joins() const { return joins_.load(); }
+  long Sleeps() const { return sleeps_.load(); }
+
  private:
-  void Work(int id) {
+  // Waits until no helper is counted into a pass: polling first, then asleep on done_ (the last
+  // helper out wakes a caller that counted itself asleep, the same way as wake_ above).
+  void WaitUntilNoneJoined() {
+    const auto done = [this] { return joined_.load() == 0; };
+    if (PollUntil(done)) return;
+    std::unique_lock<std::mutex> lock(m_);
+    caller_sleeping_.store(true);
+    done_.wait(lock, done);
+    caller_sleeping_.store(false);
+  }
+
+  // A helper thread: `seen` is the last generation it has looked at (at first, the one published
+  // when it was made: it was made for the next pass).
+  void Work(int id, uint64_t seen) {
     in_pool_task = true;
-    uint64_t seen = 0;
+    const auto published = [this, &seen] {
+      const uint64_t g = generation_.load();
+      return g != seen && g % 2 == 0;
+    };
     for (;;) {
-      PollUntil([this, seen] { return generation_.load() != seen; });
-      std::unique_lock<std::mutex> lock(m_);
-      wake_.wait(lock, [this, seen] { return generation_.load() != seen; });
-      seen = generation_.load();
-      if (id >= helpers_) continue;  // not wanted for this pass
-      const std::function<void(long task)>* task = task_;
-      const long n_tasks = n_tasks_;
-      lock.unlock();
-      RunTasks(&next_, n_tasks, *task);
-      lock.lock();
-      if (active_.fetch_sub(1) == 1) done_.notify_one();
+      if (!PollUntil(published)) {
+        std::unique_lock<std::mutex> lock(m_);
+        sleeping_.fetch_add(1);
+        if (!published()) sleeps_.fetch_add(1);
+        wake_.wait(lock, published);
+        sleeping_.fetch_sub(1);
+      }
+      const uint64_t g = generation_.load();
+      if (g == seen || g % 2 != 0) continue;
+      seen = g;
+      joined_.fetch_add(1);
+      if (generation_.load() == g && id < helpers_.load()) {
+        joins_.fetch_add(1, std::memory_order_relaxed);
+        RunTasks(&next_, n_tasks_.load(), task_.load(), nullptr);
+      }
+      if (joined_.fetch_sub(1) == 1 && caller_sleeping_.load()) {
+        { std::lock_guard<std::mutex> lock(m_); }  // as for wake_: the caller is in wait()
+        done_.notify_one();
+      }
     }
   }
 
   const pid_t pid_ = getpid();
   std::mutex busy_;  // held for a whole pass
-  std::mutex m_;     // guards the fields below
+  std::mutex m_;     // guards threads_; orders going to sleep against waking (above)
   std::condition_variable wake_, done_;
   std::vector<std::thread> threads_;
-  const std::function<void(long task)>* task_ = nullptr;
-  long n_tasks_ = 0;
+  std::atomic<long> joins_{0}, sleeps_{0};
+  // The pass (published by the generation, above) and the sleepers. Sequentially consistent
+  // atomics throughout: the handshakes (count in, then read the generation, against: make it
+  // odd, then read the count; count asleep, then read the generation, against: publish, then
+  // read the sleepers) need it, and the cost is nothing next to a pass.
+  std::atomic<const Task*> task_{nullptr};
+  std::atomic<long> n_tasks_{0};
   std::atomic<long> next_{0};
-  int helpers_ = 0;
-  // Written under m_; also polled without it (PollUntil), hence atomic.
-  std::atomic<int> active_{0};  // wanted helpers still running this pass
+  std::atomic<int> helpers_{0};
+  std::atomic<int> joined_{0};               // helpers in the current pass
   std::atomic<uint64_t> generation_{0};
+  std::atomic<int> sleeping_{0};             // helpers asleep on wake_ (counted under m_)
+  std::atomic<bool> caller_sleeping_{false};  // the caller asleep on done_ (set under m_)
 };
 
 Pool& ThePool() {
@@ -144,7 +214,7 @@ Pool& ThePool() {
 
 }  // namespace
 
-void ParallelFor(int threads, long n_tasks, const std::function<void(long task)>& task) {
+void ParallelFor(int threads, long n_tasks, const Task& task) {
   const long workers = std::min<long>(std::max(threads, 1), n_tasks);
   if (workers <= 1) {
     for (long t = 0; t < n_tasks; ++t) task(t);
@@ -152,19 +222,21 @@ void ParallelFor(int threads, long n_tasks, const std::function<void(long task)>
   }
   if (ThePool().TryRun(static_cast<int>(workers - 1), n_tasks, task)) return;
   std::atomic<long> next{0};
-  auto work = [&next, n_tasks, &task]() { RunTasks(&next, n_tasks, task); };
   std::vector<std::thread> pool;
   pool.reserve(static_cast<size_t>(workers - 1));
-  for (long w = 1; w < workers; ++w) pool.emplace_back(work);
-  std::exception_ptr failed;  // as in the pool: a throw here waits for the other threads
   try {
-    work();
-  } catch (...) {
-    failed = std::current_exception();
+    for (long w = 1; w < workers; ++w)
+      pool.emplace_back([&next, n_tasks, &task] { RunTasks(&next, n_tasks, &task, nullptr); });
+  } catch (const std::system_error&) {  // no more threads: run with those there are
   }
+  std::exception_ptr failed;  // as in the pool: the pass ends, running tasks finish, then it leaves
+  RunTasks(&next, n_tasks, &task, &failed);
   for (std::thread& t : pool) t.join();
   if (failed) std::rethrow_exception(failed);
 }
+
+long PoolHelperJoins() { return ThePool().Joins(); }
+long PoolHelperSleeps() { return ThePool().Sleeps(); }
 
 int AvailableCores() {
   cpu_set_t set;

@@ -46,6 +46,8 @@ void Usage(FILE* f) {
                "  -A, --accel M           squarem | none (default: learner's, squarem)\n"
                "  -F, --sweep-restarts N  sweep: k-means++ candidates of a K with split starts (default:\n"
                "                          learner's)\n"
+               "  -R, --ready-line        after reading the points, write \"ready\" on stderr and wait for\n"
+               "                          a line on stdin before timing (starts several runs together)\n"
                "  -h, --help              this help\n");
 }
 
@@ -158,6 +160,7 @@ int main(int argc, char** argv) {
   long k = 0, k_min = 0, k_max = 0, seed = 1, max_iter = -1, restarts = -1, screen_points = -1, threads = -1,
        sweep_restarts = gmmrrt::learn::kBicFreshStarts;
   int accel = -1;  // -1: the learner's default
+  bool ready_line = false;
   double tol = -1.0;
   static const option opts[] = {{"points", required_argument, nullptr, 'i'}, {"k", required_argument, nullptr, 'k'},
                                 {"sweep", required_argument, nullptr, 'b'},  {"seed", required_argument, nullptr, 's'},
@@ -166,9 +169,10 @@ int main(int argc, char** argv) {
                                 {"screen-points", required_argument, nullptr, 'p'},
                                 {"threads", required_argument, nullptr, 'j'}, {"accel", required_argument, nullptr, 'A'},
                                 {"sweep-restarts", required_argument, nullptr, 'F'},
+                                {"ready-line", no_argument, nullptr, 'R'},
                                 {nullptr, 0, nullptr, 0}};
   int c;
-  while ((c = getopt_long(argc, argv, "i:k:b:s:t:m:r:p:j:A:F:h", opts, nullptr)) != -1) {
+  while ((c = getopt_long(argc, argv, "i:k:b:s:t:m:r:p:j:A:F:Rh", opts, nullptr)) != -1) {
     bool ok = true;
     switch (c) {
       case 'i': points_path = optarg; break;
@@ -185,6 +189,7 @@ int main(int argc, char** argv) {
         ok = std::string(optarg) == "squarem" || std::string(optarg) == "none";
         accel = std::string(optarg) == "squarem" ? 1 : 0;
         break;
+      case 'R': ready_line = true; break;
       case 'h': Usage(stdout); return 0;
       default: Usage(stderr); return 2;
     }
@@ -218,6 +223,15 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  if (ready_line) {
+    std::fprintf(stderr, "ready\n");
+    std::fflush(stderr);
+    char line[16];
+    if (std::fgets(line, sizeof line, stdin) == nullptr) {
+      std::fprintf(stderr, "gmmrrt-bench-learner: --ready-line: stdin closed before the start line\n");
+      return 2;
+    }
+  }
   using Clock = std::chrono::steady_clock;
   if (k > 0) {
     Mixture m;

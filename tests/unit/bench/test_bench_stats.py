@@ -178,6 +178,11 @@ def test_same_iteration_targets_judge_both_of_our_settings():
     assert all("medians over 25 seeds each side (seeds 1-25)" in t["name"]
                for t in evaluate_targets({"learner": {"same_iterations": dict(si, seeds=list(range(1, 26)))}})
                if "EM iterations" in t["name"])
+    # The second-core rows show the machine's own second-CPU gain beside ours, or say it is missing.
+    core_rows = [t for t in evaluate_targets({"learner": {"same_iterations": dict(si, second_core_machine=1.234)}})
+                 if "second core" in t["name"]]
+    assert len(core_rows) == 2 and all("two 1-thread fits at once: 1.23x" in t["value_text"] for t in core_rows)
+    assert all("two 1-thread fits at once: -" in t["value_text"] for t in rows if "second core" in t["name"])
     skipped = evaluate_targets({"learner": {"same_iterations": {"skipped": "no Armadillo"}}})
     assert {t["status"] for t in skipped if "EM iterations" in t["name"]} == {"not run"}
 

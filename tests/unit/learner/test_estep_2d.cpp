@@ -9,11 +9,13 @@
 // subsample: deterministic, and the fit on all points still recovers the generating mixture.
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <vector>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "component_terms.hpp"
@@ -473,32 +475,76 @@ void test_parallel_for_runs_every_task_once(void** state) {
   other.join();
   assert_int_equal(bad_a.load(), 0);
   assert_int_equal(bad_b, 0);
-  // A task that throws on the calling thread: the exception reaches the caller after the other
-  // threads' tasks have run, and the next pass runs every task once.
-  // The other threads' tasks wait for the caller's throw, so the caller surely takes a task
-  // (each waiting thread holds one of the 64) and they run after it has thrown.
+  // A task that throws on the calling thread ends the pass: no task starts after it, the tasks
+  // running on the other threads finish before the exception reaches the caller, and the next
+  // pass runs every task once. The other threads' tasks wait for the caller's throw (so the
+  // caller surely takes a task, and each of them holds at most one task when it throws), then
+  // work 20 ms: at most 3 of the 64 tasks start, and all but the thrown one have finished.
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<bool> caller_threw{false};
-  std::atomic<int> ran{0};
+  std::atomic<int> started{0}, finished{0};
+  std::vector<std::atomic<int>> runs(64);
   bool thrown = false;
   try {
-    gmmrrt::learn::detail::ParallelFor(3, 64, [&](long) {
+    gmmrrt::learn::detail::ParallelFor(3, 64, [&](long t) {
+      runs[static_cast<size_t>(t)].fetch_add(1);
+      ++started;
       if (std::this_thread::get_id() == caller) {
         caller_threw = true;
         throw std::runtime_error("task failed");
       }
       while (!caller_threw) std::this_thread::yield();
-      ++ran;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      ++finished;
     });
   } catch (const std::runtime_error&) {
     thrown = true;
   }
   assert_true(thrown);
-  assert_int_equal(ran.load(), 63);  // every other task ran before the exception left
+  assert_int_equal(finished.load(), started.load() - 1);
+  assert_in_range(started.load(), 1, 3);
+  for (const std::atomic<int>& r : runs) assert_in_range(r.load(), 0, 1);
   for (int r = 0; r < 50; ++r) {
     pass(3, 41, &b);
     for (int h : b) assert_int_equal(h, 1);
   }
+}
+
+// Helpers join passes; the caller waits only for those that joined, and a helper that joins
+// late runs only tasks that are left. Many short passes with gaps (so that the helper sleeps
+// and joins late) on 2 and 3 threads: every task of every pass runs exactly once, and no task
+// runs after its pass has returned (each pass's counts are checked again at the end).
+static void test_late_helpers_never_run_a_finished_pass(void** state) {
+  (void)state;
+  using namespace gmmrrt::learn::detail;
+  constexpr int kPasses = 600;
+  std::vector<std::vector<std::atomic<int>>> hits(kPasses);
+  const long joins_before = PoolHelperJoins(), sleeps_before = PoolHelperSleeps();
+  for (int p = 0; p < kPasses; ++p) {
+    const long n = 1 + (p * 7) % 23;
+    hits[static_cast<size_t>(p)] = std::vector<std::atomic<int>>(static_cast<size_t>(n));
+    std::vector<std::atomic<int>>& h = hits[static_cast<size_t>(p)];
+    ParallelFor(2 + p % 2, n, [&h](long t) { h[static_cast<size_t>(t)].fetch_add(1); });
+    for (const std::atomic<int>& c : h) assert_int_equal(c.load(), 1);
+    if (p % 50 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));  // the helpers sleep
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));  // time for any late helper to act
+  for (const std::vector<std::atomic<int>>& h : hits)
+    for (const std::atomic<int>& c : h) assert_int_equal(c.load(), 1);
+  // The pool was used (helpers joined) and its helpers slept in the gaps: the paths above ran.
+  assert_true(PoolHelperJoins() > joins_before);
+  assert_true(PoolHelperSleeps() > sleeps_before);
+  // A sleeping helper is woken for the next pass: after a gap, each of two tasks waits (up to
+  // 10 s, for a loaded machine) until both run at once, which only two threads can do.
+  std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::atomic<int> inside{0};
+  std::atomic<bool> met{false};
+  ParallelFor(2, 2, [&](long) {
+    ++inside;
+    for (int w = 0; w < 10000 && inside.load() < 2; ++w) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    if (inside.load() == 2) met = true;
+  });
+  assert_true(met.load());
 }
 
 // The spatial order against a plain twin: each point's Morton index of its cell in a 64 x 64
@@ -547,6 +593,7 @@ static void test_spatial_order_matches_a_stable_sort_on_any_thread_count(void** 
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_parallel_for_runs_every_task_once),
+      cmocka_unit_test(test_late_helpers_never_run_a_finished_pass),
       cmocka_unit_test(test_vector_exp_matches_std_exp),
       cmocka_unit_test(test_vector_log_matches_std_log),
       cmocka_unit_test(test_fused_estep_matches_the_density_and_direct_moments),

@@ -133,6 +133,40 @@ def fit_ours(exe: Path, csv: Path, points: np.ndarray, k: int, seed: int, restar
             "command": " ".join(cmd)}
 
 
+def fit_ours_pair(exe: Path, csv: Path, k: int, seed: int, extra: List[str]) -> dict:
+    """Two copies of our single-threaded fit timed together, each a process of its own: both read
+    the points, then start their fits at the same moment (--ready-line), so the two fits overlap.
+    2 x (one fit alone) / (the slower of the pair) is what the machine's second CPU gives two
+    fits that share nothing: a reference point for what a second thread can buy here at this
+    time (not a bound: two threads share one copy of the data). A virtual machine whose two
+    CPUs share a physical core or its caches, or whose host is busy, gives well under 2x."""
+    cmd = [str(exe), "--points", str(csv), "--k", str(k), "--seed", str(seed)] + extra + ["--ready-line"]
+    procs = [subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+             for _ in range(2)]
+    try:
+        for proc in procs:
+            line = proc.stderr.readline()
+            if line.strip() != "ready":
+                raise BenchError(f"{' '.join(cmd)}: expected 'ready' on stderr, got {line.strip()[-400:]!r}")
+        for proc in procs:
+            proc.stdin.write("go\n")
+            proc.stdin.flush()  # communicate() closes it
+        outs = []
+        for proc in procs:
+            out, err = proc.communicate(timeout=3600)
+            if proc.returncode != 0:
+                raise BenchError(f"{' '.join(cmd)} (two at once) exited {proc.returncode}: {err.strip()[-400:]}")
+            outs.append(json.loads(out))
+    finally:
+        for proc in procs:
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait()
+    each = [o["fit_ms"] for o in outs]
+    return {"fit_ms": max(each), "fit_ms_each": each, "fit_cpu_ms": sum(o["fit_cpu_ms"] for o in outs), "seed": seed,
+            "command": "two at once, started together: " + " ".join(cmd)}
+
+
 def run_fit_comparison(exe: Path, work: Path, n: int, k: int, reps: int, seed: int) -> dict:
     """Interleaved fits of ours and scikit-learn on the same n points; medians and the ratio."""
     points = make_mixture_points(n, k, seed)
@@ -341,12 +375,14 @@ def run_same_iterations(bin_dir: Path, work: Path, n: int, k: int, reps: int, se
     write_points_csv(points, csv)
     fixed = ["--accel", "none", "--tol", "1e-300", "--max-iter", str(SAME_ITER_EM)]
     runs: Dict[str, List[dict]] = {"ours_1": [], "ours_2": [], "ours_one_1": [], "ours_one_2": [],
-                                   "armadillo_1": [], "armadillo_2": [], "sklearn": []}
+                                   "ours_one_pair": [], "armadillo_1": [], "armadillo_2": [], "sklearn": []}
     names = list(runs)
     for rep in range(reps):
         for who in names[rep % len(names):] + names[:rep % len(names)]:
             s = seed + rep
-            if who.startswith("ours"):
+            if who == "ours_one_pair":
+                runs[who].append(fit_ours_pair(exe, csv, k, s, fixed + ["--threads", "1"] + OURS_ONE_START))
+            elif who.startswith("ours"):
                 extra = fixed + ["--threads", who[-1]] + (OURS_ONE_START if who.startswith("ours_one") else [])
                 runs[who].append(fit_ours(exe, csv, points, k, s, extra=extra))
             elif who.startswith("armadillo"):
@@ -354,8 +390,10 @@ def run_same_iterations(bin_dir: Path, work: Path, n: int, k: int, reps: int, se
             else:
                 runs[who].append(fit_sklearn_iterations(points, k, SAME_ITER_EM, s))
     med = {w: {"fit_ms_median": median(r["fit_ms"] for r in rs), "fit_cpu_ms_median": median(r["fit_cpu_ms"] for r in rs),
-               "mean_log_likelihood_median": median(r["mean_log_likelihood"] for r in rs), "runs": rs}
-           for w, rs in runs.items()}
+               "runs": rs} for w, rs in runs.items()}
+    for w, rs in runs.items():
+        if w != "ours_one_pair":  # the pair is there for its time only
+            med[w]["mean_log_likelihood_median"] = median(r["mean_log_likelihood"] for r in rs)
     for w in ("ours_1", "ours_2", "ours_one_1", "ours_one_2"):
         med[w]["iterations_median"] = median(r["iterations"] for r in runs[w])
 
@@ -376,6 +414,8 @@ def run_same_iterations(bin_dir: Path, work: Path, n: int, k: int, reps: int, se
             f"log_likelihood_gap_vs_sklearn{tag}": ll(f"{o}_1") - ll("sklearn"),
         })
     out["second_core_armadillo"] = ratio(med["armadillo_1"]["fit_ms_median"], med["armadillo_2"]["fit_ms_median"])
+    # The machine's own gain from its second CPU on this work (fit_ours_pair): 2 fits in the time of the slower.
+    out["second_core_machine"] = ratio(2.0 * med["ours_one_1"]["fit_ms_median"], med["ours_one_pair"]["fit_ms_median"])
     return out
 
 
