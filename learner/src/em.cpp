@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <random>
 #include <sstream>
@@ -620,21 +621,32 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   const int threads = options.threads > 0 ? options.threads : detail::AvailableCores();
   const long tasks = detail::PassTasks(static_cast<long>(n));
   {
+    // A value must be finite, and small enough that squared distances between points stay
+    // finite: beyond kMaxMagnitude a square overflows to inf, and k-means' nearest centre and
+    // the data's variance are then undefined (one point at 1e200 among ordinary ones crashed
+    // the hard assignment).
+    constexpr double kMaxMagnitude = 1e150;
     std::vector<Eigen::Index> first_bad(static_cast<size_t>(tasks), -1);  // c D + j, or -1
     detail::ParallelFor(threads, tasks, [&](long t) {
       Eigen::Index first, last;
       PassRange(t, n, &first, &last);
       for (Eigen::Index c = first; c < last; ++c)
         for (int j = 0; j < d; ++j)
-          if (!std::isfinite(points(j, c))) {
+          if (!(std::fabs(points(j, c)) <= kMaxMagnitude)) {  // NaN fails the comparison too
             first_bad[static_cast<size_t>(t)] = c * d + j;
             return;
           }
     });
-    for (Eigen::Index bad : first_bad)  // the first bad value in the points' order
-      if (bad >= 0)
-        return Status::Error(StatusCode::kBadInput, "point " + std::to_string(bad / d) + ", dimension " +
-                                                        std::to_string(bad % d) + " is not finite");
+    for (Eigen::Index bad : first_bad) {  // the first bad value in the points' order
+      if (bad < 0) continue;
+      const double v = points(bad % d, bad / d);
+      const std::string where = "point " + std::to_string(bad / d) + ", dimension " + std::to_string(bad % d);
+      if (!std::isfinite(v)) return Status::Error(StatusCode::kBadInput, where + " is not finite");
+      char value[32];
+      std::snprintf(value, sizeof value, "%g", v);
+      return Status::Error(StatusCode::kBadInput, where + " is " + value +
+                                                      ": beyond 1e150 squared distances overflow; rescale the data");
+    }
   }
 
   *summary = FitSummary();

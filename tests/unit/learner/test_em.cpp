@@ -536,6 +536,20 @@ void test_bad_input_is_rejected(void** state) {
     assert_int_equal(static_cast<int>(bad_st.code), static_cast<int>(StatusCode::kBadInput));
     assert_true(bad_st.message.find("point 9000, dimension 1 is not finite") != std::string::npos);
   }
+  // A finite value so large that squared distances overflow (one point at 1e200 crashed the fit):
+  // refused by name, whatever the thread count; 1e150 itself is taken.
+  Eigen::MatrixXd huge = Eigen::MatrixXd::Random(2, 20000);
+  huge(0, 12345) = 1e200;
+  for (int threads : {1, 2}) {
+    FitOptions o = Quiet(3, 1);
+    o.threads = threads;
+    const Status huge_st = FitMixture(huge, 0, o, &m, &s);
+    assert_int_equal(static_cast<int>(huge_st.code), static_cast<int>(StatusCode::kBadInput));
+    assert_true(huge_st.message.find("point 12345, dimension 0 is 1e+200") != std::string::npos);
+  }
+  huge(0, 12345) = -1e150;  // at the limit: not refused by it (the fit itself may still fail)
+  const Status edge = FitMixture(huge, 0, Quiet(3, 1), &m, &s);
+  assert_true(edge.message.find("rescale") == std::string::npos);
   Eigen::MatrixXd constant = Eigen::MatrixXd::Random(2, 100);
   constant.row(0).setConstant(3.0);
   assert_int_equal(static_cast<int>(FitMixture(constant, 0, Quiet(2, 1), &m, &s).code),
