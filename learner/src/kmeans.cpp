@@ -198,7 +198,12 @@ inline void GroupDistances(const Layout& l, Eigen::Index g, const double* center
   if (l.d == 2 && l.mask == 0u) {  // the common case in one pass (the same sums in the same order)
     const double *x0 = l.x->col(0).data() + first, *x1 = l.x->col(1).data() + first;
     const double c0 = center[0], c1 = center[1];
-    for (int q = 0; q < size; ++q) d2[q] = (x0[q] - c0) * (x0[q] - c0) + (x1[q] - c1) * (x1[q] - c1);
+    // Two statements, as the per-dimension loop below adds them: the same rounding even where
+    // a compiler contracts a * a + b * b within one expression (Clang does by default).
+    for (int q = 0; q < size; ++q) {
+      const double s0 = (x0[q] - c0) * (x0[q] - c0);
+      d2[q] = s0 + (x1[q] - c1) * (x1[q] - c1);
+    }
     return;
   }
   for (int c = 0; c < l.d; ++c) {
