@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from gmmrrt_tools.bench.planner import BenchError, summarize_all_planners, summarize_ompl, summarize_social
-from gmmrrt_tools.bench.report import evaluate_targets, write_markdown
+from gmmrrt_tools.bench.report import _planner_targets_summary, evaluate_targets, write_markdown
 from gmmrrt_tools.bench.stats import INF, clean, cost_at, median, quantile, ratio, time_to_cost
 
 CURVE = [[0.5, 10, 20.0], [2.0, 40, 15.0], [9.0, 200, 12.0], [50.0, 900, 11.0]]
@@ -293,6 +293,15 @@ def test_all_planner_targets_and_tables_state_their_seeds_and_agree(tmp_path):
                                "100 ms medians over 15 seeds (1..15), at 1000 ms medians over 3 seeds (1..3).")
     assert lines[head + 4] == ("| planner | set-up ms | first path incl. set-up ms | cost @ 1 ms (15 seeds) | "
                                "cost @ 10 ms (15 seeds) | cost @ 100 ms (15 seeds) | cost @ 1000 ms (3 seeds) |")
+    # The scene-by-scene targets state the load of the run that measured the planners, also when
+    # the section was carried over from an earlier run into a partial one (merge_sections).
+    res.update(load_before=[1.0, 1.0, 1.0], load_after=[2.0, 2.0, 2.0])
+    assert "(load [1.0, 1.0, 1.0] before, [2.0, 2.0, 2.0] after" in "\n".join(
+        _planner_targets_summary(res, res["planners"]))
+    res["carried_over"] = {"planners": {"date_utc": "d", "commit": "c", "load_before": [0.1, 0.2, 0.3],
+                                        "load_after": [0.4, 0.5, 0.6]}}
+    assert "(load [0.1, 0.2, 0.3] before, [0.4, 0.5, 0.6] after" in "\n".join(
+        _planner_targets_summary(res, res["planners"]))
     ours = next(line for line in lines[head:] if line.startswith("| gmmrrt |")).split(" | ")
     # The table's cells are the figures the target rows judge (a reader sees one cost per cell).
     assert ours[1:3] == ["0.008", "0.080"]

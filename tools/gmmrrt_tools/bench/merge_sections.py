@@ -43,7 +43,8 @@ def main() -> int:
         if s not in new and s in old:
             merged[s] = old[s]
             carried.setdefault(s, {"date_utc": old.get("date_utc"), "commit": old.get("host", {}).get("commit"),
-                                   "argv": old.get("argv")})
+                                   "argv": old.get("argv"), "load_before": old.get("load_before"),
+                                   "load_after": old.get("load_after")})
             if s in old.get("section_seconds", {}):
                 merged.setdefault("section_seconds", {})[s] = old["section_seconds"][s]
         else:

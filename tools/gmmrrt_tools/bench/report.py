@@ -197,7 +197,9 @@ def _planner_targets_summary(res: dict, pl: dict) -> List[str]:
     probs = pl.get("problems") or {}
     if not probs:
         return []
-    load = f"load {res.get('load_before')} before, {res.get('load_after')} after, on {_get(res, 'host', 'nproc')} cores"
+    # The load of the run that measured the planners: a merged result carries it with the section.
+    src = (res.get("carried_over") or {}).get("planners") or res
+    load = f"load {src.get('load_before')} before, {src.get('load_after')} after, on {_get(res, 'host', 'nproc')} cores"
     seed0 = pl.get("first_seed") or 1
     some = next(iter(probs.values()))
     if "runs" in pl:
