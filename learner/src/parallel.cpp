@@ -12,8 +12,9 @@
 // benchmark fit (measured: docs/learner.md), longer than many of a fit's passes; a caller that
 // waited for it would run those passes at one thread's speed plus the wake-up. Now the caller
 // runs the pass with whoever is there, and a late helper joins what is left, or nothing. No
-// thread takes a lock on the way of a pass unless another is asleep (a thread blocked on a
-// taken mutex is woken through the scheduler too, and Linux puts it on the waker's CPU).
+// thread takes a lock on the way of a pass unless a thread is asleep or is to be made (a thread
+// blocked on a taken mutex is woken through the scheduler too, and Linux puts it on the waker's
+// CPU).
 #include "parallel.hpp"
 
 #include <sched.h>
@@ -69,8 +70,8 @@ bool PollUntil(const Done& done) {
 
 // Runs the tasks left in the pass (claimed from *next) on this thread. On the caller (failed set)
 // a throwing task ends the pass: the exception is kept and the counter is moved past the end,
-// so that no thread starts another task (those running finish). On a helper a throw ends the
-// process.
+// so that no task is claimed after it (tasks other threads have claimed still run and finish).
+// On a helper a throw ends the process.
 void RunTasks(std::atomic<long>* next, long n_tasks, const Task* task, std::exception_ptr* failed) {
   for (long t = next->fetch_add(1); t < n_tasks; t = next->fetch_add(1)) {
     if (failed == nullptr) {
@@ -105,7 +106,8 @@ class Pool {
     if (in_pool_task || getpid() != pid_) return false;
     std::unique_lock<std::mutex> busy(busy_, std::try_to_lock);
     if (!busy.owns_lock()) return false;
-    {
+    // threads_ grows only here, under busy_; m_ is taken only when a thread is to be made.
+    if (made_.load() < helpers) {
       std::lock_guard<std::mutex> lock(m_);
       const uint64_t published = generation_.load();
       try {
@@ -113,12 +115,13 @@ class Pool {
           const int id = static_cast<int>(threads_.size());
           threads_.emplace_back([this, id, published] { Work(id, published); });
           threads_.back().detach();
+          made_.store(static_cast<int>(threads_.size()));
         }
       } catch (const std::system_error&) {  // no more threads: run with those there are
-        helpers = static_cast<int>(threads_.size());
       }
-      if (helpers == 0) return false;
     }
+    helpers = std::min(helpers, made_.load());
+    if (helpers == 0) return false;
     generation_.fetch_add(1);  // odd: the fields are being written
     WaitUntilNoneJoined();     // late joiners of the last pass count out
     task_.store(&task);
@@ -189,9 +192,10 @@ class Pool {
 
   const pid_t pid_ = getpid();
   std::mutex busy_;  // held for a whole pass
-  std::mutex m_;     // guards threads_; orders going to sleep against waking (above)
+  std::mutex m_;     // guards threads_' growth; orders going to sleep against waking (above)
   std::condition_variable wake_, done_;
   std::vector<std::thread> threads_;
+  std::atomic<int> made_{0};  // threads_.size()
   std::atomic<long> joins_{0}, sleeps_{0};
   // The pass (published by the generation, above) and the sleepers. Sequentially consistent
   // atomics throughout: the handshakes (count in, then read the generation, against: make it

@@ -13,12 +13,13 @@ namespace detail {
 
 // Runs task(0) .. task(n_tasks - 1), each exactly once, on up to `threads` threads (the
 // calling thread is one of them; threads <= 1 or n_tasks <= 1 runs them in order on the caller).
-// Tasks are handed out in order from a shared counter; a helper thread that is slow to start
-// (asleep, or its CPU taken) is not waited for: its tasks go to the threads that are running.
+// Tasks are handed out in order from a shared counter; a pool helper that is slow to start
+// (asleep, or its CPU taken) is not waited for: its tasks go to the threads that are running (a
+// call that finds the pool busy makes its own threads and joins them).
 // Returns when all have finished. A task that throws on the calling thread (bad_alloc) ends the
-// pass: no task starts after it, those running on other threads finish, then the exception
-// leaves ParallelFor (as a loop that throws would: tasks after it are not run). A task that
-// throws on another thread ends the process (std::terminate), as from any std::thread.
+// pass: no task is claimed after it (tasks other threads had claimed run and finish; some may
+// come after it in task order), then the exception leaves ParallelFor. A task that throws on
+// another thread ends the process (std::terminate), as from any std::thread.
 void ParallelFor(int threads, long n_tasks, const std::function<void(long task)>& task);
 
 // Counts of the pool's helper threads since the process started (for tests): passes they joined,

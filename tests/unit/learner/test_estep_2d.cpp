@@ -479,7 +479,8 @@ void test_parallel_for_runs_every_task_once(void** state) {
   // running on the other threads finish before the exception reaches the caller, and the next
   // pass runs every task once. The other threads' tasks wait for the caller's throw (so the
   // caller surely takes a task, and each of them holds at most one task when it throws), then
-  // work 20 ms: at most 3 of the 64 tasks start, and all but the thrown one have finished.
+  // work 200 ms (time for the caller to end the pass, even on a loaded machine): at most 3 of the
+  // 64 tasks start, and all but the thrown one have finished.
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<bool> caller_threw{false};
   std::atomic<int> started{0}, finished{0};
@@ -494,7 +495,7 @@ void test_parallel_for_runs_every_task_once(void** state) {
         throw std::runtime_error("task failed");
       }
       while (!caller_threw) std::this_thread::yield();
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
       ++finished;
     });
   } catch (const std::runtime_error&) {
