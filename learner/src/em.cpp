@@ -643,7 +643,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
       const std::string where = "point " + std::to_string(bad / d) + ", dimension " + std::to_string(bad % d);
       if (!std::isfinite(v)) return Status::Error(StatusCode::kBadInput, where + " is not finite");
       char value[32];
-      std::snprintf(value, sizeof value, "%g", v);
+      std::snprintf(value, sizeof value, "%.9g", v);
       return Status::Error(StatusCode::kBadInput, where + " is " + value +
                                                       ": beyond 1e150 squared distances overflow; rescale the data");
     }
@@ -725,9 +725,8 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     for (Eigen::Index i = 0; i < m_pts; ++i)  // partial Fisher-Yates with our own draw
       std::swap(idx[i], idx[i + static_cast<Eigen::Index>(Uniform01(&rng) * static_cast<double>(n - i)) % (n - i)]);
     // Keep the data's order: the chosen points in ascending index, by marking them and reading
-    // the marks in order (the same sample as sorting the indices; the sampling took 1.25-1.55 ms
-    // of serial time with the sort, 0.69-1.13 ms with the marks, in 2-thread fits of about 30 ms
-    // on the benchmark data).
+    // the marks in order (the same sample as a sort of the chosen indices gives, in linear time;
+    // serial time in every default fit on large data: docs/learner.md).
     std::vector<unsigned char> chosen(static_cast<size_t>(n), 0);
     for (Eigen::Index i = 0; i < m_pts; ++i) chosen[static_cast<size_t>(idx[i])] = 1;
     sample_xt.resize(m_pts, d);
