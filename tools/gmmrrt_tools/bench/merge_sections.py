@@ -21,6 +21,26 @@ ROOT = Path(__file__).resolve().parents[3]
 SECTIONS = ("memory", "ompl", "planners", "social", "learner", "micro", "daemon")
 
 
+def merge(old: dict, new: dict) -> dict:
+    """new's sections, and old's for those new did not run, each of these listed under
+    "carried_over" with the date, commit, command and load of the run that measured it (kept from
+    old's own list when old had carried it already)."""
+    merged = dict(new)
+    carried = dict(old.get("carried_over", {}))
+    for s in SECTIONS:
+        if s not in new and s in old:
+            merged[s] = old[s]
+            carried.setdefault(s, {"date_utc": old.get("date_utc"), "commit": old.get("host", {}).get("commit"),
+                                   "argv": old.get("argv"), "load_before": old.get("load_before"),
+                                   "load_after": old.get("load_after")})
+            if s in old.get("section_seconds", {}):
+                merged.setdefault("section_seconds", {})[s] = old["section_seconds"][s]
+        else:
+            carried.pop(s, None)
+    merged["carried_over"] = carried
+    return merged
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("partial", type=Path, help="results JSON of a tools/bench.py --only run")
@@ -37,19 +57,8 @@ def main() -> int:
     if not ran:
         print(f"merge_sections: {args.partial} holds none of the sections {', '.join(SECTIONS)}", file=sys.stderr)
         return 1
-    merged = dict(new)
-    carried = dict(old.get("carried_over", {}))
-    for s in SECTIONS:
-        if s not in new and s in old:
-            merged[s] = old[s]
-            carried.setdefault(s, {"date_utc": old.get("date_utc"), "commit": old.get("host", {}).get("commit"),
-                                   "argv": old.get("argv"), "load_before": old.get("load_before"),
-                                   "load_after": old.get("load_after")})
-            if s in old.get("section_seconds", {}):
-                merged.setdefault("section_seconds", {})[s] = old["section_seconds"][s]
-        else:
-            carried.pop(s, None)
-    merged["carried_over"] = carried
+    merged = merge(old, new)
+    carried = merged["carried_over"]
     om = merged.get("ompl")
     raw = args.partial.resolve().parent / "bench-raw"
     if "ompl" in new and isinstance(om, dict) and "error" not in om and not om.get("figure"):
