@@ -7,6 +7,7 @@
 #include "gmmrrt_learner/em.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -58,6 +59,9 @@ std::string FitSummary::BriefReport() const {
   o << " iterations=" << iterations << (converged ? " converged" : " NOT converged (iteration cap)")
     << " mean_log_likelihood=" << final_mean_log_likelihood << " BIC=" << bic
     << " reseeds=" << reseeds << " dropped=" << dropped;
+  o.precision(3);
+  o << " seconds: prepare=" << prepare_seconds << " candidates=" << candidates_seconds
+    << " converge=" << converge_seconds;
   return o.str();
 }
 
@@ -84,7 +88,8 @@ struct DataInfo {
 
 using detail::PassRange;  // points [first, last) of pass task t (parallel.hpp)
 
-using detail::IsAngleDim;  // angle_dims.hpp
+using detail::AsFitValue;  // angle_dims.hpp
+using detail::IsAngleDim;
 
 // The data's mean and covariance in three passes on up to `threads` threads (sums per task of
 // points, added in task order: the same bits for any thread count): the mean (angle columns:
@@ -598,6 +603,9 @@ int DefaultThreadCount() { return detail::AvailableCores(); }
 
 Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitOptions& options,
                   Mixture* mixture, FitSummary* summary) {
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  Clock::time_point stage = Clock::now();
   std::string why;
   if (!options.IsValid(&why)) return Status::Error(StatusCode::kInvalidArgument, why);
   const int d = static_cast<int>(points.rows());
@@ -653,38 +661,36 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   summary->n_points = n;
   summary->dim = d;
   summary->k_requested = options.k;
-  // Points as rows (see component_terms.hpp), angle columns wrapped. For the fused 2-D E-step
-  // they are put in spatial order (spatial_order.hpp): its lanes then hold nearby points and skip
-  // far components together. The order is a function of the points only, so the fit stays
-  // deterministic.
-  Eigen::MatrixXd rows(n, d);
-  detail::ParallelFor(threads, tasks, [&](long t) {
-    Eigen::Index first, last;
-    PassRange(t, n, &first, &last);
-    for (int j = 0; j < d; ++j) {
-      double* out = rows.col(j).data();
-      if (IsAngleDim(angle_mask, j))
-        for (Eigen::Index c = first; c < last; ++c) out[c] = gmmrrt_wrap_angle(points(j, c));
-      else
-        for (Eigen::Index c = first; c < last; ++c) out[c] = points(j, c);
-    }
-  });
+  // Points as rows (see component_terms.hpp), angle columns wrapped (AsFitValue). For the fused
+  // 2-D E-step they are put in spatial order (spatial_order.hpp): its lanes then hold nearby
+  // points and skip far components together. The order is a function of the points only, so the
+  // fit stays deterministic. The 2-D rows are gathered in that order straight from the input:
+  // one fresh N x D buffer, not a copy and then a sorted copy (a fresh buffer's every 4 KiB page
+  // is a page fault on its first write, about 2 us each on the development machine, and a fit's
+  // faults ran no faster on two threads: docs/learner.md).
   std::vector<Eigen::Index> order;
-  Eigen::MatrixXd xt;
+  Eigen::MatrixXd xt(n, d);
   if (d == 2 && (angle_mask == 0u || angle_mask == 2u)) {
-    order = detail::SpatialOrder2d(rows, threads);
-    xt.resize(n, d);
+    order = detail::SpatialOrder2d(points, angle_mask, threads);
+    detail::ParallelFor(threads, tasks, [&](long t) {
+      Eigen::Index first, last;
+      PassRange(t, n, &first, &last);
+      double* out0 = xt.col(0).data();
+      double* out1 = xt.col(1).data();
+      for (Eigen::Index p = first; p < last; ++p) {
+        out0[p] = AsFitValue(angle_mask, 0, points(0, order[p]));
+        out1[p] = AsFitValue(angle_mask, 1, points(1, order[p]));
+      }
+    });
+  } else {
     detail::ParallelFor(threads, tasks, [&](long t) {
       Eigen::Index first, last;
       PassRange(t, n, &first, &last);
       for (int j = 0; j < d; ++j) {
-        const double* in = rows.col(j).data();
         double* out = xt.col(j).data();
-        for (Eigen::Index p = first; p < last; ++p) out[p] = in[order[p]];
+        for (Eigen::Index c = first; c < last; ++c) out[c] = AsFitValue(angle_mask, j, points(j, c));
       }
     });
-  } else {
-    xt = std::move(rows);
   }
 
   FitState s;
@@ -758,6 +764,8 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   // the fit is the same bits for any thread count. What a candidate reports (warnings, re-seeds,
   // progress) is kept apart and passed on in candidate order afterwards; each candidate has the
   // whole re-seed budget (max_reseeds); the fit to convergence has what all of them left of it.
+  summary->prepare_seconds = seconds_since(stage);
+  stage = Clock::now();
   const bool side_by_side = s.threads > 1 && options.restarts > 1;
   const uint64_t draws = KMeansRandomDraws(ko);
   std::vector<FitSummary> reports(options.restarts);
@@ -819,6 +827,8 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     if (options.progress && run.m.k() > 0) options.progress(r, static_cast<int>(run.ll.size()) - 1, run.ll.back());
   }
   if (best < 0) return Status::Error(StatusCode::kNumericalFailure, "every component degenerate in every restart");
+  summary->candidates_seconds = seconds_since(stage);
+  stage = Clock::now();
   EmRun& run = runs[best];
   run.kept = true;
   if (screen.xt != s.xt) {
@@ -837,6 +847,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
     // them): a screening that reached the cap is the fit (Advance would add one more step).
     Advance(s, &run, options.max_iterations);
   }
+  summary->converge_seconds = seconds_since(stage);
   if (run.m.k() == 0)
     return Status::Error(StatusCode::kNumericalFailure, "every component degenerate (all dropped)");
   Mixture m = std::move(run.m);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "angle_dims.hpp"
 #include "parallel.hpp"
 
 namespace gmmrrt {
@@ -38,9 +39,14 @@ inline uint32_t Morton(uint32_t x, uint32_t y) { return kSpread.v[x] | kSpread.v
 
 }  // namespace
 
-std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt, int threads) {
-  const Eigen::Index n = xt.rows();
+std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& points, uint32_t angle_mask, int threads) {
+  const Eigen::Index n = points.cols();
   if (n == 0) return {};
+  // Coordinates read through a copied pointer (points is 2 x n, column-major), not through
+  // `points`, so that the counts' stores below cannot alias what the loops read.
+  const double* const pts = points.data();
+  const auto x = [pts, angle_mask](Eigen::Index p) { return AsFitValue(angle_mask, 0, pts[2 * p]); };
+  const auto y = [pts, angle_mask](Eigen::Index p) { return AsFitValue(angle_mask, 1, pts[2 * p + 1]); };
   const long tasks = PassTasks(static_cast<long>(n));
   // The bounding box: minima and maxima per task, then over the tasks (exact in any order).
   std::vector<double> box(static_cast<size_t>(tasks) * 4);
@@ -48,13 +54,14 @@ std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt, int threads)
     Eigen::Index first, last;
     PassRange(t, n, &first, &last);
     double* b = box.data() + 4 * t;
-    b[0] = b[1] = xt(first, 0);
-    b[2] = b[3] = xt(first, 1);
+    b[0] = b[1] = x(first);
+    b[2] = b[3] = y(first);
     for (Eigen::Index p = first + 1; p < last; ++p) {
-      b[0] = std::min(b[0], xt(p, 0));
-      b[1] = std::max(b[1], xt(p, 0));
-      b[2] = std::min(b[2], xt(p, 1));
-      b[3] = std::max(b[3], xt(p, 1));
+      const double xp = x(p), yp = y(p);
+      b[0] = std::min(b[0], xp);
+      b[1] = std::max(b[1], xp);
+      b[2] = std::min(b[2], yp);
+      b[3] = std::max(b[3], yp);
     }
   });
   double lo0 = box[0], hi0 = box[1], lo1 = box[2], hi1 = box[3];
@@ -79,7 +86,7 @@ std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt, int threads)
     Eigen::Index* count = start.get() + static_cast<size_t>(t) * kAllCells;
     std::fill(count, count + kAllCells, Eigen::Index{0});
     for (Eigen::Index p = first; p < last; ++p) {
-      key[p] = Morton(Cell(xt(p, 0), lo0, scale0), Cell(xt(p, 1), lo1, scale1));
+      key[p] = Morton(Cell(x(p), lo0, scale0), Cell(y(p), lo1, scale1));
       ++count[key[p]];
     }
   });

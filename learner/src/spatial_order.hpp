@@ -16,12 +16,16 @@ namespace gmmrrt {
 namespace learn {
 namespace detail {
 
-// xt: N x 2 points as rows, finite. Returns a permutation (N indices into xt): points sorted by
-// the Morton (Z-order) index of their cell in a 64 x 64 grid over the bounding box, ties in the
-// original order (counting sort: O(N), deterministic). A constant coordinate is fine. Runs on up
-// to `threads` threads (>= 1): each task of points counts its cells, and task t's points of a
-// cell go after those of tasks 0..t-1, so the order is the same for any thread count.
-std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& xt, int threads = 1);
+// points: 2 x N, one point per column (FitMixture's input), finite; a dimension flagged in
+// angle_mask is read wrapped into (-pi, pi] (AsFitValue, angle_dims.hpp), as the fit reads it.
+// Returns a permutation (N point numbers): points sorted by the Morton (Z-order) index of their
+// cell in a 64 x 64 grid over the bounding box, ties in the original order (counting sort: O(N),
+// deterministic). A constant coordinate is fine. Runs on up to `threads` threads (>= 1): each
+// task of points counts its cells, and task t's points of a cell go after those of tasks
+// 0..t-1, so the order is the same for any thread count. It reads the input where it is, with no
+// copy of the points (fresh memory costs a page fault per 4 KiB on its first write: see
+// FitMixture).
+std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& points, uint32_t angle_mask, int threads = 1);
 
 }  // namespace detail
 }  // namespace learn

@@ -110,9 +110,15 @@ struct FitSummary {
   int threads = 1;                       // E-step threads used
   int extrapolations_refused = 0;        // SQUAREM steps of the kept candidate that lowered the
                                          // log-likelihood (replaced by a plain EM step)
+  // Wall time of the fit's stages (steady clock), to see where a fit's time goes: preparing the
+  // data (checks, copies, spatial order, moments, the screening sample), building and screening
+  // the candidates, and the kept candidate's run to convergence (on all points).
+  double prepare_seconds = 0.0;
+  double candidates_seconds = 0.0;
+  double converge_seconds = 0.0;
   std::vector<std::string> warnings;
 
-  // One line: N, D, K, iterations, convergence, final mean LL, BIC.
+  // One line: N, D, K, iterations, convergence, final mean LL, BIC, the stages' seconds.
   std::string BriefReport() const;
 };
 

@@ -257,10 +257,12 @@ int main(int argc, char** argv) {
     }
     std::printf("{\"mode\":\"fit\",\"n\":%ld,\"dim\":%ld,\"k\":%ld,\"seed\":%ld,\"tol\":%.17g,\"max_iter\":%d,"
                 "\"restarts\":%d,\"threads\":%d,\"accelerate\":%s,\"fit_ms\":%.6f,\"fit_cpu_ms\":%.6f,\"mean_log_likelihood\":%.17g,\"iterations\":%d,\"converged\":%s,"
-                "\"k_final\":%d,\"bic\":%.17g,\"fit_start_monotonic_s\":%.9f,\"fit_end_monotonic_s\":%.9f,",
+                "\"k_final\":%d,\"bic\":%.17g,\"fit_start_monotonic_s\":%.9f,\"fit_end_monotonic_s\":%.9f,"
+                "\"prepare_ms\":%.6f,\"candidates_ms\":%.6f,\"converge_ms\":%.6f,",
                 static_cast<long>(points.cols()), static_cast<long>(points.rows()), k, seed, options.tolerance,
                 options.max_iterations, options.restarts, s.threads, options.accelerate ? "true" : "false", ms, cpu_ms, s.final_mean_log_likelihood, s.iterations,
-                s.converged ? "true" : "false", s.k_final, s.bic, start_s, end_s);
+                s.converged ? "true" : "false", s.k_final, s.bic, start_s, end_s, 1e3 * s.prepare_seconds,
+                1e3 * s.candidates_seconds, 1e3 * s.converge_seconds);
     PrintMixture(m);
     std::printf("}\n");
     return 0;

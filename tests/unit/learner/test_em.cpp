@@ -3,6 +3,7 @@
 // plain EM, degenerate components, the +-pi seam, BIC
 // choosing the generating K, bad input, and the Eigen density against the C gmm.h density.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <random>
 #include <set>
@@ -222,6 +223,25 @@ void test_em_recovers_means_and_weights(void** state) {
   }
   // The summary's final value is the mixture's mean log-likelihood.
   assert_true(std::fabs(MeanLogLikelihood(m, x) - s.final_mean_log_likelihood) < 1e-12);
+}
+
+// The stages' times: each spent (positive), none counted twice (together within the call's own
+// time), on a fit that screens its candidates on a sample and on one that does not.
+void test_stage_times_add_up_within_the_call(void** state) {
+  (void)state;
+  const Eigen::MatrixXd x = test_support::Sample(ThreeBlobs(), 0, 11);
+  for (int64_t screen_points : {int64_t{0}, int64_t{500}}) {
+    FitOptions o = Quiet(3, 1);
+    o.screen_points = screen_points;
+    Mixture m;
+    FitSummary s;
+    const auto t0 = std::chrono::steady_clock::now();
+    assert_true(FitMixture(x, 0, o, &m, &s).ok());
+    const double call = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    assert_true(s.prepare_seconds > 0.0 && s.candidates_seconds > 0.0 && s.converge_seconds > 0.0);
+    assert_true(s.prepare_seconds + s.candidates_seconds + s.converge_seconds <= call);
+    assert_true(s.BriefReport().find(" seconds: prepare=") != std::string::npos);
+  }
 }
 
 void test_em_log_likelihood_never_decreases(void** state) {
@@ -613,6 +633,7 @@ int main(void) {
       cmocka_unit_test(test_kmeans_pruned_assignment_equals_a_full_scan),
       cmocka_unit_test(test_kmeans_is_the_same_pruned_or_not_on_any_thread_count),
       cmocka_unit_test(test_em_recovers_means_and_weights),
+      cmocka_unit_test(test_stage_times_add_up_within_the_call),
       cmocka_unit_test(test_em_log_likelihood_never_decreases),
       cmocka_unit_test(test_same_seed_gives_the_same_mixture),
       cmocka_unit_test(test_any_thread_count_gives_the_same_bits),

@@ -280,7 +280,7 @@ void test_baseline_and_avx2_kernels_agree(void** state) {
 // with the baseline and the vector kernels.
 static void AssertCullingKeepsTheBits(const Mixture& m, const Eigen::MatrixXd& xt) {
   const Eigen::Index n = xt.rows();
-  const std::vector<Eigen::Index> order = detail::SpatialOrder2d(xt);
+  const std::vector<Eigen::Index> order = detail::SpatialOrder2d(xt.transpose(), 0u);
   Eigen::MatrixXd sorted(n, 2);
   for (Eigen::Index c = 0; c < n; ++c) sorted.row(c) = xt.row(order[c]);
   const Eigen::MatrixXd* const both[2] = {&sorted, &xt};
@@ -551,7 +551,8 @@ static void test_late_helpers_never_run_a_finished_pass(void** state) {
 // The spatial order against a plain twin: each point's Morton index of its cell in a 64 x 64
 // grid over the bounding box, then a stable sort by it. The parallel counting sort must give the
 // same permutation on any thread count: points in several tasks of 8192 (30 000 here), a
-// constant coordinate, a single point, a box that is a line.
+// constant coordinate, a single point, a box that is a line; and a bearing column given beyond
+// (-pi, pi], ordered as its wrapped values are.
 static std::vector<Eigen::Index> PlainSpatialOrder(const Eigen::MatrixXd& xt) {
   const Eigen::Index n = xt.rows();
   double lo[2], scale[2];
@@ -587,8 +588,18 @@ static void test_spatial_order_matches_a_stable_sort_on_any_thread_count(void** 
   one << 0.25, -4.0;
   for (const Eigen::MatrixXd* xt : {&cloud, &flat, &one}) {
     const std::vector<Eigen::Index> want = PlainSpatialOrder(*xt);
-    for (int threads : {1, 2, 3}) assert_true(detail::SpatialOrder2d(*xt, threads) == want);
+    for (int threads : {1, 2, 3}) assert_true(detail::SpatialOrder2d(xt->transpose(), 0u, threads) == want);
   }
+  // Bearings: 3 g spans about (-9, 9) rad, so most lie outside (-pi, pi]; the order is that of
+  // the wrapped bearings (a different one than of the raw values).
+  Eigen::MatrixXd bearing(30000, 2), wrapped(30000, 2);
+  for (Eigen::Index p = 0; p < bearing.rows(); ++p) {
+    bearing.row(p) << std::fabs(g(rng)), g(rng);
+    wrapped.row(p) << bearing(p, 0), gmmrrt_wrap_angle(bearing(p, 1));
+  }
+  const std::vector<Eigen::Index> want = PlainSpatialOrder(wrapped);
+  assert_true(PlainSpatialOrder(bearing) != want);
+  for (int threads : {1, 2, 3}) assert_true(detail::SpatialOrder2d(bearing.transpose(), 2u, threads) == want);
 }
 
 int main(void) {
