@@ -13,9 +13,9 @@ from pathlib import Path
 import pytest
 
 from gmmrrt_tools.bench.planner import BenchError, summarize_all_planners, summarize_ompl, summarize_social
-from gmmrrt_tools.bench.learner import pair_span_ms
+from gmmrrt_tools.bench.learner import pair_span_ms, stage_medians
 from gmmrrt_tools.bench.merge_sections import merge
-from gmmrrt_tools.bench.report import _planner_targets_summary, evaluate_targets, write_markdown
+from gmmrrt_tools.bench.report import _planner_targets_summary, evaluate_targets, second_core_stages, write_markdown
 from gmmrrt_tools.bench.stats import INF, clean, cost_at, median, quantile, ratio, time_to_cost
 
 CURVE = [[0.5, 10, 20.0], [2.0, 40, 15.0], [9.0, 200, 12.0], [50.0, 900, 11.0]]
@@ -199,6 +199,24 @@ def test_same_iteration_targets_judge_both_of_our_settings():
     assert all("two 1-thread one-start fits at once: -" in t["value_text"] for t in rows if "second core" in t["name"])
     skipped = evaluate_targets({"learner": {"same_iterations": {"skipped": "no Armadillo"}}})
     assert {t["status"] for t in skipped if "EM iterations" in t["name"]} == {"not run"}
+
+
+def test_the_fit_stages_are_medians_per_stage_and_their_second_core_ratios():
+    runs = [{"stages_ms": {"prepare": p, "candidates": c, "converge": v}}
+            for p, c, v in ((8.0, 40.0, 12.0), (9.0, 30.0, 10.0), (7.0, 50.0, 11.0))]
+    assert stage_medians(runs) == {"prepare": 8.0, "candidates": 40.0, "converge": 11.0}
+    # A run from a bench binary that did not time its stages: no median rather than a wrong one.
+    assert stage_medians(runs + [{"stages_ms": {"prepare": None}}])["prepare"] is None
+    si = {"ours_1": {"stages_ms_median": {"prepare": 8.0, "candidates": 40.0, "converge": 11.0}},
+          "ours_2": {"stages_ms_median": {"prepare": 5.0, "candidates": 20.0, "converge": 5.5}},
+          "ours_one_1": {"stages_ms_median": {"prepare": 8.0, "candidates": 50.0, "converge": 0.01}},
+          "ours_one_2": {"stages_ms_median": {"prepare": 4.0, "candidates": 26.0, "converge": 0.01}}}
+    lines = second_core_stages(si)
+    assert lines[0] == ("- ours (defaults), the fit's stages, medians on 1 -> 2 threads: prepare 8.0 ms -> 5.0 ms "
+                        "(1.60x); candidates 40.0 ms -> 20.0 ms (2.00x); converge 11.0 ms -> 5.5 ms (2.00x)")
+    # A stage that takes no time (one start converges in its only candidate) is left out.
+    assert "converge" not in lines[1] and "candidates 50.0 ms -> 26.0 ms (1.92x)" in lines[1]
+    assert second_core_stages({"ours_1": {}, "ours_2": {}}) == []
 
 
 # ------------------------------------------------------------------ all planners (gmmrrt-bench-all)

@@ -113,6 +113,19 @@ def fit_sklearn(points: np.ndarray, k: int, seed: int) -> dict:
             "converged": bool(gm.converged_), "seed": seed}
 
 
+# The fit's stages as gmmrrt-bench-learner times them (FitSummary in learner/include/gmmrrt_learner/em.hpp).
+FIT_STAGES = ("prepare", "candidates", "converge")
+
+
+def stage_medians(runs: List[dict]) -> Dict[str, Optional[float]]:
+    """Median milliseconds of each fit stage over runs (None where a run did not report it)."""
+    out = {}
+    for stage in FIT_STAGES:
+        values = [r.get("stages_ms", {}).get(stage) for r in runs]
+        out[stage] = median(values) if values and all(v is not None for v in values) else None
+    return out
+
+
 def fit_ours(exe: Path, csv: Path, points: np.ndarray, k: int, seed: int, restarts: Optional[int] = None,
              extra: Optional[List[str]] = None) -> dict:
     """Our fit with the learner's defaults (tolerance, iteration cap, SQUAREM, all cores) unless
@@ -130,7 +143,7 @@ def fit_ours(exe: Path, csv: Path, points: np.ndarray, k: int, seed: int, restar
             "mean_log_likelihood_own": out["mean_log_likelihood"], "iterations": out["iterations"],
             "converged": out["converged"], "k_final": out["k_final"], "restarts": out["restarts"],
             "threads": out.get("threads"), "tol": out.get("tol"), "max_iter": out.get("max_iter"),
-            "command": " ".join(cmd)}
+            "stages_ms": {stage: out.get(f"{stage}_ms") for stage in FIT_STAGES}, "command": " ".join(cmd)}
 
 
 def fit_ours_pair(exe: Path, csv: Path, k: int, seed: int, extra: List[str]) -> dict:
@@ -406,6 +419,7 @@ def run_same_iterations(bin_dir: Path, work: Path, n: int, k: int, reps: int, se
             med[w]["mean_log_likelihood_median"] = median(r["mean_log_likelihood"] for r in rs)
     for w in ("ours_1", "ours_2", "ours_one_1", "ours_one_2"):
         med[w]["iterations_median"] = median(r["iterations"] for r in runs[w])
+        med[w]["stages_ms_median"] = stage_medians(runs[w])
 
     def ll(w: str) -> float:
         return med[w]["mean_log_likelihood_median"]

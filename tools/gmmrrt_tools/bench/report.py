@@ -22,6 +22,24 @@ def _get(d, *keys):
     return d
 
 
+def second_core_stages(si: dict) -> List[str]:
+    """Where our fits' second core goes: each stage's median time on 1 and on 2 threads and their
+    ratio (FitSummary's stages; results from before the stages were timed have none)."""
+    out = []
+    for who, label in (("ours", "defaults"), ("ours_one", "one start on all points")):
+        one = _get(si, f"{who}_1", "stages_ms_median") or {}
+        two = _get(si, f"{who}_2", "stages_ms_median") or {}
+        parts = []
+        for stage, a in one.items():  # in the order the bench recorded them
+            b = two.get(stage)
+            if a is None or b is None or a < 0.05:
+                continue
+            parts.append(f"{stage} {fmt(a, 1, ' ms')} -> {fmt(b, 1, ' ms')} ({fmt(a / b if b > 0 else None, 2, 'x')})")
+        if parts:
+            out.append(f"- ours ({label}), the fit's stages, medians on 1 -> 2 threads: " + "; ".join(parts))
+    return out
+
+
 def _target(name: str, target: str, value, text: str, met: Optional[bool]) -> dict:
     status = "not run" if met is None else ("met" if met else "not met")
     return {"name": name, "target": target, "value": value, "value_text": text, "status": status}
@@ -725,6 +743,7 @@ def write_markdown(res: dict, path: Path, results_path: Path) -> None:
                       f"{fmt(si.get(f'second_core_ours{tag}'), 2, 'x')} (wall); 1 thread against scikit-learn: wall "
                       f"{fmt(si.get(f'speedup_vs_sklearn_1{tag}'), 1, 'x')}, CPU "
                       f"{fmt(si.get(f'speedup_vs_sklearn_1_cpu{tag}'), 1, 'x')}"]
+            L += second_core_stages(si)
             L += [f"- Armadillo's second core: {fmt(si.get('second_core_armadillo'), 2, 'x')} (wall; a loaded machine "
                   "has no free core to give)",
                   f"- The machine's second CPU on this work: {fmt(si.get('second_core_machine'), 2, 'x')}: two copies of "
