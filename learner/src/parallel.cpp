@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <exception>
 #include <mutex>
+#include <new>
 #include <system_error>
 #include <thread>
 #include <vector>
@@ -118,6 +119,7 @@ class Pool {
           made_.store(static_cast<int>(threads_.size()));
         }
       } catch (const std::system_error&) {  // no more threads: run with those there are
+      } catch (const std::bad_alloc&) {     // no memory for one more: the same
       }
     }
     helpers = std::min(helpers, made_.load());
@@ -227,11 +229,12 @@ void ParallelFor(int threads, long n_tasks, const Task& task) {
   if (ThePool().TryRun(static_cast<int>(workers - 1), n_tasks, task)) return;
   std::atomic<long> next{0};
   std::vector<std::thread> pool;
-  pool.reserve(static_cast<size_t>(workers - 1));
   try {
+    pool.reserve(static_cast<size_t>(workers - 1));
     for (long w = 1; w < workers; ++w)
       pool.emplace_back([&next, n_tasks, &task] { RunTasks(&next, n_tasks, &task, nullptr); });
   } catch (const std::system_error&) {  // no more threads: run with those there are
+  } catch (const std::bad_alloc&) {     // no memory for one more: the same
   }
   std::exception_ptr failed;  // as in the pool: the pass ends, running tasks finish, then it leaves
   RunTasks(&next, n_tasks, &task, &failed);

@@ -11,7 +11,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <new>
 #include <vector>
 #include <random>
 #include <stdexcept>
@@ -37,6 +39,31 @@ extern "C" {
 }
 
 using namespace gmmrrt::learn;
+
+// Allocation failures on demand, for the thread pool's test: while a thread's count is above 0,
+// its allocations throw std::bad_alloc (each one counts it down). The whole test binary
+// allocates through these two (malloc and free underneath).
+static thread_local int failing_allocations = 0;
+
+void* operator new(std::size_t size) {
+  if (failing_allocations > 0) {
+    --failing_allocations;
+    throw std::bad_alloc();
+  }
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+// The replacement pair is malloc and free by design; GCC, seeing new-expressions inlined
+// elsewhere, would take free() here for a mismatch.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 namespace {
 
@@ -509,6 +536,22 @@ void test_parallel_for_runs_every_task_once(void** state) {
     pass(3, 41, &b);
     for (int h : b) assert_int_equal(h, 1);
   }
+  // No memory to make a thread (a pass from inside a task makes its own): the pass runs on the
+  // threads there are, here the caller alone, every task once, and nothing is thrown.
+  std::vector<int> starved(40, 0);
+  bool starved_threw = false;
+  gmmrrt::learn::detail::ParallelFor(2, 2, [&](long t) {
+    if (t != 0) return;
+    failing_allocations = 8;
+    try {
+      gmmrrt::learn::detail::ParallelFor(3, 40, [&](long u) { ++starved[static_cast<size_t>(u)]; });
+    } catch (const std::bad_alloc&) {
+      starved_threw = true;
+    }
+    failing_allocations = 0;
+  });
+  assert_false(starved_threw);
+  for (int h : starved) assert_int_equal(h, 1);
 }
 
 // Helpers join passes; the caller waits only for those that joined, and a helper that joins
