@@ -30,6 +30,7 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "BLIS
 
 import json  # noqa: E402
 import subprocess  # noqa: E402
+import threading  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 from typing import Dict, List, Optional  # noqa: E402
@@ -126,14 +127,16 @@ def stage_medians(runs: List[dict]) -> Dict[str, Optional[float]]:
     return out
 
 
+def ours_command(exe: Path, csv: Path, k: int, seed: int, extra: List[str]) -> List[str]:
+    """gmmrrt-bench-learner's command line for a fit of k components to csv with this seed."""
+    return [str(exe), "--points", str(csv), "--k", str(k), "--seed", str(seed)] + extra
+
+
 def fit_ours(exe: Path, csv: Path, points: np.ndarray, k: int, seed: int, restarts: Optional[int] = None,
              extra: Optional[List[str]] = None) -> dict:
     """Our fit with the learner's defaults (tolerance, iteration cap, SQUAREM, all cores) unless
     extra options say otherwise: the benchmark measures what a user gets."""
-    cmd = [str(exe), "--points", str(csv), "--k", str(k), "--seed", str(seed)]
-    if restarts is not None:
-        cmd += ["--restarts", str(restarts)]
-    cmd += extra or []
+    cmd = ours_command(exe, csv, k, seed, (["--restarts", str(restarts)] if restarts is not None else []) + (extra or []))
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=3600)
     if proc.returncode != 0:
         raise BenchError(f"{' '.join(cmd)} exited {proc.returncode}: {proc.stderr.strip()[-400:]}")
@@ -153,14 +156,19 @@ def fit_ours_pair(exe: Path, csv: Path, k: int, seed: int, extra: List[str]) -> 
     fits that share nothing: a reference point for what a second thread can buy here at this
     time (not a bound: two threads share one copy of the data). A virtual machine whose two
     CPUs share a physical core or its caches, or whose host is busy, gives well under 2x."""
-    cmd = [str(exe), "--points", str(csv), "--k", str(k), "--seed", str(seed)] + extra + ["--ready-line"]
+    cmd = ours_command(exe, csv, k, seed, extra + ["--ready-line"])
     procs = [subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
              for _ in range(2)]
+    # A process that never says "ready" (it hangs reading the points) is killed after the same
+    # hour a single fit gets, so that its readline returns instead of blocking the benchmark.
+    watchdog = threading.Timer(3600, lambda: [p.kill() for p in procs])
+    watchdog.start()
     try:
         for proc in procs:
             line = proc.stderr.readline()
             if line.strip() != "ready":
                 raise BenchError(f"{' '.join(cmd)}: expected 'ready' on stderr, got {line.strip()[-400:]!r}")
+        watchdog.cancel()
         for proc in procs:
             proc.stdin.write("go\n")
             proc.stdin.flush()  # communicate() closes it
@@ -171,6 +179,7 @@ def fit_ours_pair(exe: Path, csv: Path, k: int, seed: int, extra: List[str]) -> 
                 raise BenchError(f"{' '.join(cmd)} (two at once) exited {proc.returncode}: {err.strip()[-400:]}")
             outs.append(json.loads(out))
     finally:
+        watchdog.cancel()
         for proc in procs:
             if proc.poll() is None:
                 proc.kill()
