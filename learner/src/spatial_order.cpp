@@ -39,9 +39,9 @@ inline uint32_t Morton(uint32_t x, uint32_t y) { return kSpread.v[x] | kSpread.v
 
 }  // namespace
 
-std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& points, uint32_t angle_mask, int threads) {
+PointOrder SpatialOrder2d(const Eigen::MatrixXd& points, uint32_t angle_mask, int threads) {
   const Eigen::Index n = points.cols();
-  if (n == 0) return {};
+  if (n == 0) return PointOrder();
   // Coordinates read through a copied pointer (points is 2 x n, column-major), not through
   // `points`, so that the counts' stores below cannot alias what the loops read.
   const double* const pts = points.data();
@@ -53,16 +53,22 @@ std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& points, uint32_t
   ParallelFor(threads, tasks, [&](long t) {
     Eigen::Index first, last;
     PassRange(t, n, &first, &last);
-    double* b = box.data() + 4 * t;
-    b[0] = b[1] = x(first);
-    b[2] = b[3] = y(first);
+    // In locals, stored once: the tasks' slots share cache lines, and a store per point into
+    // them (which the compiler must keep, as they might alias the points) made the pass slower
+    // on two threads than on one.
+    double x_lo = x(first), x_hi = x_lo, y_lo = y(first), y_hi = y_lo;
     for (Eigen::Index p = first + 1; p < last; ++p) {
       const double xp = x(p), yp = y(p);
-      b[0] = std::min(b[0], xp);
-      b[1] = std::max(b[1], xp);
-      b[2] = std::min(b[2], yp);
-      b[3] = std::max(b[3], yp);
+      x_lo = std::min(x_lo, xp);
+      x_hi = std::max(x_hi, xp);
+      y_lo = std::min(y_lo, yp);
+      y_hi = std::max(y_hi, yp);
     }
+    double* b = box.data() + 4 * t;
+    b[0] = x_lo;
+    b[1] = x_hi;
+    b[2] = y_lo;
+    b[3] = y_hi;
   });
   double lo0 = box[0], hi0 = box[1], lo1 = box[2], hi1 = box[3];
   for (long t = 1; t < tasks; ++t) {
@@ -111,7 +117,7 @@ std::vector<Eigen::Index> SpatialOrder2d(const Eigen::MatrixXd& points, uint32_t
       }
     }
   });
-  std::vector<Eigen::Index> order(n);
+  PointOrder order(n);  // uninitialised: every entry is written below
   ParallelFor(threads, tasks, [&](long t) {
     Eigen::Index first, last;
     PassRange(t, n, &first, &last);

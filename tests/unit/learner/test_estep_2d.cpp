@@ -307,7 +307,7 @@ void test_baseline_and_avx2_kernels_agree(void** state) {
 // with the baseline and the vector kernels.
 static void AssertCullingKeepsTheBits(const Mixture& m, const Eigen::MatrixXd& xt) {
   const Eigen::Index n = xt.rows();
-  const std::vector<Eigen::Index> order = detail::SpatialOrder2d(xt.transpose(), 0u);
+  const detail::PointOrder order = detail::SpatialOrder2d(xt.transpose(), 0u);
   Eigen::MatrixXd sorted(n, 2);
   for (Eigen::Index c = 0; c < n; ++c) sorted.row(c) = xt.row(order[c]);
   const Eigen::MatrixXd* const both[2] = {&sorted, &xt};
@@ -596,6 +596,10 @@ static void test_late_helpers_never_run_a_finished_pass(void** state) {
 // same permutation on any thread count: points in several tasks of 8192 (30 000 here), a
 // constant coordinate, a single point, a box that is a line; and a bearing column given beyond
 // (-pi, pi], ordered as its wrapped values are.
+static std::vector<Eigen::Index> AsVector(const detail::PointOrder& order) {
+  return std::vector<Eigen::Index>(order.data(), order.data() + order.size());
+}
+
 static std::vector<Eigen::Index> PlainSpatialOrder(const Eigen::MatrixXd& xt) {
   const Eigen::Index n = xt.rows();
   double lo[2], scale[2];
@@ -631,7 +635,7 @@ static void test_spatial_order_matches_a_stable_sort_on_any_thread_count(void** 
   one << 0.25, -4.0;
   for (const Eigen::MatrixXd* xt : {&cloud, &flat, &one}) {
     const std::vector<Eigen::Index> want = PlainSpatialOrder(*xt);
-    for (int threads : {1, 2, 3}) assert_true(detail::SpatialOrder2d(xt->transpose(), 0u, threads) == want);
+    for (int threads : {1, 2, 3}) assert_true(AsVector(detail::SpatialOrder2d(xt->transpose(), 0u, threads)) == want);
   }
   // Bearings: 3 g spans about (-9, 9) rad, so most lie outside (-pi, pi]; the order is that of
   // the wrapped bearings (a different one than of the raw values).
@@ -642,7 +646,7 @@ static void test_spatial_order_matches_a_stable_sort_on_any_thread_count(void** 
   }
   const std::vector<Eigen::Index> want = PlainSpatialOrder(wrapped);
   assert_true(PlainSpatialOrder(bearing) != want);
-  for (int threads : {1, 2, 3}) assert_true(detail::SpatialOrder2d(bearing.transpose(), 2u, threads) == want);
+  for (int threads : {1, 2, 3}) assert_true(AsVector(detail::SpatialOrder2d(bearing.transpose(), 2u, threads)) == want);
 }
 
 int main(void) {
