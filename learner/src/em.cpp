@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numeric>
 #include <random>
 #include <sstream>
@@ -597,6 +598,45 @@ void Advance(const FitState& s, EmRun* run, int until) {
     AdvancePlain(s, run, until);
 }
 
+// The screening sample: m of the n rows of xt, drawn by a partial Fisher-Yates shuffle with our
+// own draw (Uniform01), kept in the data's order (the chosen rows in ascending row number, by
+// marking them and reading the marks in order: the same sample as a sort of the chosen numbers
+// gives, in linear time). Only the m swaps are serial; filling the numbers, clearing the marks
+// and gathering the marked rows run on the fit's threads, in pass tasks (parallel.hpp), and
+// the scratch is made uninitialised so that its first-write page faults are taken there too
+// (this was serial time in every default fit on large data: docs/learner.md).
+void DrawSample(const Eigen::MatrixXd& xt, Eigen::Index m, int threads, std::mt19937_64* rng, Eigen::MatrixXd* sample) {
+  const Eigen::Index n = xt.rows();
+  const long tasks = detail::PassTasks(static_cast<long>(n));
+  std::unique_ptr<Eigen::Index[]> number(new Eigen::Index[static_cast<size_t>(n)]);
+  std::unique_ptr<unsigned char[]> chosen(new unsigned char[static_cast<size_t>(n)]);
+  detail::ParallelFor(threads, tasks, [&](long t) {
+    Eigen::Index first, last;
+    PassRange(t, n, &first, &last);
+    for (Eigen::Index p = first; p < last; ++p) number[p] = p;
+    std::fill(chosen.get() + first, chosen.get() + last, static_cast<unsigned char>(0));
+  });
+  for (Eigen::Index i = 0; i < m; ++i)
+    std::swap(number[i], number[i + static_cast<Eigen::Index>(Uniform01(rng) * static_cast<double>(n - i)) % (n - i)]);
+  for (Eigen::Index i = 0; i < m; ++i) chosen[number[i]] = 1;
+  // Each task's marked rows go after those of the tasks before it.
+  std::vector<Eigen::Index> row_of_task(static_cast<size_t>(tasks) + 1, 0);
+  detail::ParallelFor(threads, tasks, [&](long t) {
+    Eigen::Index first, last;
+    PassRange(t, n, &first, &last);
+    row_of_task[static_cast<size_t>(t) + 1] = std::count(chosen.get() + first, chosen.get() + last, 1);
+  });
+  for (long t = 0; t < tasks; ++t) row_of_task[static_cast<size_t>(t) + 1] += row_of_task[static_cast<size_t>(t)];
+  sample->resize(m, xt.cols());
+  detail::ParallelFor(threads, tasks, [&](long t) {
+    Eigen::Index first, last;
+    PassRange(t, n, &first, &last);
+    Eigen::Index row = row_of_task[static_cast<size_t>(t)];
+    for (Eigen::Index p = first; p < last; ++p)
+      if (chosen[p]) sample->row(row++) = xt.row(p);
+  });
+}
+
 }  // namespace
 
 int DefaultThreadCount() { return detail::AvailableCores(); }
@@ -724,20 +764,8 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   FitState screen = s;
   screen.original_index = nullptr;  // point numbers in messages: of the sample
   if (options.screen_points > 0 && n > options.screen_points) {
-    std::vector<Eigen::Index> idx(n);
-    std::iota(idx.begin(), idx.end(), 0);
     const Eigen::Index m_pts = static_cast<Eigen::Index>(std::max<int64_t>(options.screen_points, needed));
-    for (Eigen::Index i = 0; i < m_pts; ++i)  // partial Fisher-Yates with our own draw
-      std::swap(idx[i], idx[i + static_cast<Eigen::Index>(Uniform01(&rng) * static_cast<double>(n - i)) % (n - i)]);
-    // Keep the data's order: the chosen points in ascending index, by marking them and reading
-    // the marks in order (the same sample as a sort of the chosen indices gives, in linear time;
-    // serial time in every default fit on large data: docs/learner.md).
-    std::vector<unsigned char> chosen(static_cast<size_t>(n), 0);
-    for (Eigen::Index i = 0; i < m_pts; ++i) chosen[static_cast<size_t>(idx[i])] = 1;
-    sample_xt.resize(m_pts, d);
-    Eigen::Index row = 0;
-    for (Eigen::Index p = 0; p < n; ++p)
-      if (chosen[static_cast<size_t>(p)]) sample_xt.row(row++) = xt.row(p);
+    DrawSample(xt, m_pts, threads, &rng, &sample_xt);
     screen.xt = &sample_xt;
   }
   const Eigen::MatrixXd& screen_xt = *screen.xt;
