@@ -633,7 +633,7 @@ void DrawSample(const Eigen::MatrixXd& xt, Eigen::Index m, int threads, std::mt1
     PassRange(t, n, &first, &last);
     Eigen::Index row = row_of_task[static_cast<size_t>(t)];
     for (Eigen::Index p = first; p < last; ++p)
-      if (chosen[p]) sample->row(row++) = xt.row(p);
+      if (chosen[p] == 1) sample->row(row++) = xt.row(p);  // as counted above
   });
 }
 
@@ -709,7 +709,7 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   // page fault on its first write: 780 fewer on 200 000 points, docs/learner.md).
   detail::PointOrder order;
   Eigen::MatrixXd xt(n, d);
-  if (d == 2 && (angle_mask == 0u || angle_mask == 2u)) {
+  if (detail::EStep2dApplies(d, angle_mask)) {
     order = detail::SpatialOrder2d(points, angle_mask, threads);
     detail::ParallelFor(threads, tasks, [&](long t) {
       Eigen::Index first, last;
@@ -784,6 +784,8 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   ko.restarts = 1;
   ko.max_iterations = options.kmeans_max_iterations;
   std::vector<EmRun> runs(options.restarts + options.extra_starts.size());
+  summary->prepare_seconds = seconds_since(stage);
+  stage = Clock::now();
   // The candidates are independent, so with several threads they run side by side, one thread
   // each (the screening's E-steps on 20 000 points are too short to split well, and k-means is
   // serial): candidate r's k-means draws from its own copy of rng advanced past the draws of
@@ -791,8 +793,6 @@ Status FitMixture(const Eigen::MatrixXd& points, uint32_t angle_mask, const FitO
   // the fit is the same bits for any thread count. What a candidate reports (warnings, re-seeds,
   // progress) is kept apart and passed on in candidate order afterwards; each candidate has the
   // whole re-seed budget (max_reseeds); the fit to convergence has what all of them left of it.
-  summary->prepare_seconds = seconds_since(stage);
-  stage = Clock::now();
   const bool side_by_side = s.threads > 1 && options.restarts > 1;
   const uint64_t draws = KMeansRandomDraws(ko);
   std::vector<FitSummary> reports(options.restarts);

@@ -22,10 +22,13 @@ struct Moments2d {
   std::vector<double> n, m0, m1, s00, s01, s11;
 };
 
-// True when EStep2d handles m: D = 2, and no angle dimension or the angle on dimension 1.
-inline bool EStep2dApplies(const Mixture& m) {
-  return m.dim == 2 && (m.angle_mask == 0u || m.angle_mask == 2u);
+// True when EStep2d handles D-dimensional data or mixtures with this angle mask (and so when
+// FitMixture puts the points in spatial order for it): D = 2, and no angle dimension or the
+// angle on dimension 1.
+inline bool EStep2dApplies(int dim, uint32_t angle_mask) {
+  return dim == 2 && (angle_mask == 0u || angle_mask == 2u);
 }
+inline bool EStep2dApplies(const Mixture& m) { return EStep2dApplies(m.dim, m.angle_mask); }
 
 // Which compiled kernel runs: kAuto takes AVX2 when the CPU has it; kAvx2 falls back to the
 // baseline when it does not (tests compare the two).

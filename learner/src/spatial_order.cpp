@@ -40,6 +40,7 @@ inline uint32_t Morton(uint32_t x, uint32_t y) { return kSpread.v[x] | kSpread.v
 }  // namespace
 
 PointOrder SpatialOrder2d(const Eigen::MatrixXd& points, uint32_t angle_mask, int threads) {
+  eigen_assert(points.rows() == 2);  // read below as pairs of coordinates
   const Eigen::Index n = points.cols();
   if (n == 0) return PointOrder();
   // Coordinates read through a copied pointer (points is 2 x n, column-major), not through

@@ -112,13 +112,15 @@ struct FitSummary {
                                          // log-likelihood (replaced by a plain EM step)
   // Wall time of the fit's stages (steady clock), to see where a fit's time goes: preparing the
   // data (checks, copies, spatial order, moments, the screening sample), building and screening
-  // the candidates, and the kept candidate's run to convergence (on all points).
+  // the candidates (without a sample, the kept one's screening steps are among them), and the
+  // kept candidate's further steps on all points. Set on success.
   double prepare_seconds = 0.0;
   double candidates_seconds = 0.0;
   double converge_seconds = 0.0;
   std::vector<std::string> warnings;
 
-  // One line: N, D, K, iterations, convergence, final mean LL, BIC, the stages' seconds.
+  // One line: N, D, K, iterations, convergence, final mean LL, BIC, re-seeds, dropped
+  // components, the stages' seconds.
   std::string BriefReport() const;
 };
 

@@ -127,6 +127,10 @@ def stage_medians(runs: List[dict]) -> Dict[str, Optional[float]]:
     return out
 
 
+# How long one of our fits may take before the benchmark gives up on it [s].
+FIT_TIMEOUT_S = 3600
+
+
 def ours_command(exe: Path, csv: Path, k: int, seed: int, extra: List[str]) -> List[str]:
     """gmmrrt-bench-learner's command line for a fit of k components to csv with this seed."""
     return [str(exe), "--points", str(csv), "--k", str(k), "--seed", str(seed)] + extra
@@ -137,7 +141,7 @@ def fit_ours(exe: Path, csv: Path, points: np.ndarray, k: int, seed: int, restar
     """Our fit with the learner's defaults (tolerance, iteration cap, SQUAREM, all cores) unless
     extra options say otherwise: the benchmark measures what a user gets."""
     cmd = ours_command(exe, csv, k, seed, (["--restarts", str(restarts)] if restarts is not None else []) + (extra or []))
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=3600)
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=FIT_TIMEOUT_S)
     if proc.returncode != 0:
         raise BenchError(f"{' '.join(cmd)} exited {proc.returncode}: {proc.stderr.strip()[-400:]}")
     out = json.loads(proc.stdout)
@@ -159,22 +163,34 @@ def fit_ours_pair(exe: Path, csv: Path, k: int, seed: int, extra: List[str]) -> 
     cmd = ours_command(exe, csv, k, seed, extra + ["--ready-line"])
     procs = [subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
              for _ in range(2)]
-    # A process that never says "ready" (it hangs reading the points) is killed after the same
-    # hour a single fit gets, so that its readline returns instead of blocking the benchmark.
-    watchdog = threading.Timer(3600, lambda: [p.kill() for p in procs])
+    # A process that never says "ready" (it hangs reading the points) is killed after the time a
+    # single fit gets, so that its readline returns instead of blocking the benchmark.
+    timed_out = threading.Event()
+
+    def kill_all() -> None:
+        timed_out.set()
+        for proc in procs:
+            proc.kill()
+
+    watchdog = threading.Timer(FIT_TIMEOUT_S, kill_all)
     watchdog.start()
     try:
         for proc in procs:
             line = proc.stderr.readline()
+            if timed_out.is_set():
+                raise BenchError(f"{' '.join(cmd)}: no 'ready' on stderr within {FIT_TIMEOUT_S} s")
             if line.strip() != "ready":
                 raise BenchError(f"{' '.join(cmd)}: expected 'ready' on stderr, got {line.strip()[-400:]!r}")
         watchdog.cancel()
-        for proc in procs:
-            proc.stdin.write("go\n")
-            proc.stdin.flush()  # communicate() closes it
+        try:
+            for proc in procs:
+                proc.stdin.write("go\n")
+                proc.stdin.flush()  # communicate() closes it
+        except BrokenPipeError as e:  # it ended (or was killed) between "ready" and "go"
+            raise BenchError(f"{' '.join(cmd)}: ended before it was told to start") from e
         outs = []
         for proc in procs:
-            out, err = proc.communicate(timeout=3600)
+            out, err = proc.communicate(timeout=FIT_TIMEOUT_S)
             if proc.returncode != 0:
                 raise BenchError(f"{' '.join(cmd)} (two at once) exited {proc.returncode}: {err.strip()[-400:]}")
             outs.append(json.loads(out))
@@ -358,7 +374,7 @@ ARMADILLO_KM_ITER = 10
 def fit_armadillo(exe: Path, csv: Path, points: np.ndarray, k: int, em_iter: int, seed: int, threads: int) -> dict:
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
     cmd = [str(exe), str(csv), str(k), str(ARMADILLO_KM_ITER), str(em_iter), str(seed)]
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=3600, env=env)
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=FIT_TIMEOUT_S, env=env)
     if proc.returncode != 0:
         raise BenchError(f"{' '.join(cmd)} exited {proc.returncode}: {proc.stderr.strip()[-400:]}")
     out = json.loads(proc.stdout)
